@@ -1,0 +1,28 @@
+//! # morgana
+//!
+//! A spectral light-transport simulator for media that bend and re-colour light. Photons and eye
+//! rays travel through one propagation interface ([`raypath`]); a photon carries one wavelength,
+//! an eye path carries all bands until something on it depends on wavelength. What a scene needs
+//! is decided once, in the [`scene::EffectPlan`], and every integrator reads that plan.
+//!
+//! Entry points: [`scene::load_scene_file`] / [`scene::load_scene_str`] build a validated
+//! [`scene::Scene`]; [`render::render`] runs the photon passes and the eye pass;
+//! [`output::write_outputs`] writes the spectral EXR, PNG preview and `report.json`.
+//!
+//! Units are SI (metres, seconds, watts); spectral quantities are per nanometre, and names carry
+//! units where they could be doubted (`wavelength_nm`, `power_w`).
+
+pub mod error;
+pub mod geometry;
+pub mod light;
+pub mod material;
+pub mod output;
+pub mod photon;
+pub mod photon_map;
+pub mod raypath;
+pub mod render;
+pub mod rng;
+pub mod sampling;
+pub mod scene;
+pub mod spectrum;
+pub mod testing;
