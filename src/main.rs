@@ -1,1 +1,129 @@
-fn main() {}
+//! The `morgana` command line: parses arguments, calls the library, reports errors.
+//! Exit codes: 0 success, 2 bad input, 1 internal failure.
+
+use clap::{Parser, Subcommand};
+use morgana::error::{Error, Result};
+use morgana::render::{RenderOptions, render};
+use morgana::scene::{Scene, default_scene, load_scene_file};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "morgana",
+    version,
+    about = "Spectral light transport through media that bend and re-colour light"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene (the embedded default scene when SCENE is omitted) into --out.
+    Render {
+        /// Scene file (TOML).
+        scene: Option<PathBuf>,
+        /// Output directory.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Photons to emit for each photon map (overrides [integrator] photons and caustic_photons).
+        #[arg(long)]
+        photons: Option<u64>,
+        /// Random seed (overrides [integrator] seed).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Worker threads (default: all cores). The output does not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bars.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Validate a scene and print what will be simulated and why.
+    Check {
+        /// Scene file (TOML); the embedded default scene when omitted.
+        scene: Option<PathBuf>,
+    },
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render {
+            scene,
+            out,
+            photons,
+            seed,
+            threads,
+            quiet,
+        } => run_render(scene.as_deref(), &out, photons, seed, threads, quiet),
+        Command::Check { scene } => run_check(scene.as_deref()),
+    };
+    if let Err(e) = result {
+        eprintln!("morgana: {e}");
+        std::process::exit(e.exit_code());
+    }
+}
+
+fn load(path: Option<&Path>) -> Result<Scene> {
+    match path {
+        Some(p) => load_scene_file(p),
+        None => default_scene(),
+    }
+}
+
+fn run_check(path: Option<&Path>) -> Result<()> {
+    let scene = load(path)?;
+    println!("{}: valid", scene.label());
+    println!(
+        "  {}x{} pixels, {} bands over {}–{} nm ({:?} sampling), {} lights, {} shapes",
+        scene.camera.width,
+        scene.camera.height,
+        scene.bands.count,
+        scene.bands.min_nm,
+        scene.bands.max_nm,
+        scene.sampling,
+        scene.lights.len(),
+        scene.shapes.len()
+    );
+    println!("effect plan:");
+    print!("{}", scene.plan);
+    Ok(())
+}
+
+fn run_render(
+    path: Option<&Path>,
+    out: &Path,
+    photons: Option<u64>,
+    seed: Option<u64>,
+    threads: Option<usize>,
+    quiet: bool,
+) -> Result<()> {
+    let start = Instant::now();
+    let mut scene = load(path)?;
+    scene.apply_overrides(photons, seed);
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        if t == 0 {
+            return Err(Error::input(None, "--threads must be at least 1"));
+        }
+        builder = builder.num_threads(t);
+    }
+    let pool = builder
+        .build()
+        .map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
+    let rendered = pool.install(|| render(&scene, &RenderOptions { quiet }));
+    let outputs = morgana::output::write_outputs(
+        &scene,
+        &rendered,
+        out,
+        pool.current_num_threads(),
+        start.elapsed().as_secs_f64(),
+    )?;
+    for p in outputs {
+        println!("wrote {}", p.display());
+    }
+    Ok(())
+}

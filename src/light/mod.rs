@@ -1,1 +1,127 @@
-//! TODO
+//! Light sources: one file each, dispatched by a closed enum.
+//!
+//! Every light holds an absolute spectrum — spectral radiance (area), spectral intensity (point,
+//! spot) or spectral irradiance normal to the beam (directional), all per nm — and a sampler
+//! that draws photon wavelengths in proportion to its emitted spectral power.
+//!
+//! Two queries serve the two passes: [`Light::emit`] starts a photon (power is assigned by the
+//! caller: total power / photons emitted), [`Light::incident`] samples the light as seen from a
+//! point for shadow rays. The spectral contribution of an incident sample at λ is
+//! `spectrum(λ) · weight`, where `weight` already divides by the sampling density.
+
+mod area;
+mod directional;
+mod point;
+mod spot;
+
+pub use area::{AreaLight, Side};
+pub use directional::DirectionalLight;
+pub use point::PointLight;
+pub use spot::SpotLight;
+
+use crate::rng::Rng;
+use crate::spectrum::{Spectrum, SpectrumSampler};
+use glam::DVec3;
+
+/// A light's spectrum and the sampler of its photon wavelengths.
+#[derive(Clone, Debug)]
+pub struct LightSpectrum {
+    /// Absolute spectral quantity per nm (see the module docs for the unit per light type).
+    pub spectrum: Spectrum,
+    /// Draws wavelengths ∝ `spectrum` over the scene's range.
+    pub sampler: SpectrumSampler,
+}
+
+impl LightSpectrum {
+    /// `None` when the spectrum has no positive power within [min_nm, max_nm].
+    pub fn new(spectrum: Spectrum, min_nm: f64, max_nm: f64) -> Option<LightSpectrum> {
+        let sampler = SpectrumSampler::new(&spectrum, min_nm, max_nm)?;
+        Some(LightSpectrum { spectrum, sampler })
+    }
+
+    /// ∫ spectrum dλ over the scene's range.
+    pub fn integral(&self) -> f64 {
+        self.sampler.integral()
+    }
+}
+
+#[derive(Clone, Debug)]
+pub enum Light {
+    Area(AreaLight),
+    Point(PointLight),
+    Spot(SpotLight),
+    Directional(DirectionalLight),
+}
+
+/// Where a photon starts: origin, unit direction, wavelength.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    pub origin: DVec3,
+    pub dir: DVec3,
+    pub wavelength_nm: f64,
+    /// Unit normal of the emitting surface at `origin` (zero for point-like lights).
+    pub normal: DVec3,
+}
+
+/// A light sampled from a receiving point: unit direction toward the light, distance
+/// (infinite for directional lights), and the factor that turns the light's spectrum into
+/// incident radiance divided by the sampling density.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incident {
+    pub wi: DVec3,
+    pub dist: f64,
+    pub weight: f64,
+}
+
+impl Light {
+    pub fn spectrum(&self) -> &LightSpectrum {
+        match self {
+            Light::Area(l) => &l.emission,
+            Light::Point(l) => &l.emission,
+            Light::Spot(l) => &l.emission,
+            Light::Directional(l) => &l.emission,
+        }
+    }
+
+    /// Radiant flux emitted within the scene's wavelength range, W.
+    pub fn power_w(&self) -> f64 {
+        match self {
+            Light::Area(l) => l.power_w(),
+            Light::Point(l) => l.power_w(),
+            Light::Spot(l) => l.power_w(),
+            Light::Directional(l) => l.power_w(),
+        }
+    }
+
+    /// Starts a photon: position and direction distributed as the emitted power, wavelength
+    /// drawn from the emitted spectrum.
+    pub fn emit(&self, rng: &mut Rng) -> Emission {
+        let (wavelength_nm, _) = self.spectrum().sampler.sample(rng.uniform());
+        let (origin, dir, normal) = match self {
+            Light::Area(l) => l.emit(rng),
+            Light::Point(l) => (l.position, l.emit_dir(rng.uniform2()), DVec3::ZERO),
+            Light::Spot(l) => (
+                l.position,
+                l.emit_dir(rng.uniform(), rng.uniform2()),
+                DVec3::ZERO,
+            ),
+            Light::Directional(l) => (l.emit_origin(rng.uniform2()), l.dir, l.dir),
+        };
+        Emission {
+            origin,
+            dir,
+            wavelength_nm,
+            normal,
+        }
+    }
+
+    /// Samples the light as seen from `p`; `None` when it sends nothing toward `p`.
+    pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
+        match self {
+            Light::Area(l) => l.incident(p, u),
+            Light::Point(l) => l.incident(p),
+            Light::Spot(l) => l.incident(p),
+            Light::Directional(l) => Some(l.incident()),
+        }
+    }
+}

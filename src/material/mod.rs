@@ -1,1 +1,83 @@
-//! TODO
+//! Surface materials: one file each, dispatched by a closed enum.
+//!
+//! Directions follow the convention of the photon tracer and the eye tracer alike: `dir` is the
+//! direction of travel arriving at the surface, `n` the shape's front-side geometric normal (in
+//! either orientation relative to `dir`). Sampling returns the direction of travel leaving it.
+
+mod dielectric;
+mod fresnel;
+mod ior;
+mod lambertian;
+mod mirror;
+
+pub use dielectric::Dielectric;
+pub use fresnel::{fresnel_dielectric, reflect, refract};
+pub use ior::{GLASS_NAMES, Ior, named_glass};
+pub use lambertian::Lambertian;
+pub use mirror::Mirror;
+
+use glam::DVec3;
+
+/// A surface's scattering.
+#[derive(Clone, Debug)]
+pub enum Material {
+    Lambertian(Lambertian),
+    Mirror(Mirror),
+    Dielectric(Dielectric),
+}
+
+/// A specular direction chosen at a surface and the factor it multiplies the carried power or
+/// throughput by at `wavelength_nm`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpecularSample {
+    pub dir: DVec3,
+    pub weight: f64,
+    /// True when the direction passes through the surface (refraction).
+    pub transmitted: bool,
+}
+
+impl Material {
+    /// Diffuse materials hold photons and are lit by radiance estimates and shadow rays.
+    pub fn is_diffuse(&self) -> bool {
+        matches!(self, Material::Lambertian(_))
+    }
+
+    /// Specular materials (mirrors, glass) redirect light into one direction per wavelength.
+    pub fn is_specular(&self) -> bool {
+        !self.is_diffuse()
+    }
+
+    /// True when the outgoing direction depends on wavelength (dispersive refraction): an eye
+    /// path carrying several wavelengths must split here.
+    pub fn is_dispersive(&self) -> bool {
+        match self {
+            Material::Dielectric(d) => d.ior.is_dispersive(),
+            _ => false,
+        }
+    }
+
+    /// The specular direction for a path arriving along `dir` at a surface with normal `n`, at
+    /// `wavelength_nm`, using `u` to choose between reflection and refraction; `None` for
+    /// diffuse materials.
+    pub fn sample_specular(
+        &self,
+        dir: DVec3,
+        n: DVec3,
+        wavelength_nm: f64,
+        u: f64,
+    ) -> Option<SpecularSample> {
+        match self {
+            Material::Lambertian(_) => None,
+            Material::Mirror(m) => Some(m.sample(dir, n, wavelength_nm)),
+            Material::Dielectric(d) => Some(d.sample(dir, n, wavelength_nm, u)),
+        }
+    }
+
+    /// Diffuse reflectance ρ(λ) (the BRDF is ρ/π); zero for specular materials.
+    pub fn diffuse_reflectance(&self, wavelength_nm: f64) -> f64 {
+        match self {
+            Material::Lambertian(l) => l.reflectance.eval(wavelength_nm),
+            _ => 0.0,
+        }
+    }
+}

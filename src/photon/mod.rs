@@ -1,1 +1,94 @@
-//! TODO
+//! The photon pass: emission, tracing with Russian roulette, and the storage rules of each map.
+//!
+//! Photons are emitted in proportion to light power, each with one wavelength drawn from its
+//! light's spectrum; refraction with dispersion then separates colours by itself. Work is split
+//! into fixed batches whose random streams derive from (seed, map, batch), so the photon set is
+//! identical for any thread count.
+
+mod emit;
+mod targeting;
+mod trace;
+
+pub use emit::LightChooser;
+pub use targeting::CausticTargets;
+pub use trace::{MapKind, PhotonStats};
+
+use crate::photon_map::PhotonRecord;
+use crate::raypath::Propagator;
+use crate::rng::{Rng, Stream};
+use crate::scene::Scene;
+use rayon::prelude::*;
+
+/// Photons per batch (one random stream each).
+pub const BATCH: u64 = 4096;
+
+/// Emits `emitted` photons for a map of `kind` and returns the stored photons (in batch order)
+/// and the pass's statistics. `on_batch` is called after each batch with its photon count.
+pub fn shoot(
+    scene: &Scene,
+    kind: MapKind,
+    emitted: u64,
+    seed: u64,
+    on_batch: &(dyn Fn(u64) + Sync),
+) -> (Vec<PhotonRecord>, PhotonStats) {
+    let mut stats = PhotonStats {
+        emitted,
+        ..PhotonStats::default()
+    };
+    let Some(chooser) = LightChooser::new(&scene.lights) else {
+        return (Vec::new(), stats);
+    };
+    let targets = match kind {
+        MapKind::Caustic => match CausticTargets::new(scene) {
+            Some(t) => Some(t),
+            None => return (Vec::new(), stats),
+        },
+        MapKind::Global { .. } => None,
+    };
+    let power = chooser.total_power_w() / emitted.max(1) as f64;
+    stats.power_per_photon_w = power;
+    let prop = Propagator::new(&scene.shapes, &scene.bvh);
+    let batches = emitted.div_ceil(BATCH);
+    let stream = match kind {
+        MapKind::Caustic => Stream::CausticPhotons,
+        MapKind::Global { .. } => Stream::GlobalPhotons,
+    };
+    let results: Vec<(Vec<PhotonRecord>, PhotonStats)> = (0..batches)
+        .into_par_iter()
+        .map(|b| {
+            let mut rng = Rng::for_task(seed, stream, b);
+            let n = BATCH.min(emitted - b * BATCH);
+            let mut out = Vec::new();
+            let mut st = PhotonStats::default();
+            for _ in 0..n {
+                let (l, _) = chooser.choose(rng.uniform());
+                let (em, factor) = match &targets {
+                    Some(t) => t.emit(&scene.lights[l], &mut rng),
+                    None => (scene.lights[l].emit(&mut rng), 1.0),
+                };
+                if factor > 0.0 {
+                    trace::trace(
+                        scene,
+                        &prop,
+                        &em,
+                        power * factor,
+                        kind,
+                        &mut rng,
+                        &mut out,
+                        &mut st,
+                    );
+                } else {
+                    st.missed += 1;
+                }
+            }
+            on_batch(n);
+            (out, st)
+        })
+        .collect();
+    let mut photons = Vec::with_capacity(results.iter().map(|r| r.0.len()).sum());
+    for (p, s) in results {
+        photons.extend(p);
+        stats.add(&s);
+    }
+    (photons, stats)
+}

@@ -1,8 +1,12 @@
 //! Photon maps: compact photon storage, a kd-tree with k-nearest queries, radiance estimates.
 
+pub mod estimate;
+mod irradiance;
 mod kdtree;
 mod photon;
 
+pub use estimate::{BandValues, Estimator};
+pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, Neighbours};
 pub use photon::{Photon, PhotonRecord};
 

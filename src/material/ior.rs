@@ -1,0 +1,122 @@
+//! Refractive index of transparent solids and liquids as a function of wavelength.
+//!
+//! # References
+//! - Cauchy's formula n(λ) = A + B/λ² + C/λ⁴ (λ in μm): Born & Wolf, *Principles of Optics*,
+//!   7th ed., §2.3.
+//! - Sellmeier's formula n²(λ) = 1 + Σᵢ Bᵢλ²/(λ² − Cᵢ) (λ in μm, Cᵢ in μm²).
+//! - N-BK7: SCHOTT optical glass data sheet N-BK7 (517642.251), Sellmeier coefficients
+//!   B = (1.03961212, 0.231792344, 1.01046945), C = (0.00600069867, 0.0200179144, 103.560653) μm²;
+//!   n_d (587.56 nm) = 1.51680.
+//! - Fused silica: Malitson 1965, "Interspecimen comparison of the refractive index of fused
+//!   silica", J. Opt. Soc. Am. 55:1205. B = (0.6961663, 0.4079426, 0.8974794),
+//!   C = (0.0684043², 0.1162414², 9.896161²) μm²; n_d = 1.4585.
+
+use serde::Serialize;
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum Ior {
+    Constant { n: f64 },
+    Cauchy { a: f64, b_um2: f64, c_um4: f64 },
+    Sellmeier { b: [f64; 3], c_um2: [f64; 3] },
+}
+
+impl Ior {
+    /// n at `wavelength_nm`.
+    pub fn eval(&self, wavelength_nm: f64) -> f64 {
+        let l_um = wavelength_nm * 1e-3;
+        let l2 = l_um * l_um;
+        match self {
+            Ior::Constant { n } => *n,
+            Ior::Cauchy { a, b_um2, c_um4 } => a + b_um2 / l2 + c_um4 / (l2 * l2),
+            Ior::Sellmeier { b, c_um2 } => {
+                let s: f64 = b.iter().zip(c_um2).map(|(b, c)| b * l2 / (l2 - c)).sum();
+                (1.0 + s).sqrt()
+            }
+        }
+    }
+
+    /// True unless the index is the same at every wavelength.
+    pub fn is_dispersive(&self) -> bool {
+        match self {
+            Ior::Constant { .. } => false,
+            Ior::Cauchy { b_um2, c_um4, .. } => *b_um2 != 0.0 || *c_um4 != 0.0,
+            Ior::Sellmeier { .. } => true,
+        }
+    }
+
+    /// Checks n ≥ 1 and finite over [min_nm, max_nm] (sampled every nm and at the ends);
+    /// the error names the first offending wavelength.
+    pub fn validate(&self, min_nm: f64, max_nm: f64) -> Result<(), String> {
+        let steps = ((max_nm - min_nm).ceil() as usize).max(1);
+        for i in 0..=steps {
+            let l = min_nm + (max_nm - min_nm) * i as f64 / steps as f64;
+            let n = self.eval(l);
+            if !n.is_finite() || n < 1.0 {
+                return Err(format!(
+                    "refractive index is {n} at {l:.1} nm; it must be finite and at least 1 over the \
+                     scene's wavelength range {min_nm}–{max_nm} nm"
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A glass from the built-in catalogue: "N-BK7" (alias "BK7") or "fused_silica".
+pub fn named_glass(name: &str) -> Option<Ior> {
+    match name {
+        "N-BK7" | "BK7" => Some(Ior::Sellmeier {
+            b: [1.039_612_12, 0.231_792_344, 1.010_469_45],
+            c_um2: [0.006_000_698_67, 0.020_017_914_4, 103.560_653],
+        }),
+        "fused_silica" => Some(Ior::Sellmeier {
+            b: [0.696_166_3, 0.407_942_6, 0.897_479_4],
+            c_um2: [
+                0.068_404_3f64.powi(2),
+                0.116_241_4f64.powi(2),
+                9.896_161f64.powi(2),
+            ],
+        }),
+        _ => None,
+    }
+}
+
+/// Names accepted by [`named_glass`], for error messages.
+pub const GLASS_NAMES: &[&str] = &["N-BK7", "BK7", "fused_silica"];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn catalogue_glasses_match_their_published_nd() {
+        // n_d at the helium d line, 587.5618 nm.
+        let bk7 = named_glass("N-BK7").unwrap().eval(587.5618);
+        assert!((bk7 - 1.51680).abs() < 2e-5, "N-BK7 n_d = {bk7}");
+        let silica = named_glass("fused_silica").unwrap().eval(587.5618);
+        assert!(
+            (silica - 1.4585).abs() < 1e-4,
+            "fused silica n_d = {silica}"
+        );
+        // Abbe number of N-BK7 is 64.17 (SCHOTT): (n_d − 1)/(n_F − n_C), F = 486.1327, C = 656.2725 nm.
+        let g = named_glass("N-BK7").unwrap();
+        let v = (g.eval(587.5618) - 1.0) / (g.eval(486.1327) - g.eval(656.2725));
+        assert!((v - 64.17).abs() < 0.05, "Abbe number {v}");
+    }
+
+    #[test]
+    fn normal_dispersion_and_validation() {
+        let g = named_glass("BK7").unwrap();
+        assert!(g.eval(450.0) > g.eval(650.0), "blue bends more");
+        assert!(g.is_dispersive() && !Ior::Constant { n: 1.5 }.is_dispersive());
+        let cauchy = Ior::Cauchy {
+            a: 1.5046,
+            b_um2: 0.00420,
+            c_um4: 0.0,
+        };
+        assert!((cauchy.eval(500.0) - (1.5046 + 0.0042 / 0.25)).abs() < 1e-12);
+        assert!(Ior::Constant { n: 0.9 }.validate(380.0, 780.0).is_err());
+        assert!(g.validate(380.0, 780.0).is_ok());
+    }
+}

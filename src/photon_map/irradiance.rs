@@ -1,0 +1,115 @@
+//! Precomputed irradiance for fast final gathering (Christensen 1999, "Faster Photon Map
+//! Global Illumination", JGT 4(3)).
+//!
+//! Irradiance is estimated once at a subset of the global map's photons (on the side each photon
+//! arrived from); a final-gather ray then reads the nearest precomputed point whose normal agrees
+//! with the surface it hit, instead of running a k-nearest estimate of its own.
+
+use super::estimate::{BandValues, Estimator};
+use super::{KdPoint, KdTree, Neighbours};
+use crate::spectrum::MAX_BANDS;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Normals of a cache point and a query must agree to this cosine.
+const MIN_NORMAL_COS: f64 = 0.9;
+
+#[derive(Clone, Copy, Debug)]
+struct CachePoint {
+    pos: [f32; 3],
+    normal: [f32; 3],
+    index: u32,
+}
+
+impl KdPoint for CachePoint {
+    fn position(&self) -> [f32; 3] {
+        self.pos
+    }
+}
+
+/// Irradiance per band at points of a global photon map.
+pub struct IrradianceCache {
+    origin: DVec3,
+    tree: KdTree<CachePoint>,
+    bands: usize,
+    values: Vec<f32>,
+    max_radius: f64,
+}
+
+impl IrradianceCache {
+    /// Estimates irradiance at every `stride`-th photon of the estimator's map.
+    pub fn build(est: &Estimator, stride: usize) -> IrradianceCache {
+        let map = est.map;
+        let bands = est.bands.count;
+        let picked: Vec<u32> = (0..map.len() as u32).step_by(stride.max(1)).collect();
+        let computed: Vec<(DVec3, DVec3, BandValues)> = picked
+            .par_iter()
+            .map_init(Neighbours::default, |nb, &i| {
+                let p = map.record(i);
+                let side = if p.dir.dot(p.normal) < 0.0 {
+                    p.normal
+                } else {
+                    -p.normal
+                };
+                (p.position, side, est.irradiance(p.position, side, nb))
+            })
+            .collect();
+        let origin = computed.first().map_or(DVec3::ZERO, |c| c.0);
+        let mut values = Vec::with_capacity(computed.len() * bands);
+        let points: Vec<CachePoint> = computed
+            .iter()
+            .enumerate()
+            .map(|(i, (pos, n, e))| {
+                values.extend(e[..bands].iter().map(|v| *v as f32));
+                CachePoint {
+                    pos: (*pos - origin).as_vec3().to_array(),
+                    normal: n.as_vec3().to_array(),
+                    index: i as u32,
+                }
+            })
+            .collect();
+        IrradianceCache {
+            origin,
+            tree: KdTree::build(points),
+            bands,
+            values,
+            max_radius: est.max_radius,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.tree.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.tree.is_empty()
+    }
+
+    /// Bytes held by the cache.
+    pub fn memory_bytes(&self) -> usize {
+        self.tree.len() * std::mem::size_of::<CachePoint>() + self.values.len() * 4
+    }
+
+    /// Irradiance per band at the nearest cache point within the map's maximum radius whose
+    /// normal agrees with `n`; `None` if there is none.
+    pub fn lookup(&self, x: DVec3, n: DVec3, nb: &mut Neighbours) -> Option<BandValues> {
+        let q = (x - self.origin).as_vec3().to_array();
+        self.tree
+            .knn(q, 8, (self.max_radius * self.max_radius) as f32, nb);
+        let items = self.tree.items();
+        let best = nb
+            .items
+            .iter()
+            .filter(|(i, _)| {
+                let c = items[*i as usize].normal;
+                DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64).dot(n) >= MIN_NORMAL_COS
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))?;
+        let start = items[best.0 as usize].index as usize * self.bands;
+        let mut out = [0.0; MAX_BANDS];
+        for (o, v) in out.iter_mut().zip(&self.values[start..start + self.bands]) {
+            *o = *v as f64;
+        }
+        Some(out)
+    }
+}

@@ -1,0 +1,64 @@
+//! What a render measured: wall time per phase, photons per map, rays traced.
+
+use crate::photon::PhotonStats;
+use serde::Serialize;
+use std::time::Instant;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PhaseTime {
+    pub phase: String,
+    pub seconds: f64,
+}
+
+/// Wall time per phase, in the order the phases ran.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Phases(pub Vec<PhaseTime>);
+
+impl Phases {
+    /// Records the time since `start` under `phase` and returns it in seconds.
+    pub fn add(&mut self, phase: &str, start: Instant) -> f64 {
+        let seconds = start.elapsed().as_secs_f64();
+        self.0.push(PhaseTime {
+            phase: phase.to_string(),
+            seconds,
+        });
+        seconds
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct MapReport {
+    pub map: String,
+    pub emitted: u64,
+    pub stored: u64,
+    pub memory_bytes: u64,
+    pub trace_seconds: f64,
+    pub build_seconds: f64,
+    pub stats: PhotonStats,
+}
+
+/// Rays traced in the eye pass, by purpose.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct RayCounts {
+    /// Camera rays and the specular continuations of eye paths.
+    pub eye: u64,
+    pub shadow: u64,
+    pub gather: u64,
+}
+
+impl RayCounts {
+    pub fn add(&mut self, o: &RayCounts) {
+        self.eye += o.eye;
+        self.shadow += o.shadow;
+        self.gather += o.gather;
+    }
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct RenderStats {
+    pub phases: Phases,
+    pub maps: Vec<MapReport>,
+    pub rays: RayCounts,
+    pub irradiance_points: u64,
+    pub irradiance_memory_bytes: u64,
+}

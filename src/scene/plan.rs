@@ -1,0 +1,166 @@
+//! The effect plan: computed once from the validated scene, it says which machinery runs and
+//! why. Integrators read it instead of re-deriving it; `morgana check` prints it and
+//! `report.json` records it. "Simulate only what the scene calls for" starts here.
+
+use super::settings::{DirectLighting, IntegratorSettings, WavelengthSampling};
+use crate::material::Material;
+use serde::Serialize;
+
+/// Whether one piece of machinery runs, and the reason in words a user can act on.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Decision {
+    pub on: bool,
+    pub why: String,
+}
+
+impl Decision {
+    fn on(why: impl Into<String>) -> Decision {
+        Decision {
+            on: true,
+            why: why.into(),
+        }
+    }
+    fn off(why: impl Into<String>) -> Decision {
+        Decision {
+            on: false,
+            why: why.into(),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct EffectPlan {
+    /// Photons stored on diffuse surfaces for indirect light (and for everything when direct
+    /// light comes from the photon map).
+    pub global_map: Decision,
+    /// Photons that reached a diffuse surface through specular surfaces only (L S+ D).
+    pub caustic_map: Decision,
+    /// Direct light on diffuse surfaces by shadow rays.
+    pub shadow_rays: Decision,
+    /// Indirect light by gathering the global map from a set of rays at each shading point.
+    pub final_gather: Decision,
+    /// Eye paths carrying several wavelengths split at wavelength-dependent refraction.
+    pub dispersion_splitting: Decision,
+    pub participating_media: Decision,
+    pub volume_map: Decision,
+    pub curved_paths: Decision,
+    pub inelastic_scattering: Decision,
+}
+
+/// What the scene contains, as far as the plan cares.
+pub struct SceneFacts<'a> {
+    pub used_materials: Vec<(&'a str, &'a Material)>,
+    pub sampling: WavelengthSampling,
+    pub bands: usize,
+}
+
+impl EffectPlan {
+    pub fn decide(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
+        let diffuse = facts
+            .used_materials
+            .iter()
+            .find(|(_, m)| m.is_diffuse())
+            .map(|(n, _)| *n);
+        let specular = facts
+            .used_materials
+            .iter()
+            .find(|(_, m)| m.is_specular())
+            .map(|(n, _)| *n);
+        let dispersive = facts
+            .used_materials
+            .iter()
+            .find(|(_, m)| m.is_dispersive())
+            .map(|(n, _)| *n);
+        let photon_direct = s.direct == DirectLighting::PhotonMap;
+        let global_map = match (diffuse, s.photons) {
+            (None, _) => Decision::off("no diffuse surface in the scene stores photons"),
+            (Some(_), 0) => Decision::off("[integrator] photons = 0"),
+            (Some(d), _) if photon_direct => Decision::on(format!(
+                "direct = \"photon_map\": all light on diffuse surfaces (e.g. \"{d}\") comes from the global map"
+            )),
+            (Some(d), _) => {
+                Decision::on(format!("diffuse material \"{d}\" receives indirect light"))
+            }
+        };
+        let caustic_map = match (diffuse, specular) {
+            _ if photon_direct => {
+                Decision::off("direct = \"photon_map\": caustics are part of the global map")
+            }
+            (None, _) => Decision::off("no diffuse surface to receive caustics"),
+            (_, None) => Decision::off("no specular surface (mirror or glass) can focus light"),
+            _ if s.caustic_photons == 0 => Decision::off("[integrator] caustic_photons = 0"),
+            (Some(d), Some(sp)) => Decision::on(format!(
+                "specular material \"{sp}\" can focus light onto diffuse \"{d}\""
+            )),
+        };
+        let shadow_rays = match diffuse {
+            None => Decision::off("no diffuse surface to light"),
+            Some(_) if photon_direct => Decision::off("direct = \"photon_map\""),
+            Some(_) => Decision::on(
+                "direct = \"shadow_rays\": direct light on diffuse surfaces by shadow rays",
+            ),
+        };
+        let final_gather = match (s.final_gather, global_map.on) {
+            (true, true) => Decision::on(format!(
+                "{} gather rays per shading point read the global map",
+                s.gather_rays
+            )),
+            (true, false) => Decision::off("no global map to gather from"),
+            (false, _) if photon_direct => {
+                Decision::off("direct = \"photon_map\": the global map is visualised directly")
+            }
+            (false, _) => Decision::off(
+                "final_gather = false: indirect light read directly from the global map",
+            ),
+        };
+        let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
+        let dispersion_splitting = match (dispersive, multi) {
+            (None, _) => Decision::off("no material's refractive index depends on wavelength"),
+            (Some(_), false) => Decision::off("a single band: every path carries one wavelength"),
+            (Some(m), true) => Decision::on(format!(
+                "material \"{m}\" refracts each wavelength differently"
+            )),
+        };
+        EffectPlan {
+            global_map,
+            caustic_map,
+            shadow_rays,
+            final_gather,
+            dispersion_splitting,
+            participating_media: Decision::off("the scene declares no participating medium"),
+            volume_map: Decision::off("no participating medium to store photons in"),
+            curved_paths: Decision::off("no refractive-index field: every path is a straight line"),
+            inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
+        }
+    }
+
+    /// (name, decision) in a fixed order, for printing.
+    pub fn entries(&self) -> [(&'static str, &Decision); 9] {
+        [
+            ("global photon map", &self.global_map),
+            ("caustic photon map", &self.caustic_map),
+            ("shadow rays", &self.shadow_rays),
+            ("final gathering", &self.final_gather),
+            ("dispersion splitting", &self.dispersion_splitting),
+            ("participating media", &self.participating_media),
+            ("volume photon map", &self.volume_map),
+            ("curved light paths", &self.curved_paths),
+            ("inelastic scattering", &self.inelastic_scattering),
+        ]
+    }
+}
+
+impl std::fmt::Display for EffectPlan {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (name, d) in self.entries() {
+            writeln!(
+                f,
+                "  {:<22} {:<3}  {}",
+                name,
+                if d.on { "on" } else { "off" },
+                d.why
+            )?;
+        }
+        Ok(())
+    }
+}

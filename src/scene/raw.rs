@@ -1,0 +1,135 @@
+//! Serde structs that mirror the scene TOML exactly. Nothing here is validated; every field that
+//! the validator may complain about is `Spanned`, so errors can point at its line and column.
+//!
+//! Shapes, materials and lights are flat structs with a `type` and the union of all types'
+//! fields: the validator rejects a field that the given type does not use, naming the fields it
+//! does use (a parameter the scene gives but nobody reads is an error).
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use toml::Spanned;
+
+pub type S<T> = Option<Spanned<T>>;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    pub camera: Spanned<RawCamera>,
+    pub output: Option<Spanned<RawOutput>>,
+    pub integrator: Option<Spanned<RawIntegrator>>,
+    #[serde(default)]
+    pub spectra: BTreeMap<String, Spanned<toml::Value>>,
+    #[serde(default)]
+    pub material: Vec<Spanned<RawMaterial>>,
+    #[serde(default)]
+    pub shape: Vec<Spanned<RawShape>>,
+    #[serde(default)]
+    pub light: Vec<Spanned<RawLight>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCamera {
+    pub position: S<[f64; 3]>,
+    pub look_at: S<[f64; 3]>,
+    pub up: S<[f64; 3]>,
+    pub fov_deg: S<f64>,
+    pub width: S<i64>,
+    pub height: S<i64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    pub name: S<String>,
+    pub bands: S<i64>,
+    pub min_nm: S<f64>,
+    pub max_nm: S<f64>,
+    pub sampling: S<String>,
+    pub exr: S<bool>,
+    pub png: S<bool>,
+    pub csv: S<bool>,
+    pub exposure: S<toml::Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawIntegrator {
+    pub photons: S<i64>,
+    pub caustic_photons: S<i64>,
+    pub k: S<i64>,
+    pub max_radius: S<f64>,
+    pub caustic_k: S<i64>,
+    pub caustic_max_radius: S<f64>,
+    pub direct: S<String>,
+    pub final_gather: S<bool>,
+    pub gather_rays: S<i64>,
+    pub spp: S<i64>,
+    pub max_depth: S<i64>,
+    pub seed: S<i64>,
+    pub filter: S<String>,
+    pub cone_k: S<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    pub name: S<String>,
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub reflectance: S<toml::Value>,
+    pub ior: S<toml::Value>,
+    pub ior_model: S<String>,
+    pub a: S<f64>,
+    pub b_um2: S<f64>,
+    pub c_um4: S<f64>,
+    pub sellmeier_b: S<[f64; 3]>,
+    pub sellmeier_c_um2: S<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawShape {
+    pub name: S<String>,
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub material: S<String>,
+    pub center: S<[f64; 3]>,
+    pub radius: S<f64>,
+    pub normal: S<[f64; 3]>,
+    pub origin: S<[f64; 3]>,
+    pub u: S<[f64; 3]>,
+    pub v: S<[f64; 3]>,
+    pub min: S<[f64; 3]>,
+    pub max: S<[f64; 3]>,
+    pub vertices: S<Vec<[f64; 3]>>,
+    pub file: S<String>,
+    pub scale: S<f64>,
+    pub translate: S<[f64; 3]>,
+    pub rotate_y_deg: S<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLight {
+    pub name: S<String>,
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub spectrum: S<toml::Value>,
+    pub power_w: S<f64>,
+    pub scale: S<f64>,
+    pub irradiance_w_m2: S<f64>,
+    pub shape: S<String>,
+    pub side: S<String>,
+    pub center: S<[f64; 3]>,
+    pub radius: S<f64>,
+    pub normal: S<[f64; 3]>,
+    pub origin: S<[f64; 3]>,
+    pub u: S<[f64; 3]>,
+    pub v: S<[f64; 3]>,
+    pub position: S<[f64; 3]>,
+    pub direction: S<[f64; 3]>,
+    pub look_at: S<[f64; 3]>,
+    pub cone_deg: S<f64>,
+    pub falloff_start_deg: S<f64>,
+}

@@ -1,0 +1,307 @@
+//! Camera, `[output]` and `[integrator]`: validated settings.
+
+use super::context::{Ctx, R};
+use super::raw::{RawCamera, RawIntegrator, RawOutput};
+use crate::geometry::Aabb;
+use crate::output::png::Exposure;
+use crate::render::Camera;
+use crate::spectrum::{Bands, MAX_BANDS};
+use serde::Serialize;
+use toml::{Spanned, Value};
+
+/// How an eye path chooses its wavelengths.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WavelengthSampling {
+    /// One wavelength per band, jittered within it: the path carries all bands.
+    Bands,
+    /// Hero-wavelength sampling (Wilkie et al. 2014): 4 stratified wavelengths over the whole
+    /// range per path.
+    Hero,
+}
+
+/// Number of wavelengths a hero-sampled path carries.
+pub const HERO_WAVELENGTHS: usize = 4;
+
+/// Where direct light on diffuse surfaces comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DirectLighting {
+    /// Shadow rays to the lights (Jensen; needs straight paths).
+    ShadowRays,
+    /// Everything from the global photon map (Lucifer; works on curved paths).
+    PhotonMap,
+}
+
+/// The kernel of a photon-density estimate.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Filter {
+    /// Uniform weights over the disc.
+    Box,
+    /// Jensen's cone filter w = 1 − d/(k r), normalised by 1 − 2/(3k).
+    Cone { k: f64 },
+    /// Epanechnikov kernel w = 2(1 − d²/r²), normalised over the disc.
+    Epanechnikov,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct IntegratorSettings {
+    /// Photons emitted for the global map.
+    pub photons: u64,
+    /// Photons emitted for the caustic map.
+    pub caustic_photons: u64,
+    pub k: usize,
+    pub max_radius_m: f64,
+    pub caustic_k: usize,
+    pub caustic_max_radius_m: f64,
+    pub direct: DirectLighting,
+    pub final_gather: bool,
+    pub gather_rays: usize,
+    pub spp: usize,
+    pub max_depth: usize,
+    pub seed: u64,
+    pub filter: Filter,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct OutputSettings {
+    /// File stem of the outputs.
+    pub name: String,
+    pub exr: bool,
+    pub png: bool,
+    pub csv: bool,
+    #[serde(skip)]
+    pub exposure: Exposure,
+}
+
+pub fn camera(ctx: &Ctx, c: &Spanned<RawCamera>) -> R<Camera> {
+    let span = c.span();
+    let c = c.get_ref();
+    let what = "[camera]";
+    let position = ctx.vec3(
+        ctx.require(&c.position, "position", &span, what)?,
+        "camera position",
+    )?;
+    let look_at = ctx.vec3(
+        ctx.require(&c.look_at, "look_at", &span, what)?,
+        "camera look_at",
+    )?;
+    let up = match &c.up {
+        Some(u) => ctx.direction(u, "camera up")?,
+        None => glam::DVec3::Y,
+    };
+    let fov = ctx.number(
+        ctx.require(&c.fov_deg, "fov_deg", &span, what)?,
+        "fov_deg",
+        0.0,
+        180.0,
+        true,
+    )?;
+    let width = ctx.integer(
+        ctx.require(&c.width, "width", &span, what)?,
+        "width",
+        1,
+        16384,
+    )? as usize;
+    let height = ctx.integer(
+        ctx.require(&c.height, "height", &span, what)?,
+        "height",
+        1,
+        16384,
+    )? as usize;
+    let forward = look_at - position;
+    if forward.length_squared() == 0.0 {
+        return Err(ctx.err(
+            &span,
+            "[camera]: look_at equals position; the camera needs a viewing direction",
+        ));
+    }
+    if forward.normalize().cross(up).length() < 1e-9 {
+        return Err(ctx.err(
+            &span,
+            "[camera]: up is parallel to the viewing direction; choose another up",
+        ));
+    }
+    Ok(Camera::new(position, look_at, up, fov, width, height))
+}
+
+/// Output settings and the wavelength sampling.
+pub fn output(
+    ctx: &Ctx,
+    o: Option<&Spanned<RawOutput>>,
+    default_name: &str,
+) -> R<(OutputSettings, Bands, WavelengthSampling)> {
+    let Some(o) = o else {
+        let bands = Bands::new(380.0, 780.0, 16).map_err(crate::error::Error::internal)?;
+        let out = OutputSettings {
+            name: default_name.into(),
+            exr: true,
+            png: true,
+            csv: false,
+            exposure: Exposure::Auto,
+        };
+        return Ok((out, bands, WavelengthSampling::Bands));
+    };
+    let span = o.span();
+    let o = o.get_ref();
+    let min_nm = o.min_nm.as_ref().map_or(Ok(380.0), |v| {
+        ctx.number(v, "min_nm", 0.0, f64::INFINITY, true)
+    })?;
+    let max_nm = o.max_nm.as_ref().map_or(Ok(780.0), |v| {
+        ctx.number(v, "max_nm", 0.0, f64::INFINITY, true)
+    })?;
+    let count = o
+        .bands
+        .as_ref()
+        .map_or(Ok(16), |v| ctx.integer(v, "bands", 1, MAX_BANDS as i64))? as usize;
+    let bands =
+        Bands::new(min_nm, max_nm, count).map_err(|e| ctx.err(&span, format!("[output]: {e}")))?;
+    let sampling = match &o.sampling {
+        None => WavelengthSampling::Bands,
+        Some(s) => match ctx.choice(s, "sampling", &["bands", "hero"])? {
+            "hero" => WavelengthSampling::Hero,
+            _ => WavelengthSampling::Bands,
+        },
+    };
+    let name = match &o.name {
+        None => default_name.to_string(),
+        Some(n) => valid_name(ctx, n)?,
+    };
+    let exposure = match &o.exposure {
+        None => Exposure::Auto,
+        Some(e) => exposure(ctx, e)?,
+    };
+    let flag = |f: &Option<Spanned<bool>>, d: bool| f.as_ref().map_or(d, |v| *v.get_ref());
+    let out = OutputSettings {
+        name,
+        exr: flag(&o.exr, true),
+        png: flag(&o.png, true),
+        csv: flag(&o.csv, false),
+        exposure,
+    };
+    Ok((out, bands, sampling))
+}
+
+fn valid_name(ctx: &Ctx, n: &Spanned<String>) -> R<String> {
+    let s = n.get_ref();
+    let ok = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
+        && !s.starts_with('.');
+    if ok {
+        Ok(s.clone())
+    } else {
+        Err(ctx.err(
+            &n.span(),
+            format!(
+                "[output] name \"{s}\" must be a plain file stem: letters, digits, '-', '_', '.'"
+            ),
+        ))
+    }
+}
+
+fn exposure(ctx: &Ctx, e: &Spanned<Value>) -> R<Exposure> {
+    match e.get_ref() {
+        Value::String(s) if s == "auto" => Ok(Exposure::Auto),
+        Value::Float(x) if x.is_finite() => Ok(Exposure::Ev(*x)),
+        Value::Integer(i) => Ok(Exposure::Ev(*i as f64)),
+        _ => Err(ctx.err(
+            &e.span(),
+            "[output] exposure must be \"auto\" or a number of stops (EV)",
+        )),
+    }
+}
+
+/// Integrator settings; automatic radii are fractions of the scene's bounding diagonal.
+pub fn integrator(
+    ctx: &Ctx,
+    i: Option<&Spanned<RawIntegrator>>,
+    bounds: &Aabb,
+) -> R<IntegratorSettings> {
+    let diag = bounds.diagonal().length().max(1e-9);
+    let mut s = IntegratorSettings {
+        photons: 200_000,
+        caustic_photons: 200_000,
+        k: 100,
+        max_radius_m: 0.05 * diag,
+        caustic_k: 50,
+        caustic_max_radius_m: 0.01 * diag,
+        direct: DirectLighting::ShadowRays,
+        final_gather: true,
+        gather_rays: 64,
+        spp: 16,
+        max_depth: 10,
+        seed: 1,
+        filter: Filter::Cone { k: 1.1 },
+    };
+    let Some(i) = i else { return Ok(s) };
+    let r = i.get_ref();
+    let int = |v: &Option<Spanned<i64>>, name: &str, lo: i64, hi: i64, d: i64| -> R<i64> {
+        v.as_ref().map_or(Ok(d), |v| ctx.integer(v, name, lo, hi))
+    };
+    s.photons = int(&r.photons, "photons", 0, 1 << 40, s.photons as i64)? as u64;
+    s.caustic_photons = int(
+        &r.caustic_photons,
+        "caustic_photons",
+        0,
+        1 << 40,
+        s.caustic_photons as i64,
+    )? as u64;
+    s.k = int(&r.k, "k", 1, 100_000, s.k as i64)? as usize;
+    s.caustic_k = int(&r.caustic_k, "caustic_k", 1, 100_000, s.caustic_k as i64)? as usize;
+    s.gather_rays = int(
+        &r.gather_rays,
+        "gather_rays",
+        1,
+        1 << 20,
+        s.gather_rays as i64,
+    )? as usize;
+    s.spp = int(&r.spp, "spp", 1, 1 << 20, s.spp as i64)? as usize;
+    s.max_depth = int(&r.max_depth, "max_depth", 1, 1000, s.max_depth as i64)? as usize;
+    s.seed = int(&r.seed, "seed", 0, i64::MAX, s.seed as i64)? as u64;
+    if let Some(v) = &r.max_radius {
+        s.max_radius_m = ctx.number(v, "max_radius", 0.0, f64::INFINITY, true)?;
+    }
+    if let Some(v) = &r.caustic_max_radius {
+        s.caustic_max_radius_m = ctx.number(v, "caustic_max_radius", 0.0, f64::INFINITY, true)?;
+    }
+    if let Some(d) = &r.direct {
+        s.direct = match ctx.choice(d, "direct", &["shadow_rays", "photon_map"])? {
+            "photon_map" => DirectLighting::PhotonMap,
+            _ => DirectLighting::ShadowRays,
+        };
+    }
+    s.final_gather = match (&r.final_gather, s.direct) {
+        (Some(fg), DirectLighting::PhotonMap) if *fg.get_ref() => {
+            return Err(ctx.err(
+                &fg.span(),
+                "[integrator]: final_gather = true needs direct = \"shadow_rays\"; with direct = \"photon_map\" the global map is visualised directly",
+            ));
+        }
+        (Some(fg), _) => *fg.get_ref(),
+        (None, DirectLighting::PhotonMap) => false,
+        (None, DirectLighting::ShadowRays) => true,
+    };
+    s.filter = filter(ctx, r)?;
+    Ok(s)
+}
+
+fn filter(ctx: &Ctx, r: &RawIntegrator) -> R<Filter> {
+    let kind = match &r.filter {
+        None => "cone",
+        Some(f) => ctx.choice(f, "filter", &["cone", "epanechnikov", "box"])?,
+    };
+    match (kind, &r.cone_k) {
+        ("cone", None) => Ok(Filter::Cone { k: 1.1 }),
+        ("cone", Some(k)) => Ok(Filter::Cone {
+            k: ctx.number(k, "cone_k", 1.0, f64::INFINITY, false)?,
+        }),
+        (_, Some(k)) => Err(ctx.err(
+            &k.span(),
+            format!("[integrator]: cone_k is only used with filter = \"cone\", not \"{kind}\""),
+        )),
+        ("epanechnikov", None) => Ok(Filter::Epanechnikov),
+        _ => Ok(Filter::Box),
+    }
+}
