@@ -85,3 +85,86 @@ impl AreaLight {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Quad;
+    use crate::rng::Stream;
+    use crate::spectrum::Spectrum;
+    use crate::testing::chi2::{chi2_1d, chi2_sphere};
+
+    fn light(side: Side) -> AreaLight {
+        AreaLight {
+            shape: Shape::Quad(Quad {
+                origin: DVec3::ZERO,
+                u: DVec3::X * 2.0,
+                v: DVec3::Y,
+            }),
+            side,
+            emission: LightSpectrum::new(Spectrum::Constant(1.0), 400.0, 700.0).unwrap(),
+        }
+    }
+
+    #[test]
+    fn emission_is_cosine_distributed_on_the_emitting_sides() {
+        for side in [Side::Front, Side::Back, Side::Both] {
+            let l = light(side);
+            let mut rng = Rng::for_task(41, Stream::Test, side as u64);
+            let p = chi2_sphere(
+                20,
+                16,
+                200_000,
+                || Some(l.emit(&mut rng).1),
+                |w| {
+                    let c = l.emitted_cos(DVec3::Z, w);
+                    c / std::f64::consts::PI / if side == Side::Both { 2.0 } else { 1.0 }
+                },
+            );
+            assert!(p > 1e-3, "{side:?}: p = {p}");
+        }
+    }
+
+    #[test]
+    fn emission_points_are_uniform_over_the_area() {
+        let l = light(Side::Front);
+        let mut rng = Rng::for_task(42, Stream::Test, 0);
+        let p = chi2_1d(
+            (0.0, 2.0),
+            20,
+            100_000,
+            || Some(l.emit(&mut rng).0.x),
+            |_| 0.5,
+        );
+        assert!(p > 1e-3, "p = {p}");
+        assert!((l.power_w() - std::f64::consts::PI * 2.0 * 300.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn incident_sampling_integrates_to_the_closed_form_irradiance() {
+        // Irradiance from a uniform disk of radiance L, radius a, on axis at height h:
+        // E = π L a²/(h² + a²) (Modest, Radiative Heat Transfer, view factor of a disk).
+        let (a, h) = (0.5, 1.0);
+        let l = AreaLight {
+            shape: Shape::Disk(crate::geometry::Disk {
+                center: DVec3::ZERO,
+                normal: DVec3::Z,
+                radius: a,
+            }),
+            side: Side::Front,
+            emission: LightSpectrum::new(Spectrum::Constant(1.0), 400.0, 700.0).unwrap(),
+        };
+        let p = DVec3::new(0.0, 0.0, h);
+        let mut rng = Rng::for_task(43, Stream::Test, 0);
+        let n = 400_000;
+        let mut sum = 0.0;
+        for _ in 0..n {
+            if let Some(inc) = l.incident(p, rng.uniform2()) {
+                sum += inc.weight * (-inc.wi.z).max(0.0);
+            }
+        }
+        let e = sum / n as f64;
+        let exact = std::f64::consts::PI * a * a / (h * h + a * a);
+        assert!((e / exact - 1.0).abs() < 0.01, "E = {e}, exact {exact}");
+    }
+}

@@ -20,3 +20,28 @@ impl Lambertian {
         Frame::from_normal(side).to_world(cosine_hemisphere(u))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::{Rng, Stream};
+    use crate::sampling::cosine_hemisphere_pdf;
+    use crate::testing::chi2::chi2_sphere;
+
+    #[test]
+    fn sampled_directions_are_cosine_distributed_on_the_arrival_side() {
+        let n = DVec3::new(0.3, -0.5, 0.8).normalize();
+        // Arriving from the back side: directions leave on the side opposite n.
+        let dir = n;
+        let frame = Frame::from_normal(-n);
+        let mut rng = Rng::for_task(31, Stream::Test, 0);
+        let p = chi2_sphere(
+            20,
+            20,
+            200_000,
+            || Some(frame.to_local(Lambertian::sample(dir, n, rng.uniform2()))),
+            |w| cosine_hemisphere_pdf(w.z),
+        );
+        assert!(p > 1e-3, "p = {p}");
+    }
+}

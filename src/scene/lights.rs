@@ -21,6 +21,8 @@ use toml::Spanned;
 pub struct NamedLight {
     pub name: String,
     pub light: Light,
+    /// For an area light: the material its surface reflects with (none: black).
+    pub material: Option<Spanned<String>>,
 }
 
 const KINDS: &[&str] = &["area", "point", "spot", "directional"];
@@ -46,7 +48,7 @@ pub fn light(
         KINDS,
     )?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg);
     let allowed: &[&str] = match kind {
         "area" => &[
             "power_w", "scale", "shape", "side", "center", "radius", "normal", "origin", "u", "v",
@@ -110,7 +112,11 @@ pub fn light(
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;
-    Ok(NamedLight { name, light })
+    Ok(NamedLight {
+        name,
+        light,
+        material: l.material.clone(),
+    })
 }
 
 /// Scales the light's spectrum to the absolute level the record asks for: k = scale, or

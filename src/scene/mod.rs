@@ -195,24 +195,11 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let mut prims = Vec::new();
     for (i, rec) in raw.shape.iter().enumerate() {
         let group = shapes::shape(ctx, rec, i)?;
-        let m = material_names
-            .iter()
-            .position(|n| *n == group.material)
-            .ok_or_else(|| {
-                ctx.err(
-                    &group.material_span,
-                    format!(
-                        "{}: no material named \"{}\"; defined: {}",
-                        group.name,
-                        group.material,
-                        list(&material_names)
-                    ),
-                )
-            })?;
+        let m = material_index(ctx, &material_names, &group.material, &group.name)?;
         for s in group.shapes {
             shapes.push(s);
             prims.push(Prim {
-                material: Some(m as u32),
+                material: Some(m),
                 light: None,
             });
         }
@@ -223,9 +210,18 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     for (i, rec) in raw.light.iter().enumerate() {
         let l = lights::light(ctx, &lib, rec, i, &bands, &geometry_bounds)?;
         if let Light::Area(a) = &l.light {
+            let material = match &l.material {
+                None => None,
+                Some(m) => Some(material_index(
+                    ctx,
+                    &material_names,
+                    m,
+                    &format!("light \"{}\"", l.name),
+                )?),
+            };
             shapes.push(a.shape.clone());
             prims.push(Prim {
-                material: None,
+                material,
                 light: Some(i as u32),
             });
         }
@@ -286,6 +282,29 @@ fn decide_plan(
         bands,
     };
     EffectPlan::decide(&facts, integrator)
+}
+
+/// Index of the material a record refers to, or an error at the reference.
+fn material_index(
+    ctx: &Ctx,
+    names: &[String],
+    name: &toml::Spanned<String>,
+    owner: &str,
+) -> Result<u32> {
+    names
+        .iter()
+        .position(|n| n == name.get_ref())
+        .map(|i| i as u32)
+        .ok_or_else(|| {
+            ctx.err(
+                &name.span(),
+                format!(
+                    "{owner}: no material named \"{}\"; defined: {}",
+                    name.get_ref(),
+                    list(names)
+                ),
+            )
+        })
 }
 
 fn list(names: &[String]) -> String {

@@ -121,6 +121,7 @@ pub struct RawLight {
     pub irradiance_w_m2: S<f64>,
     pub shape: S<String>,
     pub side: S<String>,
+    pub material: S<String>,
     pub center: S<[f64; 3]>,
     pub radius: S<f64>,
     pub normal: S<[f64; 3]>,

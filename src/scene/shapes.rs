@@ -12,8 +12,7 @@ use toml::Spanned;
 /// The shapes one record produced and the material they use.
 pub struct ShapeGroup {
     pub name: String,
-    pub material: String,
-    pub material_span: std::ops::Range<usize>,
+    pub material: Spanned<String>,
     pub shapes: Vec<Shape>,
 }
 
@@ -116,8 +115,7 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
     };
     Ok(ShapeGroup {
         name,
-        material: material.get_ref().clone(),
-        material_span: material.span(),
+        material: material.clone(),
         shapes,
     })
 }

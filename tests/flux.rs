@@ -1,0 +1,162 @@
+//! Flux conservation and irradiance against closed forms.
+
+mod common;
+
+use common::scene;
+use glam::DVec3;
+use morgana::photon::{MapKind, shoot};
+use morgana::photon_map::{Estimator, Neighbours, PhotonMap};
+use morgana::scene::Filter;
+use morgana::testing::chi2::gauss_legendre;
+use std::f64::consts::PI;
+
+const BLACK_SPHERE: &str = r#"
+[camera]
+position = [0.0, 0.0, 0.0]
+look_at = [0.0, 0.0, -1.0]
+fov_deg = 60.0
+width = 8
+height = 8
+
+[output]
+bands = 8
+min_nm = 400.0
+max_nm = 700.0
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 5.0
+material = "black"
+"#;
+
+#[test]
+fn every_emitted_watt_arrives_once_in_a_black_enclosure() {
+    // A point light (blackbody spectrum, 25 W) and a quad area light (given by its radiance) inside
+    // a black sphere: each photon hits the wall once, is stored once and absorbed.
+    let toml = format!(
+        "{BLACK_SPHERE}\n[[light]]\ntype = \"point\"\nposition = [0.5, 0.0, 0.0]\nspectrum = {{ blackbody_k = 3000 }}\npower_w = 25.0\n\
+         \n[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = [-1.0, 1.0, -1.0]\nu = [0.5, 0.0, 0.0]\nv = [0.0, 0.0, 0.4]\nspectrum = 1.0\nscale = 0.01\n"
+    );
+    let s = scene(&toml);
+    // Area light flux by the closed form Φ = π A ∫L dλ = π · 0.2 m² · 0.01 · 300 nm.
+    let area_power = PI * 0.2 * 0.01 * 300.0;
+    let total: f64 = s.lights.iter().map(|l| l.power_w()).sum();
+    assert!(
+        (total - (25.0 + area_power)).abs() < 1e-9 * total,
+        "light power {total}"
+    );
+    let n = 100_000;
+    let (photons, stats) = shoot(&s, MapKind::Global { store_direct: true }, n, 5, &|_| {});
+    assert_eq!(photons.len() as u64, n, "each photon stored exactly once");
+    let stored: f64 = photons.iter().map(|p| p.power_w).sum();
+    assert!(
+        (stored - total).abs() < 1e-9 * total,
+        "stored {stored} W of {total} W"
+    );
+    assert!((stats.absorbed_w - total).abs() < 1e-9 * total);
+    assert_eq!(stats.escaped_w, 0.0);
+    // The photons' wavelengths follow the lights' spectra: the blackbody (3000 K rises toward
+    // red) gives more photons above 550 nm than below.
+    let red = photons.iter().filter(|p| p.wavelength_nm > 550.0).count();
+    assert!(red > photons.len() / 2);
+}
+
+/// Irradiance at (x, 0, 0) on the plane y = 0 from a point light of intensity I at height h:
+/// E = I cos θ / r² = I h / (x² + h²)^{3/2}.
+fn irradiance(i: f64, h: f64, x: f64, z: f64) -> f64 {
+    i * h / (x * x + z * z + h * h).powf(1.5)
+}
+
+#[test]
+fn diffuse_plane_under_a_point_light_gets_i_cos_theta_over_r_squared() {
+    let (intensity, h) = (2.0, 1.0);
+    let toml = r#"
+[camera]
+position = [0.0, 3.0, 3.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 60.0
+width = 8
+height = 8
+
+[output]
+bands = 1
+min_nm = 500.0
+max_nm = 600.0
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [-20.0, 0.0, -20.0]
+u = [0.0, 0.0, 40.0]
+v = [40.0, 0.0, 0.0]
+material = "black"
+
+[[light]]
+type = "point"
+position = [0.0, 1.0, 0.0]
+spectrum = 1.0
+scale = 0.02
+"#;
+    let s = scene(toml);
+    // Intensity per nm 0.02 over 100 nm: I = 2 W/sr; the photon map's band value is E per nm.
+    let (records, _) = shoot(
+        &s,
+        MapKind::Global { store_direct: true },
+        2_000_000,
+        11,
+        &|_| {},
+    );
+    let map = PhotonMap::build(&records);
+    let k = 1000;
+    let filter = Filter::Cone { k: 1.1 };
+    let est = Estimator {
+        map: &map,
+        k,
+        max_radius: 1.0,
+        filter,
+        bands: s.bands,
+    };
+    let mut nb = Neighbours::default();
+    for x in [0.0, 0.4, 0.8, 1.2] {
+        let e_band = est.irradiance(DVec3::new(x, 0.0, 0.0), DVec3::Y, &mut nb)[0] * 100.0;
+        // The estimate's expectation given its radius r is the cone-filtered irradiance over
+        // the disc, computed here by quadrature of the closed form.
+        let r = (nb.max_dist2() as f64).sqrt();
+        let k_cone = 1.1;
+        let filtered = gauss_legendre(
+            &|rho: f64| {
+                gauss_legendre(
+                    &|phi: f64| irradiance(intensity, h, x + rho * phi.cos(), rho * phi.sin()),
+                    0.0,
+                    2.0 * PI,
+                    4,
+                ) * (1.0 - rho / (k_cone * r))
+                    * rho
+            },
+            0.0,
+            r,
+            4,
+        ) / ((1.0 - 2.0 / (3.0 * k_cone)) * PI * r * r);
+        let exact = irradiance(intensity, h, x, 0.0);
+        // Relative standard deviation of a k-photon estimate is about 1/√k = 3.2%; allow 4σ.
+        let tol = 4.0 / (k as f64).sqrt();
+        assert!(
+            (e_band / filtered - 1.0).abs() < tol,
+            "x = {x}: estimate {e_band}, filtered closed form {filtered} (point value {exact})"
+        );
+        assert!(
+            (filtered / exact - 1.0).abs() < 0.05,
+            "disc radius {r} too large for a point comparison at x = {x}"
+        );
+    }
+}

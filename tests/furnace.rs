@@ -1,0 +1,122 @@
+//! White furnace: inside a closed sphere whose walls emit L_e and reflect diffusely with albedo
+//! ρ, radiance is L_e/(1 − ρ) everywhere and in every direction (the Neumann series
+//! L = L_e Σ ρⁿ). The sphere has a further property that makes the photon-map estimate free of
+//! geometric bias: the part of a sphere inside a ball of radius r centred on it has area
+//! exactly π r² (Archimedes), which is the area the estimate divides by.
+
+mod common;
+
+use common::{render_with, scene};
+
+const LE: f64 = 2.0;
+const RHO: f64 = 0.6;
+
+fn furnace(integrator: &str, sampling: &str) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 0.0]
+look_at = [0.3, 0.2, -1.0]
+fov_deg = 90.0
+width = 24
+height = 24
+
+[output]
+bands = 4
+min_nm = 400.0
+max_nm = 700.0
+sampling = "{sampling}"
+
+[integrator]
+{integrator}
+
+[[material]]
+name = "wall"
+type = "lambertian"
+reflectance = {RHO}
+
+[[light]]
+type = "area"
+shape = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+side = "back"
+material = "wall"
+spectrum = 1.0
+scale = {LE}
+"#
+    )
+}
+
+/// Mean of all band values, each band's mean, and the RMS relative deviation per pixel-band.
+fn summary(values: &[f32], bands: usize, expected: f64) -> (f64, Vec<f64>, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().map(|v| *v as f64).sum::<f64>() / n;
+    let per_band = (0..bands)
+        .map(|b| {
+            values
+                .iter()
+                .skip(b)
+                .step_by(bands)
+                .map(|v| *v as f64)
+                .sum::<f64>()
+                / (n / bands as f64)
+        })
+        .collect();
+    let rms = (values
+        .iter()
+        .map(|v| (*v as f64 / expected - 1.0).powi(2))
+        .sum::<f64>()
+        / n)
+        .sqrt();
+    (mean, per_band, rms)
+}
+
+#[test]
+fn photon_map_alone_gives_le_over_one_minus_rho() {
+    let s = scene(&furnace(
+        "photons = 400000\nk = 200\nmax_radius = 0.5\ndirect = \"photon_map\"\nspp = 1\nseed = 7",
+        "bands",
+    ));
+    let r = render_with(&s, 2);
+    let expected = LE / (1.0 - RHO);
+    let (mean, per_band, rms) = summary(&r.image.data, 4, expected);
+    // Each pixel-band estimate uses ~k/4 = 50 photons, relative std ≈ 1/√50 = 14%; the image mean
+    // over 576 pixels covering a sixth of the sphere averages ~1/(k/4) of the stored photons each
+    // and is good to well under 1%. Allow 1.5% on the mean, 3% per band.
+    assert!(
+        (mean / expected - 1.0).abs() < 0.015,
+        "mean {mean}, expected {expected}"
+    );
+    for (b, m) in per_band.iter().enumerate() {
+        assert!(
+            (m / expected - 1.0).abs() < 0.03,
+            "band {b}: {m}, expected {expected}"
+        );
+    }
+    assert!(rms < 0.3, "per-pixel RMS relative deviation {rms}");
+}
+
+#[test]
+fn shadow_rays_with_final_gathering_give_le_over_one_minus_rho() {
+    // Emission seen directly, direct light by shadow rays to the sphere light, indirect light by
+    // final gathering on precomputed irradiance: L_e + ρL_e + ρ²L_e/(1 − ρ) = L_e/(1 − ρ).
+    let s = scene(&furnace(
+        "photons = 200000\nk = 100\nmax_radius = 0.5\ngather_rays = 16\nspp = 4\nseed = 3",
+        "hero",
+    ));
+    assert!(s.plan.final_gather.on && s.plan.shadow_rays.on);
+    let r = render_with(&s, 2);
+    let expected = LE / (1.0 - RHO);
+    let (mean, per_band, _) = summary(&r.image.data, 4, expected);
+    assert!(
+        (mean / expected - 1.0).abs() < 0.015,
+        "mean {mean}, expected {expected}"
+    );
+    for (b, m) in per_band.iter().enumerate() {
+        assert!(
+            (m / expected - 1.0).abs() < 0.03,
+            "band {b}: {m}, expected {expected}"
+        );
+    }
+}
