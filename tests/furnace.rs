@@ -11,7 +11,33 @@ use common::{render_with, scene};
 const LE: f64 = 2.0;
 const RHO: f64 = 0.6;
 
+/// Spectral variant: L_e rises linearly from 1 to 3 and ρ from 0.3 to 0.8 over 400–700 nm.
+const LE_SPECTRAL: &str = "{ nm = [400.0, 700.0], values = [1.0, 3.0] }";
+const RHO_SPECTRAL: &str = "{ nm = [400.0, 700.0], values = [0.3, 0.8] }";
+
+fn le(l: f64) -> f64 {
+    1.0 + 2.0 * (l - 400.0) / 300.0
+}
+
+fn rho(l: f64) -> f64 {
+    0.3 + 0.5 * (l - 400.0) / 300.0
+}
+
+/// Band average of L_e(λ)/(1 − ρ(λ)) over the 4 bands of 400–700 nm, by quadrature.
+fn expected_bands() -> Vec<f64> {
+    (0..4)
+        .map(|b| {
+            let lo = 400.0 + 75.0 * b as f64;
+            morgana::testing::chi2::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4) / 75.0
+        })
+        .collect()
+}
+
 fn furnace(integrator: &str, sampling: &str) -> String {
+    furnace_with(integrator, sampling, &RHO.to_string(), "1.0", LE)
+}
+
+fn furnace_with(integrator: &str, sampling: &str, reflectance: &str, spectrum: &str, scale: f64) -> String {
     format!(
         r#"
 [camera]
@@ -33,7 +59,7 @@ sampling = "{sampling}"
 [[material]]
 name = "wall"
 type = "lambertian"
-reflectance = {RHO}
+reflectance = {reflectance}
 
 [[light]]
 type = "area"
@@ -42,8 +68,8 @@ center = [0.0, 0.0, 0.0]
 radius = 1.0
 side = "back"
 material = "wall"
-spectrum = 1.0
-scale = {LE}
+spectrum = {spectrum}
+scale = {scale}
 "#
     )
 }
@@ -70,6 +96,35 @@ fn summary(values: &[f32], bands: usize, expected: f64) -> (f64, Vec<f64>, f64) 
         / n)
         .sqrt();
     (mean, per_band, rms)
+}
+
+/// Band-by-band check of the spectral furnace: bands and hero sampling converge to the same
+/// band averages.
+fn spectral_furnace(sampling: &str, seed: u64) {
+    let s = scene(&furnace_with(
+        &format!("photons = 400000\nk = 200\nmax_radius = 0.5\ndirect = \"photon_map\"\nspp = 2\nseed = {seed}"),
+        sampling,
+        RHO_SPECTRAL,
+        LE_SPECTRAL,
+        1.0,
+    ));
+    let r = render_with(&s, 2);
+    let expected = expected_bands();
+    let n = r.image.data.len() / 4;
+    for (b, e) in expected.iter().enumerate() {
+        let mean = r.image.data.iter().skip(b).step_by(4).map(|v| *v as f64).sum::<f64>() / n as f64;
+        assert!((mean / e - 1.0).abs() < 0.03, "{sampling}, band {b}: {mean}, expected {e}");
+    }
+}
+
+#[test]
+fn spectral_furnace_with_band_sampling() {
+    spectral_furnace("bands", 5);
+}
+
+#[test]
+fn spectral_furnace_with_hero_sampling() {
+    spectral_furnace("hero", 6);
 }
 
 #[test]
