@@ -9,6 +9,7 @@ mod bands;
 mod blackbody;
 pub mod check;
 pub mod cie;
+pub mod cie_data;
 pub mod colour;
 mod rgb_sigmoid;
 mod sampler;
