@@ -267,6 +267,26 @@ mod tests {
     }
 
     #[test]
+    fn writes_the_requested_exr_through_the_staged_writer() {
+        let dir = std::env::temp_dir().join(format!("morgana-check-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("c.exr");
+        let request = serde_json::json!({"exr": [{"path": path, "min_nm": 400, "max_nm": 700,
+            "count": 2, "width": 1, "height": 1, "pixels": [[0.5, 0.25]]}]});
+        let answer: serde_json::Value =
+            serde_json::from_str(&run(&request.to_string()).unwrap()).unwrap();
+        assert!(path.exists());
+        assert_eq!(answer["exr"][0]["channels"][0], "S0.475,0nm");
+        let want =
+            BandsToColour::new(&Bands::new(400.0, 700.0, 2).unwrap()).linear_srgb(&[0.5, 0.25]);
+        let got = answer["exr"][0]["rgb"][0][1].as_f64().unwrap();
+        assert!((got - want[1]).abs() < 1e-6 * want[1].abs());
+        // Only the target is left behind: the temporary file was renamed.
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn rejects_bad_requests_with_reasons() {
         assert!(run("{").unwrap_err().contains("not valid"));
         assert!(run(r#"{"bogus": 1}"#).unwrap_err().contains("bogus"));

@@ -305,6 +305,11 @@ mod tests {
                     let rgb = [r, g, b];
                     let s = RgbSigmoid::fit(rgb).unwrap();
                     n += 1;
+                    // A reflectance: within [0, 1] everywhere, also outside the fitted range.
+                    for k in 0..=1400 {
+                        let v = s.eval(300.0 + 0.5 * f64::from(k));
+                        assert!((0.0..=1.0).contains(&v), "{rgb:?}: s = {v}");
+                    }
                     let back = albedo(&s);
                     let err = (0..3).map(|k| (back[k] - rgb[k]).abs()).fold(0.0, f64::max);
                     if err > worst.0 {
@@ -320,5 +325,53 @@ mod tests {
             per_colour * 1e3
         );
         assert!(worst.0 < 1e-3, "worst round trip error {worst:?}");
+        // Fast enough to fit every material at scene load (timing includes the check above).
+        assert!(per_colour < 5e-3, "{per_colour} s per colour");
+    }
+
+    #[test]
+    fn black_white_and_grey_are_flat() {
+        let black = RgbSigmoid::fit([0.0; 3]).unwrap();
+        let white = RgbSigmoid::fit([1.0; 3]).unwrap();
+        for l in [200.0, 360.0, 555.0, 830.0, 2000.0] {
+            assert_eq!(black.eval(l), 0.0);
+            assert_eq!(white.eval(l), 1.0);
+        }
+        // A grey albedo needs a (nearly) constant reflectance: the CIE D65 spectrum's white
+        // differs from the sRGB white by < 0.02 %, so the fit may tilt only that much.
+        let grey = RgbSigmoid::fit([0.5; 3]).unwrap();
+        for l in (360..=830).step_by(10) {
+            assert!((grey.eval(f64::from(l)) - 0.5).abs() < 1e-3, "{l} nm");
+        }
+    }
+
+    #[test]
+    fn sigmoid_matches_its_closed_form_and_limits() {
+        assert_eq!(sigmoid(0.0), 0.5);
+        assert!((sigmoid(1.0) - (0.5 + 0.5 / 2f64.sqrt())).abs() < 1e-15);
+        assert!((sigmoid(-3.0) - (0.5 - 1.5 / 10f64.sqrt())).abs() < 1e-15);
+        assert_eq!(sigmoid(1e300), 1.0);
+        assert_eq!(sigmoid(f64::INFINITY), 1.0);
+        assert_eq!(sigmoid(f64::NEG_INFINITY), 0.0);
+        for y in [0.01, 0.3, 0.5, 0.97] {
+            assert!((sigmoid(sigmoid_inverse(y)) - y).abs() < 1e-14);
+        }
+        // The normalised-wavelength polynomial and its nm form agree.
+        let z = [3.0, -2.0, 0.5];
+        let c = to_nm_coefficients(z);
+        for l in [360.0, 512.0, 830.0] {
+            let t: f64 = (l - 360.0) / 470.0;
+            let want = z[0] * t * t + z[1] * t + z[2];
+            let got = c[0] * l * l + c[1] * l + c[2];
+            assert!((got - want).abs() < 1e-11, "{l}: {got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn rejects_albedos_outside_the_unit_cube() {
+        for rgb in [[1.1, 0.0, 0.0], [0.0, -0.01, 0.0], [0.5, 0.5, f64::NAN]] {
+            let e = RgbSigmoid::fit(rgb).unwrap_err();
+            assert!(e.contains("allowed are numbers in [0, 1]"), "{e}");
+        }
     }
 }
