@@ -24,9 +24,9 @@
 //!   linear through the given samples) and linear sRGB of XYZ/100;
 //! - `blackbodies`: absolute XYZ/Y of Planck radiance per temperature;
 //! - `rgb_albedos`: the Jakob–Hanika coefficients and the fitted reflectance at 360..830 nm;
-//! - `exr`: per image, the path written (through [`Staged`](crate::output::atomic::Staged),
-//!   [`write_spectral_exr`](crate::output::exr::write_spectral_exr) and
-//!   [`BandsToColour`](super::colour::BandsToColour)), the channel names and the RGB written.
+//! - `exr`: per image, the path written (through [`Staged`],
+//!   [`write_spectral_exr`] and
+//!   [`BandsToColour`]), the channel names and the RGB written.
 
 use super::colour::{BandsToColour, absolute_xyz, cmf_sums, relative_xyz, xyz_to_linear_srgb};
 use super::{Bands, RgbSigmoid, Spectrum, Tabulated, named_illuminant};

@@ -1,10 +1,10 @@
 //! Piecewise-linear spectra from samples.
 //!
-//! s(λ) = y_j + (y_{j+1} − y_j)(λ − λ_j)/(λ_{j+1} − λ_j) on [λ_j, λ_{j+1}], and zero outside
-//! [λ_0, λ_last]. Its integral over [a, b] is the sum of exact trapezoids of the segments
+//! `s(λ) = y_j + (y_{j+1} − y_j)(λ − λ_j)/(λ_{j+1} − λ_j)` on `[λ_j, λ_{j+1}]`, and zero outside
+//! `[λ_0, λ_last]`. Its integral over [a, b] is the sum of exact trapezoids of the segments
 //! clipped to [a, b] (the function is linear on each piece, so the trapezoid rule is exact).
 
-/// Piecewise linear through (nm[i], values[i]); zero outside [nm[0], nm[last]].
+/// Piecewise linear through `(nm[i], values[i])`; zero outside `[nm[0], nm[last]]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tabulated {
     nm: Vec<f64>,
