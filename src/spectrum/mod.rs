@@ -9,6 +9,7 @@ mod bands;
 mod blackbody;
 pub mod check;
 pub mod cie;
+pub mod cie_data;
 pub mod colour;
 mod rgb_sigmoid;
 mod sampler;
@@ -76,4 +77,40 @@ impl Spectrum {
 /// distribution normalised to 100 at 560 nm (CIE 15:2018 convention).
 pub fn named_illuminant(name: &str) -> Option<Spectrum> {
     cie::illuminant(name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integrals_are_exact_or_within_the_stated_accuracy() {
+        assert_eq!(Spectrum::Constant(2.0).integral(400.0, 500.0), 200.0);
+        let t = Tabulated::new(vec![400.0, 500.0], vec![0.0, 1.0]).unwrap();
+        assert!((Spectrum::Tabulated(t).scaled(4.0).integral(0.0, 1000.0) - 200.0).abs() < 1e-12);
+        // s = S(aλ + b) has the antiderivative λ/2 + √(1 + (aλ + b)²) / (2a).
+        let (a, b) = (0.02, -11.0);
+        let s = Spectrum::RgbReflectance(RgbSigmoid {
+            coefficients: [0.0, a, b],
+        });
+        let anti = |l: f64| l / 2.0 + (1.0 + (a * l + b).powi(2)).sqrt() / (2.0 * a);
+        let want = anti(830.0) - anti(360.0);
+        let got = s.integral(360.0, 830.0);
+        assert!(((got - want) / want).abs() < 1e-9, "{got} vs {want}");
+        assert!((s.integral(830.0, 360.0) + want).abs() < 1e-9 * want);
+        assert_eq!(s.integral(500.0, 500.0), 0.0);
+    }
+
+    #[test]
+    fn constant_and_scaled_spectra_report_constancy() {
+        assert!(Spectrum::Constant(1.0).scaled(3.0).is_constant());
+        assert!(
+            !Spectrum::Blackbody {
+                temperature_k: 3000.0
+            }
+            .is_constant()
+        );
+        assert_eq!(Spectrum::Constant(2.0).scaled(3.0).eval(123.0), 6.0);
+        assert!(named_illuminant("E").unwrap().is_constant());
+    }
 }
