@@ -1,8 +1,8 @@
 //! Bounding-volume hierarchy over shapes.
 //!
 //! A binary tree of axis-aligned boxes in one flat array, in depth-first order: an interior
-//! node's first child follows it, and it stores the index of its second child; a leaf stores a
-//! range of the primitive index list. Built top-down by binned surface-area heuristic
+//! node's first child follows it, and it stores the distance to its second child; a leaf stores
+//! a range of the primitive index list. Built top-down by binned surface-area heuristic
 //! (`bvh/build.rs`), traversed iteratively nearest child first (`bvh/traverse.rs`).
 //!
 //! The tree depends only on the shapes, never on the number of threads that built it.
@@ -24,8 +24,8 @@ pub struct Bvh {
 }
 
 /// A node: its box as `[min, max]`, and either a leaf's primitive range
-/// (`prims[offset..offset + count]`, count > 0) or an interior node's second child
-/// (`nodes[offset]`, count = 0; the first child is the next node).
+/// (`prims[offset..offset + count]`, count > 0) or, for an interior node (count = 0), the
+/// distance to its second child (`nodes[i + offset]`; the first child is `nodes[i + 1]`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Node {
     bounds: [[f64; 3]; 2],
@@ -74,7 +74,7 @@ impl Bvh {
             Some(node) => {
                 1 + self
                     .depth_below(index + 1)
-                    .max(self.depth_below(node.offset as usize))
+                    .max(self.depth_below(index + node.offset as usize))
             }
         }
     }

@@ -9,9 +9,11 @@
 
 use super::{Bvh, Node};
 use crate::geometry::rounding::gamma;
+use crate::geometry::shape::Shear;
 use crate::geometry::{Ray, Shape};
 
-/// Stack entries needed: the tree is at most MAX_SAH_DEPTH + 32 nodes deep.
+/// Stack entries needed: at most one per level, and the tree is at most MAX_SAH_DEPTH + 36
+/// nodes deep (`bvh/build.rs`).
 const STACK: usize = super::build::MAX_SAH_DEPTH + 40;
 
 /// The ray's constants for box tests.
@@ -61,6 +63,7 @@ impl Bvh {
         t_max: f64,
     ) -> Option<(u32, f64)> {
         let slabs = Slabs::new(ray);
+        let shear = Shear::new(ray);
         let root = self.nodes.first()?;
         slabs.entry(root, t_max)?;
         let (mut best, mut t_best) = (None, t_max);
@@ -71,7 +74,7 @@ impl Bvh {
             if node.count > 0 {
                 let first = node.offset as usize;
                 for &prim in &self.prims[first..first + node.count as usize] {
-                    if let Some(t) = shapes[prim as usize].distance(ray, t_best) {
+                    if let Some(t) = shapes[prim as usize].distance_sheared(ray, &shear, t_best) {
                         (best, t_best) = (Some(prim), t);
                         if ANY {
                             return best.map(|p| (p, t_best));
@@ -79,7 +82,7 @@ impl Bvh {
                     }
                 }
             } else {
-                let (a, b) = (index + 1, node.offset as usize);
+                let (a, b) = (index + 1, index + node.offset as usize);
                 match (
                     slabs.entry(&self.nodes[a], t_best),
                     slabs.entry(&self.nodes[b], t_best),

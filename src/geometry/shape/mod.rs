@@ -19,7 +19,7 @@ mod triangle;
 pub use disk::Disk;
 pub use quad::Quad;
 pub use sphere::Sphere;
-pub use triangle::Triangle;
+pub use triangle::{Shear, Triangle};
 
 use super::spawn::offset_origin;
 use super::{Aabb, Ray};
@@ -55,6 +55,16 @@ impl Shape {
             Shape::Quad(s) => s.distance(ray, t_max),
             Shape::Disk(s) => s.distance(ray, t_max),
             Shape::Triangle(s) => s.distance(ray, t_max),
+        }
+    }
+
+    /// [`Shape::distance`] for a ray whose triangle shear (see [`Shear`]) is already known:
+    /// the form to use when one ray meets many shapes.
+    #[inline]
+    pub fn distance_sheared(&self, ray: &Ray, shear: &Shear, t_max: f64) -> Option<f64> {
+        match self {
+            Shape::Triangle(s) => s.distance_sheared(ray, shear, t_max),
+            _ => self.distance(ray, t_max),
         }
     }
 

@@ -39,22 +39,47 @@ struct Sheared {
     z: f64,
 }
 
-impl Triangle {
-    /// Nearest t in (0, t_max) at which the ray meets the triangle.
-    pub fn distance(&self, ray: &Ray, t_max: f64) -> Option<f64> {
+/// The ray's part of the watertight test, shared by all triangles: the axis permutation
+/// (k_z is the largest |d| component) and the shear constants.
+#[derive(Clone, Copy, Debug)]
+pub struct Shear {
+    k: [usize; 3],
+    s: [f64; 3],
+}
+
+impl Shear {
+    pub fn new(ray: &Ray) -> Shear {
         let d = ray.dir;
         let kz = d.abs().max_position();
         let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        let (sx, sy, sz) = (-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]);
-        let shear = |p: DVec3| {
-            let q = p - ray.origin;
-            Sheared {
-                x: q[kx] + sx * q[kz],
-                y: q[ky] + sy * q[kz],
-                z: q[kz] * sz,
-            }
-        };
-        let v = self.p.map(shear);
+        Shear {
+            k: [kx, ky, kz],
+            s: [-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]],
+        }
+    }
+
+    /// A vertex in the ray's frame, translated to its origin.
+    #[inline]
+    fn apply(&self, ray: &Ray, p: DVec3) -> Sheared {
+        let q = p - ray.origin;
+        let [kx, ky, kz] = self.k;
+        Sheared {
+            x: q[kx] + self.s[0] * q[kz],
+            y: q[ky] + self.s[1] * q[kz],
+            z: q[kz] * self.s[2],
+        }
+    }
+}
+
+impl Triangle {
+    /// Nearest t in (0, t_max) at which the ray meets the triangle.
+    pub fn distance(&self, ray: &Ray, t_max: f64) -> Option<f64> {
+        self.distance_sheared(ray, &Shear::new(ray), t_max)
+    }
+
+    /// [`Triangle::distance`] with the ray's shear computed once for many triangles.
+    pub fn distance_sheared(&self, ray: &Ray, shear: &Shear, t_max: f64) -> Option<f64> {
+        let v = self.p.map(|p| shear.apply(ray, p));
         let e = [
             v[1].x * v[2].y - v[1].y * v[2].x,
             v[2].x * v[0].y - v[2].y * v[0].x,
