@@ -35,7 +35,7 @@ impl Slabs {
     }
 
     /// Distance at which the ray enters the node's box, if it does so within [0, t_max].
-    #[inline]
+    #[inline(always)]
     fn entry(&self, node: &Node, t_max: f64) -> Option<f64> {
         const LOW: f64 = 1.0 - 2.0 * gamma(3);
         const HIGH: f64 = 1.0 + 2.0 * gamma(3);
@@ -54,6 +54,46 @@ impl Slabs {
     }
 }
 
+/// Subtrees still to visit, with the distance at which the ray enters each; nearest on top.
+struct Stack {
+    entries: [(u32, f64); STACK],
+    len: usize,
+}
+
+impl Stack {
+    fn new() -> Stack {
+        Stack {
+            entries: [(0, 0.0); STACK],
+            len: 0,
+        }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, node: usize, t_entry: f64) {
+        self.entries[self.len] = (node as u32, t_entry);
+        self.len += 1;
+    }
+
+    /// The next subtree that the ray enters before `t_max`, dropping the ones it does not.
+    #[inline(always)]
+    fn pop_within(&mut self, t_max: f64) -> Option<usize> {
+        while self.len > 0 {
+            self.len -= 1;
+            let (node, t_entry) = self.entries[self.len];
+            if t_entry <= t_max {
+                return Some(node as usize);
+            }
+        }
+        None
+    }
+}
+
+/// The nearest hit so far: shape index and distance (t_max until something is hit).
+struct Best {
+    prim: Option<u32>,
+    t: f64,
+}
+
 impl Bvh {
     /// The nearest hit (or with `ANY`, the first found) with t in (0, t_max): shape index and t.
     pub(super) fn traverse<const ANY: bool>(
@@ -64,59 +104,77 @@ impl Bvh {
     ) -> Option<(u32, f64)> {
         let slabs = Slabs::new(ray);
         let shear = Shear::new(ray);
-        let root = self.nodes.first()?;
-        slabs.entry(root, t_max)?;
-        let (mut best, mut t_best) = (None, t_max);
-        let mut stack = [(0u32, 0.0f64); STACK];
-        let (mut sp, mut index) = (0, 0usize);
+        slabs.entry(self.nodes.first()?, t_max)?;
+        let mut best = Best {
+            prim: None,
+            t: t_max,
+        };
+        let mut stack = Stack::new();
+        let mut index = 0;
         loop {
             let node = &self.nodes[index];
-            if node.count > 0 {
-                let first = node.offset as usize;
-                for &prim in &self.prims[first..first + node.count as usize] {
-                    if let Some(t) = shapes[prim as usize].distance_sheared(ray, &shear, t_best) {
-                        (best, t_best) = (Some(prim), t);
-                        if ANY {
-                            return best.map(|p| (p, t_best));
-                        }
-                    }
-                }
-            } else {
-                let (a, b) = (index + 1, index + node.offset as usize);
-                match (
-                    slabs.entry(&self.nodes[a], t_best),
-                    slabs.entry(&self.nodes[b], t_best),
-                ) {
-                    (Some(ta), Some(tb)) => {
-                        let (near, far, t_far) = if ta <= tb { (a, b, tb) } else { (b, a, ta) };
-                        stack[sp] = (far as u32, t_far);
-                        sp += 1;
-                        index = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        index = a;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        index = b;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            // Pop the nearest pending subtree that can still hold a nearer hit.
-            loop {
-                if sp == 0 {
-                    return best.map(|p| (p, t_best));
-                }
-                sp -= 1;
-                let (next, t_entry) = stack[sp];
-                if t_entry <= t_best {
-                    index = next as usize;
+            let next = if node.count > 0 {
+                let found = self.test_leaf(node, shapes, ray, &shear, &mut best);
+                if ANY && found {
                     break;
                 }
+                None
+            } else {
+                self.descend(index, node, &slabs, best.t, &mut stack)
+            };
+            match next.or_else(|| stack.pop_within(best.t)) {
+                Some(i) => index = i,
+                None => break,
             }
+        }
+        best.prim.map(|p| (p, best.t))
+    }
+
+    /// Tests a leaf's shapes, keeping the nearest hit; whether there was one.
+    #[inline(always)]
+    fn test_leaf(
+        &self,
+        node: &Node,
+        shapes: &[Shape],
+        ray: &Ray,
+        shear: &Shear,
+        best: &mut Best,
+    ) -> bool {
+        let first = node.offset as usize;
+        let mut found = false;
+        for &prim in &self.prims[first..first + node.count as usize] {
+            if let Some(t) = shapes[prim as usize].distance_sheared(ray, shear, best.t) {
+                (best.prim, best.t) = (Some(prim), t);
+                found = true;
+            }
+        }
+        found
+    }
+
+    /// The child of interior node `index` to visit next: the nearer of those the ray enters
+    /// before `t_max`, the other one pushed for later.
+    #[inline(always)]
+    fn descend(
+        &self,
+        index: usize,
+        node: &Node,
+        slabs: &Slabs,
+        t_max: f64,
+        stack: &mut Stack,
+    ) -> Option<usize> {
+        let (a, b) = (index + 1, index + node.offset as usize);
+        match (
+            slabs.entry(&self.nodes[a], t_max),
+            slabs.entry(&self.nodes[b], t_max),
+        ) {
+            (Some(ta), Some(tb)) => {
+                let (near, far, t_far) = if ta <= tb { (a, b, tb) } else { (b, a, ta) };
+                stack.push(far, t_far);
+                Some(near)
+            }
+            (Some(_), None) => Some(a),
+            (None, Some(_)) => Some(b),
+            (None, None) => None,
         }
     }
 }
