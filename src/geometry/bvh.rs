@@ -1,20 +1,89 @@
 //! Bounding-volume hierarchy over shapes.
+//!
+//! A binary tree of axis-aligned boxes in one flat array, in depth-first order: an interior
+//! node's first child follows it, and it stores the distance to its second child; a leaf stores
+//! a range of the primitive index list. Built top-down by binned surface-area heuristic
+//! (`bvh/build.rs`), traversed iteratively nearest child first (`bvh/traverse.rs`).
+//!
+//! The tree depends only on the shapes, never on the number of threads that built it.
+//!
+//! # References
+//! - Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies" (binned SAH).
+//! - Pharr, Jakob & Humphreys 2023, *Physically Based Rendering* 4th ed., §7.3 (pbrt-v4).
 
-use super::{Hit, Ray, Shape};
+mod build;
+mod traverse;
 
-#[derive(Clone, Debug, Default)]
-pub struct Bvh {}
+use super::{Aabb, Hit, Ray, Shape};
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// Shape indices, grouped by leaf.
+    prims: Vec<u32>,
+}
+
+/// A node: its box as `[min, max]`, and either a leaf's primitive range
+/// (`prims[offset..offset + count]`, count > 0) or, for an interior node (count = 0), the
+/// distance to its second child (`nodes[i + offset]`; the first child is `nodes[i + 1]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node {
+    bounds: [[f64; 3]; 2],
+    offset: u32,
+    count: u32,
+}
 
 impl Bvh {
+    /// Binned-SAH build over `shapes` (at most u32::MAX − 1 of them); deterministic.
     pub fn build(shapes: &[Shape]) -> Bvh {
-        todo!("{}", shapes.len())
+        build::build(shapes)
     }
+
     /// Nearest hit with t in (0, t_max) among `shapes` (the slice it was built over).
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray, t_max: f64) -> Option<Hit> {
-        todo!("{}{ray:?}{t_max}", shapes.len())
+        let (prim, t) = self.traverse::<false>(shapes, ray, t_max)?;
+        let shape = &shapes[prim as usize];
+        let point = shape.hit_point(ray, t);
+        Some(Hit {
+            t,
+            point,
+            normal: shape.normal_at(point),
+            prim,
+        })
     }
+
     /// Whether anything is hit with t in (0, t_max).
     pub fn occluded(&self, shapes: &[Shape], ray: &Ray, t_max: f64) -> bool {
-        todo!("{}{ray:?}{t_max}", shapes.len())
+        self.traverse::<true>(shapes, ray, t_max).is_some()
+    }
+
+    /// Number of nodes (interior and leaves).
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Length of the longest root-to-leaf path, counting nodes (0 when empty).
+    pub fn depth(&self) -> usize {
+        self.depth_below(0)
+    }
+
+    fn depth_below(&self, index: usize) -> usize {
+        match self.nodes.get(index) {
+            None => 0,
+            Some(node) if node.count > 0 => 1,
+            Some(node) => {
+                1 + self
+                    .depth_below(index + 1)
+                    .max(self.depth_below(index + node.offset as usize))
+            }
+        }
+    }
+
+    /// Box around all shapes (empty when there are none).
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, |n| Aabb {
+            min: n.bounds[0].into(),
+            max: n.bounds[1].into(),
+        })
     }
 }

@@ -8,13 +8,16 @@ mod aabb;
 mod bvh;
 mod frame;
 pub mod mesh;
+pub mod rounding;
 pub mod shape;
+mod spawn;
 
 pub use aabb::Aabb;
 pub use bvh::Bvh;
 pub use frame::Frame;
 pub use glam::DVec3;
 pub use shape::{Disk, Quad, Shape, ShapeSample, Sphere, Triangle};
+pub use spawn::{SPAWN_ERROR_FACTOR, offset_origin};
 
 /// A ray: origin and unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,6 +50,23 @@ pub struct Hit {
 
 /// A new ray origin at surface point `p` (normal `n`) leaving in direction `dir`, offset off the
 /// surface far enough that the new ray does not hit the same surface again.
+///
+/// The offset is 128 ε |p|∞ along ±n (pbrt-v4 §6.8.6; see `geometry/spawn.rs`). That suffices
+/// when the surface's own coordinates are no larger than |p|. A shape defined far from where it
+/// is hit (the Earth's centre is 6.4e6 m below a road at the origin) needs the offset of
+/// [`Shape::spawn_origin`], which also scales with the shape's coordinates; prefer that one, or
+/// [`Hit::spawn_origin`], whenever the shape is known.
 pub fn spawn_origin(p: DVec3, n: DVec3, dir: DVec3) -> DVec3 {
-    todo!("{p}{n}{dir}")
+    offset_origin(p, n, dir, 0.0)
+}
+
+impl Hit {
+    /// The origin for a ray leaving this hit in direction `dir`; `shapes` is the slice the hit
+    /// was found in. See [`Shape::spawn_origin`].
+    pub fn spawn_origin(&self, shapes: &[Shape], dir: DVec3) -> DVec3 {
+        match shapes.get(self.prim as usize) {
+            Some(shape) => shape.spawn_origin(self.point, self.normal, dir),
+            None => spawn_origin(self.point, self.normal, dir),
+        }
+    }
 }

@@ -1,4 +1,15 @@
 //! Shapes: one file each, dispatched by a closed enum.
+//!
+//! Every shape answers the same questions: where a segment first meets it ([`Shape::intersect`]),
+//! which point and normal that is ([`Shape::hit_point`], [`Shape::normal_at`]), its box, area and
+//! uniform area samples, and where a ray leaving it should start ([`Shape::spawn_origin`]).
+//!
+//! # Rays leaving a surface
+//! Every intersection routine refuses roots within its own rounding error of t = 0, so a ray
+//! whose origin lies on a surface (as far as f64 can tell) does not hit that surface there. On top
+//! of that, rays leaving a hit should start at [`Shape::spawn_origin`], which offsets the point
+//! along the normal by an error bound scaled by the shape's coordinates (see
+//! `geometry/spawn.rs`), and query t in (0, t_max).
 
 mod disk;
 mod quad;
@@ -8,8 +19,9 @@ mod triangle;
 pub use disk::Disk;
 pub use quad::Quad;
 pub use sphere::Sphere;
-pub use triangle::Triangle;
+pub use triangle::{Shear, Triangle};
 
+use super::spawn::offset_origin;
 use super::{Aabb, Ray};
 use glam::DVec3;
 
@@ -32,16 +44,109 @@ pub enum Shape {
 impl Shape {
     /// Nearest intersection with t in (0, t_max): distance and unit front-side normal.
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<(f64, DVec3)> {
-        todo!("{ray:?}{t_max}")
+        let t = self.distance(ray, t_max)?;
+        Some((t, self.normal_at(self.hit_point(ray, t))))
     }
+
+    /// Nearest t in (0, t_max) at which the ray meets the shape, without the normal.
+    pub fn distance(&self, ray: &Ray, t_max: f64) -> Option<f64> {
+        match self {
+            Shape::Sphere(s) => s.distance(ray, t_max),
+            Shape::Quad(s) => s.distance(ray, t_max),
+            Shape::Disk(s) => s.distance(ray, t_max),
+            Shape::Triangle(s) => s.distance(ray, t_max),
+        }
+    }
+
+    /// [`Shape::distance`] for a ray whose triangle shear (see [`Shear`]) is already known:
+    /// the form to use when one ray meets many shapes.
+    #[inline]
+    pub fn distance_sheared(&self, ray: &Ray, shear: &Shear, t_max: f64) -> Option<f64> {
+        match self {
+            Shape::Triangle(s) => s.distance_sheared(ray, shear, t_max),
+            _ => self.distance(ray, t_max),
+        }
+    }
+
+    /// The point at distance `t` along `ray` (a hit found by [`Shape::intersect`]), moved onto
+    /// the surface: radially for spheres, along the normal for disks and quads, through
+    /// barycentric coordinates for triangles. Its distance from the surface is a few ε times
+    /// [`Shape::error_scale`], however far the ray came.
+    pub fn hit_point(&self, ray: &Ray, t: f64) -> DVec3 {
+        match self {
+            Shape::Sphere(s) => s.hit_point(ray, t),
+            Shape::Quad(s) => s.hit_point(ray, t),
+            Shape::Disk(s) => s.hit_point(ray, t),
+            Shape::Triangle(s) => s.hit_point(ray, t),
+        }
+    }
+
+    /// Unit front-side geometric normal at a point `p` on the surface.
+    pub fn normal_at(&self, p: DVec3) -> DVec3 {
+        match self {
+            Shape::Sphere(s) => s.normal_at(p),
+            Shape::Quad(s) => s.normal(),
+            Shape::Disk(s) => s.unit_normal(),
+            Shape::Triangle(s) => s.normal(),
+        }
+    }
+
+    /// A box containing every hit the shape can report (padded by rounding error).
     pub fn bounds(&self) -> Aabb {
-        todo!()
+        match self {
+            Shape::Sphere(s) => s.bounds(),
+            Shape::Quad(s) => s.bounds(),
+            Shape::Disk(s) => s.bounds(),
+            Shape::Triangle(s) => s.bounds(),
+        }
     }
+
     pub fn area(&self) -> f64 {
-        todo!()
+        match self {
+            Shape::Sphere(s) => s.area(),
+            Shape::Quad(s) => s.area(),
+            Shape::Disk(s) => s.area(),
+            Shape::Triangle(s) => s.area(),
+        }
     }
+
     /// Uniform-by-area sample (density 1/area).
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
-        todo!("{u:?}")
+        match self {
+            Shape::Sphere(s) => s.sample(u),
+            Shape::Quad(s) => s.sample(u),
+            Shape::Disk(s) => s.sample(u),
+            Shape::Triangle(s) => s.sample(u),
+        }
+    }
+
+    /// The magnitude (∞-norm, metres) of the coordinates the shape's intersection arithmetic
+    /// works with; its rounding errors are a few ε times this.
+    pub fn error_scale(&self) -> f64 {
+        match self {
+            Shape::Sphere(s) => s.error_scale(),
+            Shape::Quad(s) => s.error_scale(),
+            Shape::Disk(s) => s.error_scale(),
+            Shape::Triangle(s) => s.error_scale(),
+        }
+    }
+
+    /// The origin for a ray leaving this shape at `p` (unit normal `n`, e.g. from a hit or a
+    /// sample) in direction `dir`: `p` offset to the side of `dir` by 128 ε max(|p|∞,
+    /// [`Shape::error_scale`]). A ray from there, queried with t > 0, does not hit this shape
+    /// again near `p`.
+    pub fn spawn_origin(&self, p: DVec3, n: DVec3, dir: DVec3) -> DVec3 {
+        offset_origin(p, n, dir, self.error_scale())
+    }
+
+    /// Whether the parameters describe a proper shape (finite, non-degenerate); the message
+    /// says what is wrong.
+    pub fn check(&self) -> Result<(), String> {
+        match self {
+            Shape::Sphere(s) => s.check(),
+            Shape::Quad(s) => s.check(),
+            Shape::Disk(s) => s.check(),
+            Shape::Triangle(s) => s.check(),
+        }
     }
 }
