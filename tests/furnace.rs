@@ -28,7 +28,8 @@ fn expected_bands() -> Vec<f64> {
     (0..4)
         .map(|b| {
             let lo = 400.0 + 75.0 * b as f64;
-            morgana::testing::chi2::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4) / 75.0
+            morgana::testing::chi2::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4)
+                / 75.0
         })
         .collect()
 }
@@ -37,7 +38,13 @@ fn furnace(integrator: &str, sampling: &str) -> String {
     furnace_with(integrator, sampling, &RHO.to_string(), "1.0", LE)
 }
 
-fn furnace_with(integrator: &str, sampling: &str, reflectance: &str, spectrum: &str, scale: f64) -> String {
+fn furnace_with(
+    integrator: &str,
+    sampling: &str,
+    reflectance: &str,
+    spectrum: &str,
+    scale: f64,
+) -> String {
     format!(
         r#"
 [camera]
@@ -102,7 +109,9 @@ fn summary(values: &[f32], bands: usize, expected: f64) -> (f64, Vec<f64>, f64) 
 /// band averages.
 fn spectral_furnace(sampling: &str, seed: u64) {
     let s = scene(&furnace_with(
-        &format!("photons = 400000\nk = 200\nmax_radius = 0.5\ndirect = \"photon_map\"\nspp = 2\nseed = {seed}"),
+        &format!(
+            "photons = 400000\nk = 200\nmax_radius = 0.5\ndirect = \"photon_map\"\nspp = 2\nseed = {seed}"
+        ),
         sampling,
         RHO_SPECTRAL,
         LE_SPECTRAL,
@@ -112,8 +121,19 @@ fn spectral_furnace(sampling: &str, seed: u64) {
     let expected = expected_bands();
     let n = r.image.data.len() / 4;
     for (b, e) in expected.iter().enumerate() {
-        let mean = r.image.data.iter().skip(b).step_by(4).map(|v| *v as f64).sum::<f64>() / n as f64;
-        assert!((mean / e - 1.0).abs() < 0.03, "{sampling}, band {b}: {mean}, expected {e}");
+        let mean = r
+            .image
+            .data
+            .iter()
+            .skip(b)
+            .step_by(4)
+            .map(|v| *v as f64)
+            .sum::<f64>()
+            / n as f64;
+        assert!(
+            (mean / e - 1.0).abs() < 0.03,
+            "{sampling}, band {b}: {mean}, expected {e}"
+        );
     }
 }
 

@@ -129,7 +129,7 @@ pub fn trace(
             specular_bounces += 1;
             s.dir
         };
-        state = Propagator::leave(&hit, new_dir, Some(lambda));
+        state = prop.leave(&hit, new_dir, Some(lambda));
     }
     st.truncated_w += power_w;
 }

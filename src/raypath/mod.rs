@@ -7,7 +7,7 @@
 //! queries ([`crate::geometry::Bvh::intersect`]). Participating media add medium events here
 //! (free-flight sampling for photons, marched transmittance for eye rays).
 
-use crate::geometry::{Bvh, Hit, Ray, Shape, spawn_origin};
+use crate::geometry::{Bvh, Hit, Ray, Shape};
 use glam::DVec3;
 
 /// A ray state: where light is, where it goes, and at which wavelength. `wavelength_nm` is
@@ -60,20 +60,21 @@ impl<'a> Propagator<'a> {
 
     /// The state leaving surface `hit` in direction `dir`, offset so it does not re-hit the
     /// surface it leaves.
-    pub fn leave(hit: &Hit, dir: DVec3, wavelength_nm: Option<f64>) -> RayState {
+    pub fn leave(&self, hit: &Hit, dir: DVec3, wavelength_nm: Option<f64>) -> RayState {
         RayState {
-            position: spawn_origin(hit.point, hit.normal, dir),
+            position: hit.spawn_origin(self.shapes, dir),
             dir,
             wavelength_nm,
         }
     }
 
-    /// Whether the straight segment from `p` (on a surface with normal `n`) toward `wi` is free
+    /// Whether the straight segment from surface point `hit` toward `wi` is free
     /// of geometry for `dist` (less a relative margin, so the target surface itself does not
     /// count). Only valid while paths are straight: the effect plan turns shadow rays off when
     /// they curve.
-    pub fn unoccluded(&self, p: DVec3, n: DVec3, wi: DVec3, dist: f64) -> bool {
-        let origin = spawn_origin(p, n, wi);
+    pub fn unoccluded(&self, hit: &Hit, wi: DVec3, dist: f64) -> bool {
+        let p = hit.point;
+        let origin = hit.spawn_origin(self.shapes, wi);
         let t_max = if dist.is_finite() {
             (dist - (origin - p).length()) * (1.0 - 1e-7)
         } else {

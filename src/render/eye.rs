@@ -145,7 +145,9 @@ impl<'a> EyeTracer<'a> {
         let Some(s) = m.sample_specular(dir, hit.normal, lanes.nm[0], u) else {
             return out;
         };
-        let next = Propagator::leave(hit, s.dir, (lanes.len == 1).then_some(lanes.nm[0]));
+        let next = self
+            .prop
+            .leave(hit, s.dir, (lanes.len == 1).then_some(lanes.nm[0]));
         let l = self.radiance(&next, lanes, depth + 1, mode, rng, sc);
         for i in 0..lanes.len {
             let w = m
@@ -205,7 +207,7 @@ impl<'a> EyeTracer<'a> {
         } else if let Some(g) = &self.global {
             add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0);
         }
-        let direct = self.direct(hit.point, n, lanes, rng, sc);
+        let direct = self.direct(hit, n, lanes, rng, sc);
         add_by_lane(&mut out, &direct, lanes, &|i| rho(lanes.nm[i]) / PI);
         out
     }
@@ -225,7 +227,7 @@ impl<'a> EyeTracer<'a> {
         let mut sum = [0.0; MAX_BANDS];
         for _ in 0..count {
             let d = Lambertian::sample(dir, hit.normal, rng.uniform2());
-            let next = Propagator::leave(hit, d, None);
+            let next = self.prop.leave(hit, d, None);
             let l = self.radiance(&next, lanes, depth + 1, Mode::Gather, rng, sc);
             for i in 0..lanes.len {
                 sum[i] += l[i];
@@ -241,7 +243,7 @@ impl<'a> EyeTracer<'a> {
     /// E(λ) = Σ_lights S(λ) · weight · cos θ, weight being the light's sampling factor.
     fn direct(
         &self,
-        p: DVec3,
+        hit: &Hit,
         n: DVec3,
         lanes: &Lanes,
         rng: &mut Rng,
@@ -250,7 +252,7 @@ impl<'a> EyeTracer<'a> {
         let mut e = [0.0; MAX_BANDS];
         for light in &self.scene.lights {
             let u = rng.uniform2();
-            let Some(inc) = light.incident(p, u) else {
+            let Some(inc) = light.incident(hit.point, u) else {
                 continue;
             };
             let cos = inc.wi.dot(n);
@@ -258,7 +260,7 @@ impl<'a> EyeTracer<'a> {
                 continue;
             }
             sc.rays.shadow += 1;
-            if !self.prop.unoccluded(p, n, inc.wi, inc.dist) {
+            if !self.prop.unoccluded(hit, inc.wi, inc.dist) {
                 continue;
             }
             let s = &light.spectrum().spectrum;

@@ -196,6 +196,10 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     for (i, rec) in raw.shape.iter().enumerate() {
         let group = shapes::shape(ctx, rec, i)?;
         let m = material_index(ctx, &material_names, &group.material, &group.name)?;
+        for s in &group.shapes {
+            s.check()
+                .map_err(|e| ctx.err(&rec.span(), format!("{}: {e}", group.name)))?;
+        }
         for s in group.shapes {
             shapes.push(s);
             prims.push(Prim {
