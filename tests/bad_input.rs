@@ -91,7 +91,7 @@ fn out_of_range_values_say_what_is_allowed() {
 fn missing_fields_and_unused_fields_are_errors() {
     let e = scene_error(&GOOD.replace("position = [0.0, 2.0, 0.0]\n", ""));
     assert!(
-        e.contains("test.toml:29:") && e.contains("missing field `position`"),
+        e.contains("test.toml:26:1:") && e.contains("missing field `position`"),
         "{e}"
     );
     let e = scene_error(&GOOD.replace(
@@ -142,7 +142,7 @@ fn an_empty_or_missing_mesh_is_an_error() {
     };
     let e = scene_error(&mesh("empty.obj"));
     assert!(
-        e.contains("test.toml:22:") && e.contains("empty.obj"),
+        e.contains("test.toml:21:8:") && e.contains("empty.obj") && e.contains("no triangles"),
         "{e}"
     );
     let e = scene_error(&mesh("missing.obj"));

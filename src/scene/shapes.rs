@@ -161,7 +161,7 @@ fn mesh(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R
     let tris = load_obj(&path).map_err(|e| {
         ctx.err(
             &file.span(),
-            format!("{what}: mesh file {}: {e}", path.display()),
+            format!("{what}: {e}"),
         )
     })?;
     let scale = s.scale.as_ref().map_or(Ok(1.0), |v| {
