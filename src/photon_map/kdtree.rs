@@ -11,9 +11,9 @@
 //!
 //! This replaces Jensen's left-balanced tree with one photon per node: a leaf bucket is scanned
 //! linearly (cache-friendly, no branch per photon on the way down), and the nodes cost 8 bytes
-//! per leaf, about 0.3–0.4 bytes per item. On 1M photons with k = 100 (2-core VM, one query
-//! thread) queries take 4.5 µs (large radius) and 1.6 µs (small) against 21 and 6.7 µs for
-//! Jensen's tree with its max-heap; see `benches/photon_map.rs`.
+//! per leaf, about 0.3–0.4 bytes per item. On 1M points with k = 100 (2-core VM, one query
+//! thread) queries take 4–4.5 µs (large radius) and 1.4–1.6 µs (small) against 16–21 and
+//! 5.3–6.7 µs for Jensen's tree with its max-heap; see `benches/photon_map.rs`.
 //!
 //! # Build
 //!
@@ -82,8 +82,8 @@ impl Neighbours {
 
 /// Most items in a leaf bucket. Leaves hold between `LEAF_SIZE / 2` and `LEAF_SIZE` items
 /// (unless the whole tree holds fewer). Chosen by measurement (`benches/photon_map.rs`, 1M
-/// photons, k = 100): leaves of ≤ 32 and ≤ 64 query equally fast; ≤ 16 is 10–20% and ≤ 8
-/// 15–30% slower.
+/// points, k = 100): leaves of ≤ 32 and ≤ 64 query equally fast; ≤ 16 is up to 20% and ≤ 8 up
+/// to 30% slower.
 pub const LEAF_SIZE: usize = 32;
 
 /// Height limit: with fewer than 2^32 items and leaves of at least two, 31 levels suffice. The

@@ -5,9 +5,10 @@
 //! balanced kd-tree with leaf buckets. Memory (see [`PhotonMap::memory_bytes`]): 32 bytes per
 //! photon plus 0.3–0.4 bytes of tree nodes: 32.3 MB for 1M photons, 324 MB for 10M.
 //!
-//! Measured on a 2-core VM (`benches/photon_map.rs`, 1M photons, k = 100, one query thread):
-//! build 80 ms (10M: 1.3 s); queries 5.4 µs with a radius where most queries find 100 photons
-//! and 2.2 µs with an eighth of it, 0.44–0.46 of kiddo 6's time on the same points.
+//! Measured on a 2-core VM (`benches/photon_map.rs`, 1M photons, k = 100, one query thread; two
+//! runs): build 80–150 ms (10M: 1.3–1.7 s); queries 5.4–5.8 µs with a radius where most queries
+//! find 100 photons and 1.6–2.2 µs with an eighth of it, 0.44–0.49 of kiddo 6's time on the
+//! same points.
 //!
 //! # References
 //! - Jensen 2000, "A Practical Guide to Global Illumination using Photon Maps", SIGGRAPH course
