@@ -1,4 +1,18 @@
 //! Photon maps: compact photon storage, a kd-tree with k-nearest queries, radiance estimates.
+//!
+//! A [`PhotonMap`] keeps each photon in 32 bytes ([`Photon`]: position as f32 relative to the
+//! map's origin, octahedrally encoded direction and normal) in a [`KdTree`], an implicit
+//! balanced kd-tree with leaf buckets. Memory (see [`PhotonMap::memory_bytes`]): 32 bytes per
+//! photon plus 0.3–0.4 bytes of tree nodes: 32.3 MB for 1M photons, 324 MB for 10M.
+//!
+//! Measured on a 2-core VM (`benches/photon_map.rs`, 1M photons, k = 100, one query thread; two
+//! runs): build 80–150 ms (10M: 1.3–1.7 s); queries 5.4–5.8 µs with a radius where most queries
+//! find 100 photons and 1.6–2.2 µs with an eighth of it, 0.44–0.49 of kiddo 6's time on the
+//! same points.
+//!
+//! # References
+//! - Jensen 2000, "A Practical Guide to Global Illumination using Photon Maps", SIGGRAPH course
+//!   notes (`shared/papers/jensen-2000-photon-map-course-notes.txt`).
 
 pub mod estimate;
 mod irradiance;
@@ -7,10 +21,11 @@ mod photon;
 
 pub use estimate::{BandValues, Estimator};
 pub use irradiance::IrradianceCache;
-pub use kdtree::{KdPoint, KdTree, Neighbours};
-pub use photon::{Photon, PhotonRecord};
+pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
+pub use photon::{Photon, PhotonRecord, oct_decode, oct_encode};
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// A photon map: photons stored compactly (positions as f32 relative to the map's origin) in a
 /// kd-tree.
@@ -22,8 +37,36 @@ pub struct PhotonMap {
 
 impl PhotonMap {
     /// Builds the map (in parallel; the result does not depend on the thread count).
+    ///
+    /// The origin is the centre of the records' bounding box, so stored positions resolve
+    /// about `extent × 6e-8` (see [`Photon`]). Records whose position is not finite are dropped.
     pub fn build(records: &[PhotonRecord]) -> PhotonMap {
-        todo!("{}", records.len())
+        let finite = |r: &&PhotonRecord| r.position.is_finite();
+        let (lo, hi) = records
+            .par_iter()
+            .filter(finite)
+            .fold(
+                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+                |(lo, hi), r| (lo.min(r.position), hi.max(r.position)),
+            )
+            .reduce(
+                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+                |a, b| (a.0.min(b.0), a.1.max(b.1)),
+            );
+        let origin = if lo.x <= hi.x {
+            (lo + hi) * 0.5
+        } else {
+            DVec3::ZERO
+        };
+        let photons: Vec<Photon> = records
+            .par_iter()
+            .filter(finite)
+            .map(|r| Photon::encode(r, origin))
+            .collect();
+        PhotonMap {
+            origin,
+            tree: KdTree::build(photons),
+        }
     }
     pub fn len(&self) -> usize {
         self.tree.len()
@@ -31,16 +74,41 @@ impl PhotonMap {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
+    /// The point stored positions are relative to (the centre of the records' bounding box).
+    pub fn origin(&self) -> DVec3 {
+        self.origin
+    }
+    /// The stored photons, in tree order (indexed by [`Neighbours`] items).
+    pub fn photons(&self) -> &[Photon] {
+        self.tree.items()
+    }
+    /// The kd-tree (positions relative to [`PhotonMap::origin`]).
+    pub fn tree(&self) -> &KdTree<Photon> {
+        &self.tree
+    }
     /// Bytes held by the map.
     pub fn memory_bytes(&self) -> usize {
-        todo!()
+        size_of::<Self>() - size_of::<KdTree<Photon>>() + self.tree.memory_bytes()
     }
     /// The up-to-`k` photons nearest to `x` within `max_radius`, into `out`.
+    ///
+    /// Distances in `out` are squared, in the map's f32 frame. A NaN position or radius, or a
+    /// negative radius, gives no photons.
     pub fn knn(&self, x: DVec3, k: usize, max_radius: f64, out: &mut Neighbours) {
-        todo!("{x}{k}{max_radius}{}", out.len())
+        let rel = x - self.origin;
+        let q = [rel.x as f32, rel.y as f32, rel.z as f32];
+        let max_dist2 = if max_radius >= 0.0 {
+            (max_radius * max_radius) as f32
+        } else {
+            f32::NAN
+        };
+        self.tree.knn(q, k, max_dist2, out);
     }
     /// Photon `i` (an index from [`Neighbours`]) decoded.
+    ///
+    /// # Panics
+    /// If `i` is out of range.
     pub fn record(&self, i: u32) -> PhotonRecord {
-        todo!("{i}{}", self.origin)
+        self.tree.items()[i as usize].decode(self.origin)
     }
 }
