@@ -73,13 +73,7 @@ fn scene_photon(rng: &mut Rng) -> PhotonRecord {
     if normal != DVec3::ZERO {
         dir.z = -dir.z.abs();
     }
-    PhotonRecord {
-        position: room + offset,
-        dir,
-        normal,
-        wavelength_nm: 380.0 + 400.0 * rng.uniform(),
-        power_w: 1e-6,
-    }
+    PhotonRecord { position: room + offset, dir, normal, wavelength_nm: 380.0 + 400.0 * rng.uniform(), power_w: 1e-6 }
 }
 
 fn scene(n: usize, seed: u64) -> Vec<PhotonRecord> {
@@ -99,11 +93,7 @@ struct Times(RefCell<BTreeMap<String, Vec<f64>>>);
 impl Times {
     fn record(&self, name: &str, total: Duration, iters: u64) {
         let per_iter = total.as_secs_f64() / iters as f64;
-        self.0
-            .borrow_mut()
-            .entry(name.to_string())
-            .or_default()
-            .push(per_iter);
+        self.0.borrow_mut().entry(name.to_string()).or_default().push(per_iter);
     }
     /// Median of the last `samples` records (the measured samples), in seconds.
     fn median(&self, name: &str, samples: usize) -> f64 {
@@ -121,19 +111,13 @@ fn main() {
     let quick = std::env::var_os("PHOTON_MAP_BENCH_QUICK").is_some();
     let n_queries = if quick { 100_000 } else { 1_000_000 };
     let threads = rayon::current_num_threads();
-    let mut c = Criterion::default()
-        .sample_size(SAMPLES)
-        .warm_up_time(Duration::from_millis(1))
-        .configure_from_args();
+    let mut c = Criterion::default().sample_size(SAMPLES).warm_up_time(Duration::from_millis(1)).configure_from_args();
     let times = Times::default();
 
     let records = scene(1_000_000, 1);
     let map = PhotonMap::build(&records);
     let origin = map.origin();
-    let points: Vec<[f32; 3]> = records
-        .iter()
-        .map(|r| rel_f32(r.position, origin))
-        .collect();
+    let points: Vec<[f32; 3]> = records.iter().map(|r| rel_f32(r.position, origin)).collect();
     let queries: Vec<DVec3> = scene(n_queries, 2).iter().map(|r| r.position).collect();
     let queries_f32: Vec<[f32; 3]> = queries.iter().map(|&q| rel_f32(q, origin)).collect();
     let tree = KdTree::build(points.clone());
@@ -155,8 +139,7 @@ fn main() {
     // ---- Build ----
     {
         let mut g = c.benchmark_group("photon_map/build_1M");
-        g.sampling_mode(SamplingMode::Flat)
-            .measurement_time(Duration::from_secs(3));
+        g.sampling_mode(SamplingMode::Flat).measurement_time(Duration::from_secs(3));
         g.bench_function("morgana PhotonMap::build", |b| {
             b.iter_custom(|iters| {
                 let t = Instant::now();
@@ -200,8 +183,7 @@ fn main() {
     for (name, r) in settings {
         let r2 = (r * r) as f32;
         let mut g = c.benchmark_group(format!("photon_map/knn_{}k_k100_{name}", n_queries / 1000));
-        g.sampling_mode(SamplingMode::Flat)
-            .measurement_time(Duration::from_secs(1));
+        g.sampling_mode(SamplingMode::Flat).measurement_time(Duration::from_secs(1));
         g.bench_function("morgana PhotonMap::knn", |b| {
             b.iter_custom(|iters| {
                 let mut out = Neighbours::default();
@@ -226,12 +208,7 @@ fn main() {
                 let t = Instant::now();
                 for _ in 0..iters {
                     for q in &queries_f32 {
-                        let res = kiddo
-                            .query(q)
-                            .nearest_n::<SquaredEuclidean<f32>>(k)
-                            .within(r2)
-                            .unsorted()
-                            .execute();
+                        let res = kiddo.query(q).nearest_n::<SquaredEuclidean<f32>>(k).within(r2).unsorted().execute();
                         n += res.len();
                     }
                 }
@@ -296,11 +273,7 @@ fn main() {
         assert_eq!(found[&(name, "map")], found[&(name, "kiddo")], "same work");
     }
     println!();
-    println!(
-        "memory: {:.2} bytes/photon at 1M ({:.1} MB)",
-        bytes_1m as f64 / map.len() as f64,
-        bytes_1m as f64 / 1e6
-    );
+    println!("memory: {:.2} bytes/photon at 1M ({:.1} MB)", bytes_1m as f64 / map.len() as f64, bytes_1m as f64 / 1e6);
     if let (Some(b), Some(e)) = (bytes_10m, build_10m) {
         println!(
             "memory: {:.2} bytes/photon at 10M ({:.1} MB); PhotonMap::build of 10M: {:.2} s",
@@ -319,27 +292,20 @@ type Query<'a> = Box<dyn Fn([f32; 3], f32) -> usize + 'a>;
 /// Tree designs compared on a subset of the queries (best and median of 3 rounds, µs/query,
 /// one thread): Jensen's left-balanced tree (one point per node, max-heap of k), ours with
 /// several leaf sizes, and kiddo's default `ImmutableKdTree` against the configuration used above.
-fn design_comparison(
-    points: &[[f32; 3]],
-    queries: &[[f32; 3]],
-    settings: &[(&str, f64)],
-) -> String {
+fn design_comparison(points: &[[f32; 3]], queries: &[[f32; 3]], settings: &[(&str, f64)]) -> String {
     let k = NonZeroUsize::new(K).expect("k > 0");
     let mut rows: Vec<(String, Query<'_>)> = Vec::new();
     let t = Instant::now();
     let jensen = jensen::Tree::build(points);
     let jensen_build = t.elapsed();
-    rows.push((
-        format!("Jensen 2000 left-balanced, max-heap (serial build {jensen_build:.0?})"),
-        {
-            let out = RefCell::new(Vec::new());
-            Box::new(move |q, r2| {
-                let mut out = out.borrow_mut();
-                jensen.knn(q, K, r2, &mut out);
-                out.len()
-            })
-        },
-    ));
+    rows.push((format!("Jensen 2000 left-balanced, max-heap (serial build {jensen_build:.0?})"), {
+        let out = RefCell::new(Vec::new());
+        Box::new(move |q, r2| {
+            let mut out = out.borrow_mut();
+            jensen.knn(q, K, r2, &mut out);
+            out.len()
+        })
+    }));
     for leaf in [8, 16, 32, 64] {
         let tree = KdTree::build_with_leaf_size(points.to_vec(), leaf);
         let out = RefCell::new(Neighbours::default());
@@ -368,10 +334,8 @@ fn design_comparison(
             res.within(r2).unsorted().execute().len()
         }),
     ));
-    let mut s = format!(
-        "## designs: {} queries, k = {K}, µs/query (best / median of 3 rounds)\n\n| tree |",
-        queries.len()
-    );
+    let mut s =
+        format!("## designs: {} queries, k = {K}, µs/query (best / median of 3 rounds)\n\n| tree |", queries.len());
     for (name, _) in settings {
         s += &format!(" {name} |");
     }
@@ -439,23 +403,12 @@ mod jensen {
             }
         }
 
-        fn locate(
-            &self,
-            p: usize,
-            q: [f32; 3],
-            k: usize,
-            bound: &mut f32,
-            out: &mut Vec<(u32, f32)>,
-        ) {
+        fn locate(&self, p: usize, q: [f32; 3], k: usize, bound: &mut f32, out: &mut Vec<(u32, f32)>) {
             let n = self.nodes.len() - 1;
             let (pos, axis) = self.nodes[p];
             if 2 * p <= n {
                 let delta = q[axis as usize] - pos[axis as usize];
-                let (near, far) = if delta < 0.0 {
-                    (2 * p, 2 * p + 1)
-                } else {
-                    (2 * p + 1, 2 * p)
-                };
+                let (near, far) = if delta < 0.0 { (2 * p, 2 * p + 1) } else { (2 * p + 1, 2 * p) };
                 if near <= n {
                     self.locate(near, q, k, bound, out);
                 }

@@ -16,21 +16,13 @@ pub struct Location {
 
 impl Location {
     pub fn file(file: &Path) -> Self {
-        Location {
-            file: file.to_path_buf(),
-            line: None,
-            column: None,
-        }
+        Location { file: file.to_path_buf(), line: None, column: None }
     }
 
     /// The location of byte `offset` in `source`, read from `file`.
     pub fn at_offset(file: &Path, source: &str, offset: usize) -> Self {
         let (line, column) = line_column(source, offset);
-        Location {
-            file: file.to_path_buf(),
-            line: Some(line),
-            column: Some(column),
-        }
+        Location { file: file.to_path_buf(), line: Some(line), column: Some(column) }
     }
 }
 
@@ -91,10 +83,7 @@ pub enum Error {
 
 impl Error {
     pub fn input(location: Option<Location>, message: impl Into<String>) -> Self {
-        Error::Input(InputError {
-            location,
-            message: message.into(),
-        })
+        Error::Input(InputError { location, message: message.into() })
     }
 
     pub fn internal(message: impl Into<String>) -> Self {

@@ -9,11 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Parser)]
-#[command(
-    name = "morgana",
-    version,
-    about = "Spectral light transport through media that bend and re-colour light"
-)]
+#[command(name = "morgana", version, about = "Spectral light transport through media that bend and re-colour light")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -51,14 +47,9 @@ enum Command {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render {
-            scene,
-            out,
-            photons,
-            seed,
-            threads,
-            quiet,
-        } => run_render(scene.as_deref(), &out, photons, seed, threads, quiet),
+        Command::Render { scene, out, photons, seed, threads, quiet } => {
+            run_render(scene.as_deref(), &out, photons, seed, threads, quiet)
+        }
         Command::Check { scene } => run_check(scene.as_deref()),
     };
     if let Err(e) = result {
@@ -111,9 +102,7 @@ fn run_render(
         }
         builder = builder.num_threads(t);
     }
-    let pool = builder
-        .build()
-        .map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
+    let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
     let rendered = pool.install(|| render(&scene, &RenderOptions { quiet }));
     let outputs = morgana::output::write_outputs(
         &scene,

@@ -68,13 +68,8 @@ mod tests {
 
     #[test]
     fn streams_and_tasks_differ_and_repeat() {
-        let a: Vec<f64> = (0..4)
-            .map(|_| Rng::for_task(7, Stream::Eye, 3).uniform())
-            .collect();
-        assert!(
-            a.windows(2).all(|w| w[0] == w[1]),
-            "same triple must repeat"
-        );
+        let a: Vec<f64> = (0..4).map(|_| Rng::for_task(7, Stream::Eye, 3).uniform()).collect();
+        assert!(a.windows(2).all(|w| w[0] == w[1]), "same triple must repeat");
         let mut x = Rng::for_task(7, Stream::Eye, 3);
         let mut y = Rng::for_task(7, Stream::Eye, 4);
         let mut z = Rng::for_task(7, Stream::GlobalPhotons, 3);

@@ -8,14 +8,7 @@ use morgana::scene::default_scene;
 #[test]
 fn default_scene_is_identical_on_one_and_two_threads() {
     let mut s = default_scene().expect("default scene");
-    s.camera = morgana::render::Camera::new(
-        s.camera.position,
-        s.camera.look_at,
-        s.camera.up,
-        s.camera.fov_deg,
-        40,
-        32,
-    );
+    s.camera = morgana::render::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 40, 32);
     s.integrator.spp = 2;
     s.integrator.gather_rays = 4;
     s.apply_overrides(Some(20_000), Some(9));
@@ -24,14 +17,8 @@ fn default_scene_is_identical_on_one_and_two_threads() {
     assert_eq!(one.image.data.len(), 40 * 32 * s.bands.count);
     assert!(one.image.data.iter().any(|v| *v > 0.0), "image is black");
     let bits = |d: &[f32]| d.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-    assert!(
-        bits(&one.image.data) == bits(&two.image.data),
-        "spectral data differ between 1 and 2 threads"
-    );
-    assert!(
-        bits(&one.image.rgb) == bits(&two.image.rgb),
-        "RGB differs between 1 and 2 threads"
-    );
+    assert!(bits(&one.image.data) == bits(&two.image.data), "spectral data differ between 1 and 2 threads");
+    assert!(bits(&one.image.rgb) == bits(&two.image.rgb), "RGB differs between 1 and 2 threads");
     assert_eq!(one.stats.rays, two.stats.rays);
     let dir = std::env::temp_dir().join(format!("morgana-determinism-{}", std::process::id()));
     let written: Vec<Vec<u8>> = [&one, &two]
@@ -45,8 +32,5 @@ fn default_scene_is_identical_on_one_and_two_threads() {
         })
         .collect();
     let _ = std::fs::remove_dir_all(&dir);
-    assert!(
-        written[0] == written[1],
-        "EXR bytes differ between 1 and 2 threads"
-    );
+    assert!(written[0] == written[1], "EXR bytes differ between 1 and 2 threads");
 }

@@ -35,36 +35,37 @@ radius = 5.0
 material = "black"
 "#;
 
-#[test]
-fn every_emitted_watt_arrives_once_in_a_black_enclosure() {
-    // A point light (blackbody spectrum, 25 W) and a quad area light (given by its radiance) inside
-    // a black sphere: each photon hits the wall once, is stored once and absorbed.
-    let toml = format!(
-        "{BLACK_SPHERE}\n[[light]]\ntype = \"point\"\nposition = [0.5, 0.0, 0.0]\nspectrum = {{ blackbody_k = 3000 }}\npower_w = 25.0\n\
-         \n[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = [-1.0, 1.0, -1.0]\nu = [0.5, 0.0, 0.0]\nv = [0.0, 0.0, 0.4]\nspectrum = 1.0\nscale = 0.01\n"
-    );
-    let s = scene(&toml);
-    // Area light flux by the closed form Φ = π A ∫L dλ = π · 0.2 m² · 0.01 · 300 nm.
-    let area_power = PI * 0.2 * 0.01 * 300.0;
+/// Shoots `n` global photons and checks that each was stored exactly once and that the stored
+/// power equals the lights' power.
+fn all_power_arrives(lights: &str, expected_power: f64) -> Vec<morgana::photon_map::PhotonRecord> {
+    let s = scene(&format!("{BLACK_SPHERE}\n{lights}"));
     let total: f64 = s.lights.iter().map(|l| l.power_w()).sum();
-    assert!(
-        (total - (25.0 + area_power)).abs() < 1e-9 * total,
-        "light power {total}"
-    );
+    assert!((total - expected_power).abs() < 1e-9 * total, "light power {total}, expected {expected_power}");
     let n = 100_000;
     let (photons, stats) = shoot(&s, MapKind::Global { store_direct: true }, n, 5, &|_| {});
     assert_eq!(photons.len() as u64, n, "each photon stored exactly once");
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
-    assert!(
-        (stored - total).abs() < 1e-9 * total,
-        "stored {stored} W of {total} W"
-    );
+    assert!((stored - total).abs() < 1e-9 * total, "stored {stored} W of {total} W");
     assert!((stats.absorbed_w - total).abs() < 1e-9 * total);
     assert_eq!(stats.escaped_w, 0.0);
-    // The photons' wavelengths follow the lights' spectra: the blackbody (3000 K rises toward
-    // red) gives more photons above 550 nm than below.
+    photons
+}
+
+#[test]
+fn every_emitted_watt_arrives_once_in_a_black_enclosure() {
+    // Inside a black sphere each photon hits the wall once, is stored once and absorbed.
+    let point =
+        "[[light]]\ntype = \"point\"\nposition = [0.5, 0.0, 0.0]\nspectrum = { blackbody_k = 3000 }\npower_w = 25.0\n";
+    let photons = all_power_arrives(point, 25.0);
+    // The photons' wavelengths follow the spectrum: a 3000 K black body rises toward the red.
     let red = photons.iter().filter(|p| p.wavelength_nm > 550.0).count();
     assert!(red > photons.len() / 2);
+    // A quad area light given by its radiance: Φ = π A ∫L dλ = π · 0.2 m² · 0.01 · 300 nm.
+    let quad = "[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = [-1.0, 1.0, -1.0]\nu = [0.5, 0.0, 0.0]\nv = [0.0, 0.0, 0.4]\nspectrum = 1.0\nscale = 0.01\n";
+    all_power_arrives(quad, PI * 0.2 * 0.01 * 300.0);
+    // A spot light given by its power.
+    let spot = "[[light]]\ntype = \"spot\"\nposition = [0.0, 0.0, 0.0]\ndirection = [0.0, -1.0, 0.0]\ncone_deg = 30.0\nfalloff_start_deg = 20.0\nspectrum = \"D65\"\npower_w = 3.0\n";
+    all_power_arrives(spot, 3.0);
 }
 
 /// Irradiance at (x, 0, 0) on the plane y = 0 from a point light of intensity I at height h:
@@ -109,23 +110,11 @@ scale = 0.02
 "#;
     let s = scene(toml);
     // Intensity per nm 0.02 over 100 nm: I = 2 W/sr; the photon map's band value is E per nm.
-    let (records, _) = shoot(
-        &s,
-        MapKind::Global { store_direct: true },
-        2_000_000,
-        11,
-        &|_| {},
-    );
+    let (records, _) = shoot(&s, MapKind::Global { store_direct: true }, 2_000_000, 11, &|_| {});
     let map = PhotonMap::build(&records);
     let k = 1000;
     let filter = Filter::Cone { k: 1.1 };
-    let est = Estimator {
-        map: &map,
-        k,
-        max_radius: 1.0,
-        filter,
-        bands: s.bands,
-    };
+    let est = Estimator { map: &map, k, max_radius: 1.0, filter, bands: s.bands };
     let mut nb = Neighbours::default();
     for x in [0.0, 0.4, 0.8, 1.2] {
         let e_band = est.irradiance(DVec3::new(x, 0.0, 0.0), DVec3::Y, &mut nb)[0] * 100.0;
@@ -154,9 +143,6 @@ scale = 0.02
             (e_band / filtered - 1.0).abs() < tol,
             "x = {x}: estimate {e_band}, filtered closed form {filtered} (point value {exact})"
         );
-        assert!(
-            (filtered / exact - 1.0).abs() < 0.05,
-            "disc radius {r} too large for a point comparison at x = {x}"
-        );
+        assert!((filtered / exact - 1.0).abs() < 0.05, "disc radius {r} too large for a point comparison at x = {x}");
     }
 }

@@ -28,8 +28,7 @@ fn expected_bands() -> Vec<f64> {
     (0..4)
         .map(|b| {
             let lo = 400.0 + 75.0 * b as f64;
-            morgana::testing::chi2::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4)
-                / 75.0
+            morgana::testing::chi2::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4) / 75.0
         })
         .collect()
 }
@@ -38,13 +37,7 @@ fn furnace(integrator: &str, sampling: &str) -> String {
     furnace_with(integrator, sampling, &RHO.to_string(), "1.0", LE)
 }
 
-fn furnace_with(
-    integrator: &str,
-    sampling: &str,
-    reflectance: &str,
-    spectrum: &str,
-    scale: f64,
-) -> String {
+fn furnace_with(integrator: &str, sampling: &str, reflectance: &str, spectrum: &str, scale: f64) -> String {
     format!(
         r#"
 [camera]
@@ -86,22 +79,9 @@ fn summary(values: &[f32], bands: usize, expected: f64) -> (f64, Vec<f64>, f64) 
     let n = values.len() as f64;
     let mean = values.iter().map(|v| *v as f64).sum::<f64>() / n;
     let per_band = (0..bands)
-        .map(|b| {
-            values
-                .iter()
-                .skip(b)
-                .step_by(bands)
-                .map(|v| *v as f64)
-                .sum::<f64>()
-                / (n / bands as f64)
-        })
+        .map(|b| values.iter().skip(b).step_by(bands).map(|v| *v as f64).sum::<f64>() / (n / bands as f64))
         .collect();
-    let rms = (values
-        .iter()
-        .map(|v| (*v as f64 / expected - 1.0).powi(2))
-        .sum::<f64>()
-        / n)
-        .sqrt();
+    let rms = (values.iter().map(|v| (*v as f64 / expected - 1.0).powi(2)).sum::<f64>() / n).sqrt();
     (mean, per_band, rms)
 }
 
@@ -109,9 +89,7 @@ fn summary(values: &[f32], bands: usize, expected: f64) -> (f64, Vec<f64>, f64) 
 /// band averages.
 fn spectral_furnace(sampling: &str, seed: u64) {
     let s = scene(&furnace_with(
-        &format!(
-            "photons = 400000\nk = 200\nmax_radius = 0.5\ndirect = \"photon_map\"\nspp = 2\nseed = {seed}"
-        ),
+        &format!("photons = 400000\nk = 200\nmax_radius = 0.5\ndirect = \"photon_map\"\nspp = 2\nseed = {seed}"),
         sampling,
         RHO_SPECTRAL,
         LE_SPECTRAL,
@@ -121,19 +99,8 @@ fn spectral_furnace(sampling: &str, seed: u64) {
     let expected = expected_bands();
     let n = r.image.data.len() / 4;
     for (b, e) in expected.iter().enumerate() {
-        let mean = r
-            .image
-            .data
-            .iter()
-            .skip(b)
-            .step_by(4)
-            .map(|v| *v as f64)
-            .sum::<f64>()
-            / n as f64;
-        assert!(
-            (mean / e - 1.0).abs() < 0.03,
-            "{sampling}, band {b}: {mean}, expected {e}"
-        );
+        let mean = r.image.data.iter().skip(b).step_by(4).map(|v| *v as f64).sum::<f64>() / n as f64;
+        assert!((mean / e - 1.0).abs() < 0.03, "{sampling}, band {b}: {mean}, expected {e}");
     }
 }
 
@@ -159,15 +126,9 @@ fn photon_map_alone_gives_le_over_one_minus_rho() {
     // Each pixel-band estimate uses ~k/4 = 50 photons, relative std ≈ 1/√50 = 14%; the image mean
     // over 576 pixels covering a sixth of the sphere averages ~1/(k/4) of the stored photons each
     // and is good to well under 1%. Allow 1.5% on the mean, 3% per band.
-    assert!(
-        (mean / expected - 1.0).abs() < 0.015,
-        "mean {mean}, expected {expected}"
-    );
+    assert!((mean / expected - 1.0).abs() < 0.015, "mean {mean}, expected {expected}");
     for (b, m) in per_band.iter().enumerate() {
-        assert!(
-            (m / expected - 1.0).abs() < 0.03,
-            "band {b}: {m}, expected {expected}"
-        );
+        assert!((m / expected - 1.0).abs() < 0.03, "band {b}: {m}, expected {expected}");
     }
     assert!(rms < 0.3, "per-pixel RMS relative deviation {rms}");
 }
@@ -176,22 +137,13 @@ fn photon_map_alone_gives_le_over_one_minus_rho() {
 fn shadow_rays_with_final_gathering_give_le_over_one_minus_rho() {
     // Emission seen directly, direct light by shadow rays to the sphere light, indirect light by
     // final gathering on precomputed irradiance: L_e + ρL_e + ρ²L_e/(1 − ρ) = L_e/(1 − ρ).
-    let s = scene(&furnace(
-        "photons = 200000\nk = 100\nmax_radius = 0.5\ngather_rays = 16\nspp = 4\nseed = 3",
-        "hero",
-    ));
+    let s = scene(&furnace("photons = 200000\nk = 100\nmax_radius = 0.5\ngather_rays = 16\nspp = 4\nseed = 3", "hero"));
     assert!(s.plan.final_gather.on && s.plan.shadow_rays.on);
     let r = render_with(&s, 2);
     let expected = LE / (1.0 - RHO);
     let (mean, per_band, _) = summary(&r.image.data, 4, expected);
-    assert!(
-        (mean / expected - 1.0).abs() < 0.015,
-        "mean {mean}, expected {expected}"
-    );
+    assert!((mean / expected - 1.0).abs() < 0.015, "mean {mean}, expected {expected}");
     for (b, m) in per_band.iter().enumerate() {
-        assert!(
-            (m / expected - 1.0).abs() < 0.03,
-            "band {b}: {m}, expected {expected}"
-        );
+        assert!((m / expected - 1.0).abs() < 0.03, "band {b}: {m}, expected {expected}");
     }
 }

@@ -16,20 +16,9 @@ fn random_scene(rng: &mut Rng, n: usize, half: f64) -> Vec<Shape> {
         let c = point(rng, half);
         let size = half * 10f64.powf(-3.0 * rng.uniform());
         let shape = match rng.below(20) {
-            0 => Shape::Sphere(Sphere {
-                center: c,
-                radius: 0.3 * size,
-            }),
-            1 => Shape::Quad(Quad {
-                origin: c,
-                u: point(rng, size),
-                v: point(rng, size),
-            }),
-            2 => Shape::Disk(Disk {
-                center: c,
-                normal: uniform_sphere(rng.uniform2()),
-                radius: 0.5 * size,
-            }),
+            0 => Shape::Sphere(Sphere { center: c, radius: 0.3 * size }),
+            1 => Shape::Quad(Quad { origin: c, u: point(rng, size), v: point(rng, size) }),
+            2 => Shape::Disk(Disk { center: c, normal: uniform_sphere(rng.uniform2()), radius: 0.5 * size }),
             3 if !shapes.is_empty() => {
                 // An exact duplicate of an earlier shape: ties must resolve consistently.
                 let i = rng.below(shapes.len() as u64) as usize;
@@ -37,9 +26,7 @@ fn random_scene(rng: &mut Rng, n: usize, half: f64) -> Vec<Shape> {
             }
             _ => {
                 let s = 0.02 * half;
-                Shape::Triangle(Triangle {
-                    p: [c, c + point(rng, s), c + point(rng, s)],
-                })
+                Shape::Triangle(Triangle { p: [c, c + point(rng, s), c + point(rng, s)] })
             }
         };
         shapes.push(shape);
@@ -50,16 +37,8 @@ fn random_scene(rng: &mut Rng, n: usize, half: f64) -> Vec<Shape> {
 fn random_ray(rng: &mut Rng, half: f64) -> (Ray, f64) {
     let o = point(rng, 1.5 * half);
     // Half the rays are aimed at a point of the scene box, half go anywhere.
-    let dir = if rng.uniform() < 0.5 {
-        (point(rng, half) - o).normalize()
-    } else {
-        uniform_sphere(rng.uniform2())
-    };
-    let t_max = if rng.uniform() < 0.3 {
-        3.0 * half * rng.uniform()
-    } else {
-        f64::INFINITY
-    };
+    let dir = if rng.uniform() < 0.5 { (point(rng, half) - o).normalize() } else { uniform_sphere(rng.uniform2()) };
+    let t_max = if rng.uniform() < 0.3 { 3.0 * half * rng.uniform() } else { f64::INFINITY };
     (Ray::new(o, dir), t_max)
 }
 
@@ -85,11 +64,7 @@ fn check_against_brute_force(shapes: &[Shape], rays: &[(Ray, f64)]) -> usize {
         match (got, want) {
             (None, None) => {}
             (Some(h), Some((i, t))) => {
-                assert_eq!(
-                    h.t, t,
-                    "{ray:?}: BVH t {} (prim {}) vs brute force {t} (prim {i})",
-                    h.t, h.prim
-                );
+                assert_eq!(h.t, t, "{ray:?}: BVH t {} (prim {}) vs brute force {t} (prim {i})", h.t, h.prim);
                 let shape = &shapes[h.prim as usize];
                 // Another shape at exactly the same distance is a tie, not an error.
                 assert_eq!(shape.intersect(ray, *t_max).map(|x| x.0), Some(t));
@@ -135,26 +110,13 @@ fn bvh_handles_tiny_scenes() {
 fn bvh_with_the_earth_and_a_road() {
     // The Earth, a road of triangles and quads at the origin, rays near the horizon.
     let r = 6.371e6;
-    let mut shapes = vec![Shape::Sphere(Sphere {
-        center: DVec3::new(0.0, -r, 0.0),
-        radius: r,
-    })];
+    let mut shapes = vec![Shape::Sphere(Sphere { center: DVec3::new(0.0, -r, 0.0), radius: r })];
     let mut rng = Rng::for_task(20, Stream::Test, 11);
     for _ in 0..2000 {
-        let c = DVec3::new(
-            200.0 * rng.uniform() - 100.0,
-            0.5 * rng.uniform(),
-            20.0 * rng.uniform() - 10.0,
-        );
-        shapes.push(Shape::Triangle(Triangle {
-            p: [c, c + point(&mut rng, 0.5), c + point(&mut rng, 0.5)],
-        }));
+        let c = DVec3::new(200.0 * rng.uniform() - 100.0, 0.5 * rng.uniform(), 20.0 * rng.uniform() - 10.0);
+        shapes.push(Shape::Triangle(Triangle { p: [c, c + point(&mut rng, 0.5), c + point(&mut rng, 0.5)] }));
         if rng.uniform() < 0.1 {
-            shapes.push(Shape::Quad(Quad {
-                origin: c,
-                u: point(&mut rng, 3.0),
-                v: point(&mut rng, 3.0),
-            }));
+            shapes.push(Shape::Quad(Quad { origin: c, u: point(&mut rng, 3.0), v: point(&mut rng, 3.0) }));
         }
     }
     let rays: Vec<(Ray, f64)> = (0..4000)
@@ -166,11 +128,7 @@ fn bvh_with_the_earth_and_a_road() {
             );
             let azimuth = 2.0 * std::f64::consts::PI * rng.uniform();
             let elevation = -0.01 * rng.uniform().powi(3) + 1e-3 * (rng.uniform() - 0.5);
-            let dir = DVec3::new(
-                azimuth.cos() * elevation.cos(),
-                elevation.sin(),
-                azimuth.sin() * elevation.cos(),
-            );
+            let dir = DVec3::new(azimuth.cos() * elevation.cos(), elevation.sin(), azimuth.sin() * elevation.cos());
             (Ray::new(o, dir), f64::INFINITY)
         })
         .collect();
@@ -202,15 +160,10 @@ fn bvh_depth_stays_bounded_for_pathological_inputs() {
     let mut shapes: Vec<Shape> = (0..3000)
         .map(|k| {
             let s = 0.99f64.powi(k);
-            Shape::Sphere(Sphere {
-                center: DVec3::new(s, 0.0, 0.0),
-                radius: 0.1 * s,
-            })
+            Shape::Sphere(Sphere { center: DVec3::new(s, 0.0, 0.0), radius: 0.1 * s })
         })
         .collect();
-    let tri = Triangle {
-        p: [DVec3::ZERO, DVec3::X, DVec3::Y],
-    };
+    let tri = Triangle { p: [DVec3::ZERO, DVec3::X, DVec3::Y] };
     shapes.extend((0..5000).map(|_| Shape::Triangle(tri.clone())));
     let bvh = Bvh::build(&shapes);
     assert!(bvh.depth() <= 48 + 36, "depth {}", bvh.depth());
@@ -226,17 +179,11 @@ fn bvh_is_a_real_hierarchy() {
     let shapes: Vec<Shape> = (0..10_000)
         .map(|_| {
             let c = point(&mut rng, 100.0);
-            Shape::Triangle(Triangle {
-                p: [c, c + point(&mut rng, 0.5), c + point(&mut rng, 0.5)],
-            })
+            Shape::Triangle(Triangle { p: [c, c + point(&mut rng, 0.5), c + point(&mut rng, 0.5)] })
         })
         .collect();
     let bvh = Bvh::build(&shapes);
-    assert!(
-        bvh.node_count() > 1000 && bvh.node_count() < 20_000,
-        "{} nodes",
-        bvh.node_count()
-    );
+    assert!(bvh.node_count() > 1000 && bvh.node_count() < 20_000, "{} nodes", bvh.node_count());
     assert!(bvh.depth() < 40, "depth {}", bvh.depth());
     let b = bvh.bounds();
     for s in &shapes {

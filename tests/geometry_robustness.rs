@@ -7,10 +7,7 @@ use morgana::sampling::uniform_sphere;
 const R_EARTH: f64 = 6.371e6;
 
 fn earth() -> Shape {
-    Shape::Sphere(Sphere {
-        center: DVec3::new(0.0, -R_EARTH, 0.0),
-        radius: R_EARTH,
-    })
+    Shape::Sphere(Sphere { center: DVec3::new(0.0, -R_EARTH, 0.0), radius: R_EARTH })
 }
 
 /// A ray from height `h` above the north pole (0, h, 0) in the x–y plane, `below` radians
@@ -42,15 +39,8 @@ fn earth_ray_from_two_metres_aimed_at_the_horizon() {
     // √(2R·1e-9) ≈ 0.1 m), hence the 0.5 m tolerance.
     let ray = horizon_ray(h, 0.0);
     let (t, n) = e.intersect(&ray, f64::INFINITY).expect("horizon ray lost");
-    assert!(
-        (t - tangent_length).abs() < 0.5,
-        "t = {t}, want {tangent_length}"
-    );
-    assert!(
-        n.dot(ray.dir).abs() < 1e-4,
-        "not tangent: n·d = {}",
-        n.dot(ray.dir)
-    );
+    assert!((t - tangent_length).abs() < 0.5, "t = {t}, want {tangent_length}");
+    assert!(n.dot(ray.dir).abs() < 1e-4, "not tangent: n·d = {}", n.dot(ray.dir));
     assert_not_doubled(&e, &ray, t);
     // Slightly below the horizon: the closed form, to 1e-6 relative.
     for below in [1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2] {
@@ -58,18 +48,11 @@ fn earth_ray_from_two_metres_aimed_at_the_horizon() {
         let (t, _) = e
             .intersect(&horizon_ray(h, below), f64::INFINITY)
             .unwrap_or_else(|| panic!("lost {below} rad below the horizon"));
-        assert!(
-            (t - want).abs() < 1e-6 * want,
-            "{below}: t = {t}, want {want}"
-        );
+        assert!((t - want).abs() < 1e-6 * want, "{below}: t = {t}, want {want}");
     }
     // Slightly above: nothing (1e-7 rad above passes 5e-4 m over the ground).
     for above in [1e-7, 1e-6, 1e-3] {
-        assert_eq!(
-            e.intersect(&horizon_ray(h, -above), f64::INFINITY),
-            None,
-            "{above}"
-        );
+        assert_eq!(e.intersect(&horizon_ray(h, -above), f64::INFINITY), None, "{above}");
     }
 }
 
@@ -95,9 +78,7 @@ fn earth_tangent_rays_are_found_once() {
         let tangent = n.cross(uniform_sphere(rng.uniform2())).normalize();
         let p = centre + R_EARTH * n;
         let ray = Ray::new(p - 1e3 * tangent, tangent);
-        let (t, normal) = e
-            .intersect(&ray, f64::INFINITY)
-            .unwrap_or_else(|| panic!("tangent ray at {n} lost"));
+        let (t, normal) = e.intersect(&ray, f64::INFINITY).unwrap_or_else(|| panic!("tangent ray at {n} lost"));
         assert!((t - 1e3).abs() < 0.5, "t = {t}");
         assert!((normal - n).length() < 1e-6);
         assert_not_doubled(&e, &ray, t);
@@ -109,11 +90,7 @@ fn earth_tangent_rays_are_found_once() {
 /// the same line finds nothing more.
 fn assert_not_doubled(e: &Shape, ray: &Ray, t: f64) {
     let beyond = Ray::new(ray.at(t + 1.0), ray.dir);
-    assert_eq!(
-        e.intersect(&beyond, f64::INFINITY),
-        None,
-        "grazing hit doubled: {ray:?}"
-    );
+    assert_eq!(e.intersect(&beyond, f64::INFINITY), None, "grazing hit doubled: {ray:?}");
 }
 
 #[test]
@@ -130,13 +107,8 @@ fn earth_from_100_km() {
         let dir = DVec3::new(theta.sin(), -theta.cos(), 0.0);
         let rh = R_EARTH + h;
         let want = rh * theta.cos() - (R_EARTH * R_EARTH - rh * rh * theta.sin().powi(2)).sqrt();
-        let (t, _) = e
-            .intersect(&Ray::new(DVec3::new(0.0, h, 0.0), dir), f64::INFINITY)
-            .expect("oblique ray lost");
-        assert!(
-            (t - want).abs() < 1e-6 * want,
-            "θ = {theta}: t = {t}, want {want}"
-        );
+        let (t, _) = e.intersect(&Ray::new(DVec3::new(0.0, h, 0.0), dir), f64::INFINITY).expect("oblique ray lost");
+        assert!((t - want).abs() < 1e-6 * want, "θ = {theta}: t = {t}, want {want}");
     }
     // To random ground points within 300 km of the pole (the horizon from 100 km is 1130 km).
     let mut rng = Rng::for_task(7, Stream::Test, 2);
@@ -144,17 +116,11 @@ fn earth_from_100_km() {
     for _ in 0..10_000 {
         let phi = 2.0 * std::f64::consts::PI * rng.uniform();
         let angle = 3e5 / R_EARTH * rng.uniform().sqrt();
-        let n = DVec3::new(
-            angle.sin() * phi.cos(),
-            angle.cos(),
-            angle.sin() * phi.sin(),
-        );
+        let n = DVec3::new(angle.sin() * phi.cos(), angle.cos(), angle.sin() * phi.sin());
         let target = centre + R_EARTH * n;
         let o = DVec3::new(0.0, h, 0.0);
         let want = (target - o).length();
-        let (t, _) = e
-            .intersect(&Ray::new(o, (target - o) / want), f64::INFINITY)
-            .expect("lost");
+        let (t, _) = e.intersect(&Ray::new(o, (target - o) / want), f64::INFINITY).expect("lost");
         assert!((t - want).abs() < 1e-6 * want, "t = {t}, want {want}");
     }
 }
@@ -165,24 +131,14 @@ fn earth_just_above_the_surface() {
     let mut rng = Rng::for_task(7, Stream::Test, 3);
     for h in [1e-6, 1e-3, 1.0, 2.0] {
         let o = DVec3::new(0.0, h, 0.0);
-        assert_eq!(
-            e.intersect(&Ray::new(o, DVec3::Y), f64::INFINITY),
-            None,
-            "h = {h}"
-        );
+        assert_eq!(e.intersect(&Ray::new(o, DVec3::Y), f64::INFINITY), None, "h = {h}");
         // Straight down: the height itself (f64 resolves heights to ~1e-9 m at this radius).
-        let (t, _) = e
-            .intersect(&Ray::new(o, -DVec3::Y), f64::INFINITY)
-            .expect("lost");
+        let (t, _) = e.intersect(&Ray::new(o, -DVec3::Y), f64::INFINITY).expect("lost");
         assert!((t - h).abs() < 2e-9 + 1e-12 * h, "h = {h}: t = {t}");
         // Rising directions, down to grazing ones: no false hit.
         for k in 0..2000 {
             let horizontal = DVec3::new(rng.uniform() - 0.5, 0.0, rng.uniform() - 0.5).normalize();
-            let rise = if k % 2 == 0 {
-                rng.uniform()
-            } else {
-                10f64.powf(-12.0 * rng.uniform())
-            };
+            let rise = if k % 2 == 0 { rng.uniform() } else { 10f64.powf(-12.0 * rng.uniform()) };
             let dir = (horizontal + rise * DVec3::Y).normalize();
             let hit = e.intersect(&Ray::new(o, dir), f64::INFINITY);
             assert_eq!(hit, None, "h = {h}, rise {rise}: false hit");
@@ -267,19 +223,10 @@ fn leaving_direction(rng: &mut Rng, n: DVec3) -> DVec3 {
 fn spawn_shapes() -> Vec<Shape> {
     let big = 1e6;
     vec![
-        Shape::Sphere(Sphere {
-            center: DVec3::new(0.2, -0.3, 0.1),
-            radius: 1.3,
-        }),
-        Shape::Sphere(Sphere {
-            center: DVec3::new(3e-2, 1e-2, -2e-2),
-            radius: 1e-2,
-        }),
+        Shape::Sphere(Sphere { center: DVec3::new(0.2, -0.3, 0.1), radius: 1.3 }),
+        Shape::Sphere(Sphere { center: DVec3::new(3e-2, 1e-2, -2e-2), radius: 1e-2 }),
         earth(),
-        Shape::Sphere(Sphere {
-            center: DVec3::new(big, -2.0 * big, 0.5 * big),
-            radius: 30.0,
-        }),
+        Shape::Sphere(Sphere { center: DVec3::new(big, -2.0 * big, 0.5 * big), radius: 30.0 }),
         Shape::Quad(Quad {
             origin: DVec3::new(-1.0, -0.2, -1.0),
             u: DVec3::new(2.0, 0.3, 0.1),
@@ -291,48 +238,23 @@ fn spawn_shapes() -> Vec<Shape> {
             u: DVec3::new(1e4, 30.0, 0.0),
             v: DVec3::new(0.0, 50.0, 1e4),
         }),
-        Shape::Disk(Disk {
-            center: DVec3::new(0.5, 0.2, -0.3),
-            normal: DVec3::new(1.0, 2.0, -0.5),
-            radius: 2.0,
-        }),
-        Shape::Disk(Disk {
-            center: DVec3::new(big, 3.0, -big),
-            normal: DVec3::new(0.1, 1.0, 0.3),
-            radius: 5e3,
+        Shape::Disk(Disk { center: DVec3::new(0.5, 0.2, -0.3), normal: DVec3::new(1.0, 2.0, -0.5), radius: 2.0 }),
+        Shape::Disk(Disk { center: DVec3::new(big, 3.0, -big), normal: DVec3::new(0.1, 1.0, 0.3), radius: 5e3 }),
+        Shape::Triangle(Triangle {
+            p: [DVec3::new(-1.0, 0.1, -1.0), DVec3::new(2.0, -0.3, 0.0), DVec3::new(0.0, 0.4, 1.5)],
         }),
         Shape::Triangle(Triangle {
-            p: [
-                DVec3::new(-1.0, 0.1, -1.0),
-                DVec3::new(2.0, -0.3, 0.0),
-                DVec3::new(0.0, 0.4, 1.5),
-            ],
-        }),
-        Shape::Triangle(Triangle {
-            p: [
-                DVec3::new(-3e4, -20.0, -2e4),
-                DVec3::new(4e4, 35.0, -1e4),
-                DVec3::new(-1e4, 5.0, 5e4),
-            ],
+            p: [DVec3::new(-3e4, -20.0, -2e4), DVec3::new(4e4, 35.0, -1e4), DVec3::new(-1e4, 5.0, 5e4)],
         }),
         // A sliver: 1 m wide, 1 km long.
         Shape::Triangle(Triangle {
-            p: [
-                DVec3::new(-500.0, 0.0, 0.0),
-                DVec3::new(500.0, 0.3, 0.2),
-                DVec3::new(0.0, 1.0, 0.7),
-            ],
+            p: [DVec3::new(-500.0, 0.0, 0.0), DVec3::new(500.0, 0.3, 0.2), DVec3::new(0.0, 1.0, 0.7)],
         }),
     ]
 }
 
 /// Rays spawned from surface points never find the surface they leave.
-fn check_spawn(
-    shape: &Shape,
-    rays: usize,
-    seed: u64,
-    spawn: impl Fn(&Shape, DVec3, DVec3, DVec3) -> DVec3,
-) {
+fn check_spawn(shape: &Shape, rays: usize, seed: u64, spawn: impl Fn(&Shape, DVec3, DVec3, DVec3) -> DVec3) {
     let mut rng = Rng::for_task(8, Stream::Test, seed);
     let mut far_hits = 0;
     for k in 0..rays {
@@ -342,8 +264,7 @@ fn check_spawn(
             (s.point, s.normal)
         } else {
             let target = shape.sample(rng.uniform2()).point;
-            let from =
-                target + 3.0 * shape.bounds().diagonal().length() * uniform_sphere(rng.uniform2());
+            let from = target + 3.0 * shape.bounds().diagonal().length() * uniform_sphere(rng.uniform2());
             let ray = Ray::new(from, (target - from).normalize());
             let Some((t, n)) = shape.intersect(&ray, f64::INFINITY) else {
                 continue;
@@ -365,26 +286,18 @@ fn check_spawn(
                 );
                 far_hits += 1;
             }
-            (_, Some((t, _))) => panic!(
-                "{shape:?}: re-hit at t = {t} from {p}, n·d = {}",
-                n.dot(dir)
-            ),
+            (_, Some((t, _))) => panic!("{shape:?}: re-hit at t = {t} from {p}, n·d = {}", n.dot(dir)),
         }
     }
     if matches!(shape, Shape::Sphere(_)) {
-        assert!(
-            far_hits > rays / 8,
-            "{shape:?}: only {far_hits} inward rays"
-        );
+        assert!(far_hits > rays / 8, "{shape:?}: only {far_hits} inward rays");
     }
 }
 
 #[test]
 fn spawned_rays_never_hit_the_surface_they_leave() {
     for (i, shape) in spawn_shapes().iter().enumerate() {
-        check_spawn(shape, 20_000, i as u64, |s, p, n, d| {
-            s.spawn_origin(p, n, d)
-        });
+        check_spawn(shape, 20_000, i as u64, |s, p, n, d| s.spawn_origin(p, n, d));
     }
 }
 
@@ -393,30 +306,14 @@ fn free_spawn_origin_suffices_for_shapes_away_from_the_origin() {
     // spawn_origin(p, n, dir) offsets by 128 ε |p|; that covers shapes whose coordinates are not
     // much larger than the points on them.
     let away = DVec3::new(7.0, -5.0, 6.0);
-    let shapes = spawn_shapes()
-        .into_iter()
-        .filter(|s| s.error_scale() < 10.0)
-        .map(|s| match s {
-            Shape::Sphere(x) => Shape::Sphere(Sphere {
-                center: x.center + away,
-                ..x
-            }),
-            Shape::Quad(x) => Shape::Quad(Quad {
-                origin: x.origin + away,
-                ..x
-            }),
-            Shape::Disk(x) => Shape::Disk(Disk {
-                center: x.center + away,
-                ..x
-            }),
-            Shape::Triangle(x) => Shape::Triangle(Triangle {
-                p: x.p.map(|p| p + away),
-            }),
-        });
+    let shapes = spawn_shapes().into_iter().filter(|s| s.error_scale() < 10.0).map(|s| match s {
+        Shape::Sphere(x) => Shape::Sphere(Sphere { center: x.center + away, ..x }),
+        Shape::Quad(x) => Shape::Quad(Quad { origin: x.origin + away, ..x }),
+        Shape::Disk(x) => Shape::Disk(Disk { center: x.center + away, ..x }),
+        Shape::Triangle(x) => Shape::Triangle(Triangle { p: x.p.map(|p| p + away) }),
+    });
     for (i, shape) in shapes.enumerate() {
-        check_spawn(&shape, 20_000, 100 + i as u64, |_, p, n, d| {
-            spawn_origin(p, n, d)
-        });
+        check_spawn(&shape, 20_000, 100 + i as u64, |_, p, n, d| spawn_origin(p, n, d));
     }
 }
 
@@ -425,13 +322,8 @@ fn free_spawn_origin_suffices_for_shapes_away_from_the_origin() {
 /// An n × n grid of squares, each split into two triangles along alternating diagonals,
 /// mapped by `to_world`; the triangles share edges and vertices exactly.
 fn grid_mesh(n: usize, to_world: impl Fn(f64, f64) -> DVec3) -> (Vec<Triangle>, Vec<Vec<DVec3>>) {
-    let v: Vec<Vec<DVec3>> = (0..=n)
-        .map(|i| {
-            (0..=n)
-                .map(|j| to_world(i as f64 / n as f64, j as f64 / n as f64))
-                .collect()
-        })
-        .collect();
+    let v: Vec<Vec<DVec3>> =
+        (0..=n).map(|i| (0..=n).map(|j| to_world(i as f64 / n as f64, j as f64 / n as f64)).collect()).collect();
     let mut tris = Vec::new();
     for i in 0..n {
         for j in 0..n {
@@ -453,10 +345,7 @@ fn edge_and_vertex_targets(rng: &mut Rng, v: &[Vec<DVec3>], count: usize) -> Vec
     let n = v.len() - 1;
     (0..count)
         .map(|k| {
-            let (i, j) = (
-                1 + rng.below(n as u64 - 1) as usize,
-                1 + rng.below(n as u64 - 1) as usize,
-            );
+            let (i, j) = (1 + rng.below(n as u64 - 1) as usize, 1 + rng.below(n as u64 - 1) as usize);
             let s = rng.uniform();
             match k % 4 {
                 0 => v[i][j],
@@ -473,13 +362,7 @@ fn edge_and_vertex_targets(rng: &mut Rng, v: &[Vec<DVec3>], count: usize) -> Vec
 /// Rays from `distance` away through interior edges and vertices, in directions with
 /// |d·axis| ≥ `min_cos` (keeping rays off silhouettes of a curved mesh, where a ray passing just
 /// outside a fold rightly misses).
-fn watertight_case(
-    seed: u64,
-    to_world: impl Fn(f64, f64) -> DVec3,
-    distance: f64,
-    axis: DVec3,
-    min_cos: f64,
-) {
+fn watertight_case(seed: u64, to_world: impl Fn(f64, f64) -> DVec3, distance: f64, axis: DVec3, min_cos: f64) {
     let (tris, v) = grid_mesh(6, to_world);
     let shapes: Vec<Shape> = tris.into_iter().map(Shape::Triangle).collect();
     let bvh = Bvh::build(&shapes);
@@ -496,18 +379,10 @@ fn watertight_case(
         }
         let o = target - distance * dir;
         let ray = Ray::new(o, dir);
-        let found = shapes
-            .iter()
-            .any(|s| s.intersect(&ray, f64::INFINITY).is_some());
+        let found = shapes.iter().any(|s| s.intersect(&ray, f64::INFINITY).is_some());
         assert!(found, "ray through {target} lost by every triangle");
-        assert!(
-            bvh.intersect(&shapes, &ray, f64::INFINITY).is_some(),
-            "BVH lost ray through {target}"
-        );
-        assert!(
-            bvh.occluded(&shapes, &ray, f64::INFINITY),
-            "BVH occlusion lost ray through {target}"
-        );
+        assert!(bvh.intersect(&shapes, &ray, f64::INFINITY).is_some(), "BVH lost ray through {target}");
+        assert!(bvh.occluded(&shapes, &ray, f64::INFINITY), "BVH occlusion lost ray through {target}");
     }
 }
 
@@ -517,13 +392,7 @@ fn rays_through_shared_edges_and_vertices_are_never_lost() {
     watertight_case(1, |a, b| DVec3::new(a, b, 0.0), 3.0, DVec3::Z, 0.0);
     // Tilted and far from the origin, seen from 10 km.
     let (u, v) = (DVec3::new(3.0, 1.0, -2.0), DVec3::new(-1.0, 2.5, 0.7));
-    watertight_case(
-        2,
-        move |a, b| DVec3::new(4e5, 1e3, -7e5) + a * u + b * v,
-        1e4,
-        DVec3::Z,
-        0.0,
-    );
+    watertight_case(2, move |a, b| DVec3::new(4e5, 1e3, -7e5) + a * u + b * v, 1e4, DVec3::Z, 0.0);
     // A curved height field y = 10 (a² − b²) over 100 m (slopes ≤ 0.2), seen from 1 m along
     // directions steeper than its slopes.
     let bent = |a: f64, b: f64| DVec3::new(100.0 * a, 10.0 * (a * a - b * b), 100.0 * b);
@@ -535,14 +404,8 @@ fn sphere_origins_on_the_surface_need_no_offset() {
     // The root within rounding error of t = 0 is refused, so from c + r n (rounded) an outward
     // ray finds nothing and an inward one finds the far side, at Earth scale and at 1 m.
     let mut rng = Rng::for_task(10, Stream::Test, 0);
-    for (centre, r) in [
-        (DVec3::new(0.0, -R_EARTH, 0.0), R_EARTH),
-        (DVec3::new(0.3, 0.2, -0.1), 1.0),
-    ] {
-        let s = Sphere {
-            center: centre,
-            radius: r,
-        };
+    for (centre, r) in [(DVec3::new(0.0, -R_EARTH, 0.0), R_EARTH), (DVec3::new(0.3, 0.2, -0.1), 1.0)] {
+        let s = Sphere { center: centre, radius: r };
         let shape = Shape::Sphere(s.clone());
         for _ in 0..20_000 {
             let n = uniform_sphere(rng.uniform2());
@@ -558,10 +421,7 @@ fn sphere_origins_on_the_surface_need_no_offset() {
             match shape.intersect(&ray, f64::INFINITY) {
                 None => assert!(d.dot(n) > 0.0, "inward ray from {p} found nothing"),
                 Some((t, _)) => {
-                    assert!(
-                        d.dot(n) < 0.0,
-                        "outward ray from the surface hit it at t = {t}"
-                    );
+                    assert!(d.dot(n) < 0.0, "outward ray from the surface hit it at t = {t}");
                     let chord = -2.0 * r * d.dot(n);
                     assert!((t - chord).abs() < 1e-6 * chord, "t = {t}, chord {chord}");
                 }
@@ -575,10 +435,7 @@ fn small_sphere_seen_from_afar() {
     // r = 1 mm from 100 km: the textbook discriminant b² − 4ac cancels completely here
     // (b² ≈ 4e10, 4ac differs from it by 4e-6). Reference: closest approach in double-double.
     let mut rng = Rng::for_task(10, Stream::Test, 1);
-    let s = Sphere {
-        center: DVec3::new(3.0, 2.0, -1.0),
-        radius: 1e-3,
-    };
+    let s = Sphere { center: DVec3::new(3.0, 2.0, -1.0), radius: 1e-3 };
     let shape = Shape::Sphere(s.clone());
     let (mut hits, mut misses) = (0, 0);
     for _ in 0..20_000 {

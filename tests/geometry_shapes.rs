@@ -12,14 +12,9 @@ fn close(a: f64, b: f64, rel: f64) -> bool {
 }
 
 fn assert_hit(shape: &Shape, ray: Ray, t_max: f64, t: f64, normal: DVec3) {
-    let (got_t, got_n) = shape
-        .intersect(&ray, t_max)
-        .unwrap_or_else(|| panic!("{shape:?}: missed {ray:?}"));
+    let (got_t, got_n) = shape.intersect(&ray, t_max).unwrap_or_else(|| panic!("{shape:?}: missed {ray:?}"));
     assert!(close(got_t, t, 1e-14), "{shape:?}: t {got_t} != {t}");
-    assert!(
-        (got_n - normal).length() < 1e-14,
-        "{shape:?}: n {got_n} != {normal}"
-    );
+    assert!((got_n - normal).length() < 1e-14, "{shape:?}: n {got_n} != {normal}");
 }
 
 fn assert_miss(shape: &Shape, ray: Ray, t_max: f64) {
@@ -33,39 +28,20 @@ fn unit(x: f64, y: f64, z: f64) -> DVec3 {
 #[test]
 fn sphere_closed_forms() {
     let c = DVec3::new(1.0, 2.0, 3.0);
-    let s = Shape::Sphere(Sphere {
-        center: c,
-        radius: 1.0,
-    });
+    let s = Shape::Sphere(Sphere { center: c, radius: 1.0 });
     let down_z = |x: f64, y: f64| Ray::new(c + DVec3::new(x, y, -5.0), DVec3::Z);
     assert_hit(&s, down_z(0.0, 0.0), f64::INFINITY, 4.0, -DVec3::Z);
     // Offset 0.6 from the axis: t = 5 − √(1 − 0.36) = 4.2, normal (0, 0.6, −0.8).
-    assert_hit(
-        &s,
-        down_z(0.0, 0.6),
-        f64::INFINITY,
-        4.2,
-        DVec3::new(0.0, 0.6, -0.8),
-    );
+    assert_hit(&s, down_z(0.0, 0.6), f64::INFINITY, 4.2, DVec3::new(0.0, 0.6, -0.8));
     assert_hit(&s, down_z(0.0, 0.0), 4.0001, 4.0, -DVec3::Z);
     assert_miss(&s, down_z(0.0, 0.0), 3.9999);
     assert_miss(&s, down_z(1.2, 0.0), f64::INFINITY);
-    assert_miss(
-        &s,
-        Ray::new(c + DVec3::new(0.0, 0.0, -5.0), -DVec3::Z),
-        f64::INFINITY,
-    );
+    assert_miss(&s, Ray::new(c + DVec3::new(0.0, 0.0, -5.0), -DVec3::Z), f64::INFINITY);
     // From the centre the outward normal faces along the ray.
     assert_hit(&s, Ray::new(c, DVec3::X), f64::INFINITY, 1.0, DVec3::X);
     // From inside, off centre: |(0.5,0,0) + t (0,1,0)| = 1 ⇒ t = √0.75.
     let inside = Ray::new(c + DVec3::new(0.5, 0.0, 0.0), DVec3::Y);
-    assert_hit(
-        &s,
-        inside,
-        f64::INFINITY,
-        0.75f64.sqrt(),
-        DVec3::new(0.5, 0.75f64.sqrt(), 0.0),
-    );
+    assert_hit(&s, inside, f64::INFINITY, 0.75f64.sqrt(), DVec3::new(0.5, 0.75f64.sqrt(), 0.0));
     assert!((s.area() - 4.0 * PI).abs() < 1e-14);
     let b = s.bounds();
     assert!(b.min.cmple(c - 1.0).all() && b.max.cmpge(c + 1.0).all());
@@ -74,100 +50,34 @@ fn sphere_closed_forms() {
 
 #[test]
 fn quad_closed_forms() {
-    let q = Shape::Quad(Quad {
-        origin: DVec3::ZERO,
-        u: DVec3::new(2.0, 0.0, 0.0),
-        v: DVec3::new(0.0, 3.0, 0.0),
-    });
-    assert_hit(
-        &q,
-        Ray::new(DVec3::new(1.0, 1.0, 5.0), -DVec3::Z),
-        f64::INFINITY,
-        5.0,
-        DVec3::Z,
-    );
+    let q = Shape::Quad(Quad { origin: DVec3::ZERO, u: DVec3::new(2.0, 0.0, 0.0), v: DVec3::new(0.0, 3.0, 0.0) });
+    assert_hit(&q, Ray::new(DVec3::new(1.0, 1.0, 5.0), -DVec3::Z), f64::INFINITY, 5.0, DVec3::Z);
     // From the back the front normal is still u × v.
-    assert_hit(
-        &q,
-        Ray::new(DVec3::new(1.0, 1.0, -2.0), DVec3::Z),
-        f64::INFINITY,
-        2.0,
-        DVec3::Z,
-    );
+    assert_hit(&q, Ray::new(DVec3::new(1.0, 1.0, -2.0), DVec3::Z), f64::INFINITY, 2.0, DVec3::Z);
     let oblique = Ray::new(DVec3::new(0.0, 0.0, 4.0), unit(1.0, 1.5, -4.0));
     assert_hit(&q, oblique, f64::INFINITY, 19.25f64.sqrt(), DVec3::Z);
-    assert_miss(
-        &q,
-        Ray::new(DVec3::new(2.5, 1.0, 5.0), -DVec3::Z),
-        f64::INFINITY,
-    );
-    assert_miss(
-        &q,
-        Ray::new(DVec3::new(1.0, -0.1, 5.0), -DVec3::Z),
-        f64::INFINITY,
-    );
+    assert_miss(&q, Ray::new(DVec3::new(2.5, 1.0, 5.0), -DVec3::Z), f64::INFINITY);
+    assert_miss(&q, Ray::new(DVec3::new(1.0, -0.1, 5.0), -DVec3::Z), f64::INFINITY);
     assert_miss(&q, Ray::new(DVec3::new(1.0, 1.0, 5.0), -DVec3::Z), 4.9);
-    assert_miss(
-        &q,
-        Ray::new(DVec3::new(1.0, 1.0, 5.0), DVec3::X),
-        f64::INFINITY,
-    );
+    assert_miss(&q, Ray::new(DVec3::new(1.0, 1.0, 5.0), DVec3::X), f64::INFINITY);
     assert!((q.area() - 6.0).abs() < 1e-14);
     // A sheared quad: (2.8, 0.9) = 0.95 u + 0.9 v is inside, (0.5, 0.9) is not.
-    let skew = Shape::Quad(Quad {
-        origin: DVec3::ZERO,
-        u: DVec3::new(2.0, 0.0, 0.0),
-        v: DVec3::new(1.0, 1.0, 0.0),
-    });
-    assert_hit(
-        &skew,
-        Ray::new(DVec3::new(2.8, 0.9, 1.0), -DVec3::Z),
-        f64::INFINITY,
-        1.0,
-        DVec3::Z,
-    );
-    assert_miss(
-        &skew,
-        Ray::new(DVec3::new(0.5, 0.9, 1.0), -DVec3::Z),
-        f64::INFINITY,
-    );
+    let skew = Shape::Quad(Quad { origin: DVec3::ZERO, u: DVec3::new(2.0, 0.0, 0.0), v: DVec3::new(1.0, 1.0, 0.0) });
+    assert_hit(&skew, Ray::new(DVec3::new(2.8, 0.9, 1.0), -DVec3::Z), f64::INFINITY, 1.0, DVec3::Z);
+    assert_miss(&skew, Ray::new(DVec3::new(0.5, 0.9, 1.0), -DVec3::Z), f64::INFINITY);
     assert!((skew.area() - 2.0).abs() < 1e-14);
 }
 
 #[test]
 fn disk_closed_forms() {
-    let d = Shape::Disk(Disk {
-        center: DVec3::new(0.0, 0.0, 1.0),
-        normal: DVec3::new(0.0, 0.0, 2.0),
-        radius: 2.0,
-    });
-    assert_hit(
-        &d,
-        Ray::new(DVec3::new(1.9, 0.0, 5.0), -DVec3::Z),
-        f64::INFINITY,
-        4.0,
-        DVec3::Z,
-    );
-    assert_miss(
-        &d,
-        Ray::new(DVec3::new(1.5, 1.5, 5.0), -DVec3::Z),
-        f64::INFINITY,
-    );
-    assert_hit(
-        &d,
-        Ray::new(DVec3::new(0.0, 0.0, -1.0), DVec3::Z),
-        f64::INFINITY,
-        2.0,
-        DVec3::Z,
-    );
+    let d = Shape::Disk(Disk { center: DVec3::new(0.0, 0.0, 1.0), normal: DVec3::new(0.0, 0.0, 2.0), radius: 2.0 });
+    assert_hit(&d, Ray::new(DVec3::new(1.9, 0.0, 5.0), -DVec3::Z), f64::INFINITY, 4.0, DVec3::Z);
+    assert_miss(&d, Ray::new(DVec3::new(1.5, 1.5, 5.0), -DVec3::Z), f64::INFINITY);
+    assert_hit(&d, Ray::new(DVec3::new(0.0, 0.0, -1.0), DVec3::Z), f64::INFINITY, 2.0, DVec3::Z);
     assert!((d.area() - 4.0 * PI).abs() < 1e-13);
     // A tilted disk's box reaches r √(1 − n_i²) along each axis.
     let n = unit(1.0, 0.0, 1.0);
-    let tilted = Shape::Disk(Disk {
-        center: DVec3::ZERO,
-        normal: n,
-        radius: 1.0,
-    });
+    let tilted = Shape::Disk(Disk { center: DVec3::ZERO, normal: n, radius: 1.0 });
     let b = tilted.bounds();
     let half = DVec3::new(0.5f64.sqrt(), 1.0, 0.5f64.sqrt());
     assert!((b.max - half).abs().max_element() < 1e-12 && b.max.cmpge(half).all());
@@ -175,56 +85,16 @@ fn disk_closed_forms() {
 
 #[test]
 fn triangle_closed_forms() {
-    let tri = Shape::Triangle(Triangle {
-        p: [DVec3::ZERO, DVec3::X, DVec3::Y],
-    });
-    assert_hit(
-        &tri,
-        Ray::new(DVec3::new(0.25, 0.25, 1.0), -DVec3::Z),
-        f64::INFINITY,
-        1.0,
-        DVec3::Z,
-    );
-    assert_hit(
-        &tri,
-        Ray::new(DVec3::new(0.25, 0.25, -3.0), DVec3::Z),
-        f64::INFINITY,
-        3.0,
-        DVec3::Z,
-    );
-    assert_miss(
-        &tri,
-        Ray::new(DVec3::new(0.6, 0.6, 1.0), -DVec3::Z),
-        f64::INFINITY,
-    );
-    assert_miss(
-        &tri,
-        Ray::new(DVec3::new(-0.1, 0.5, 1.0), -DVec3::Z),
-        f64::INFINITY,
-    );
-    assert_miss(
-        &tri,
-        Ray::new(DVec3::new(0.25, 0.25, 1.0), DVec3::Z),
-        f64::INFINITY,
-    );
+    let tri = Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::X, DVec3::Y] });
+    assert_hit(&tri, Ray::new(DVec3::new(0.25, 0.25, 1.0), -DVec3::Z), f64::INFINITY, 1.0, DVec3::Z);
+    assert_hit(&tri, Ray::new(DVec3::new(0.25, 0.25, -3.0), DVec3::Z), f64::INFINITY, 3.0, DVec3::Z);
+    assert_miss(&tri, Ray::new(DVec3::new(0.6, 0.6, 1.0), -DVec3::Z), f64::INFINITY);
+    assert_miss(&tri, Ray::new(DVec3::new(-0.1, 0.5, 1.0), -DVec3::Z), f64::INFINITY);
+    assert_miss(&tri, Ray::new(DVec3::new(0.25, 0.25, 1.0), DVec3::Z), f64::INFINITY);
     // Clockwise winding flips the front normal.
-    let cw = Shape::Triangle(Triangle {
-        p: [DVec3::ZERO, DVec3::Y, DVec3::X],
-    });
-    assert_hit(
-        &cw,
-        Ray::new(DVec3::new(0.25, 0.25, 1.0), -DVec3::Z),
-        f64::INFINITY,
-        1.0,
-        -DVec3::Z,
-    );
-    let big = Shape::Triangle(Triangle {
-        p: [
-            DVec3::ZERO,
-            DVec3::new(3.0, 0.0, 0.0),
-            DVec3::new(0.0, 0.0, 4.0),
-        ],
-    });
+    let cw = Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::Y, DVec3::X] });
+    assert_hit(&cw, Ray::new(DVec3::new(0.25, 0.25, 1.0), -DVec3::Z), f64::INFINITY, 1.0, -DVec3::Z);
+    let big = Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0), DVec3::new(0.0, 0.0, 4.0)] });
     assert!((big.area() - 6.0).abs() < 1e-14);
 }
 
@@ -302,23 +172,16 @@ fn sphere_matches_geometric_solution_on_random_rays() {
     let mut rng = Rng::for_task(1, Stream::Test, 100);
     let (mut agree, mut hits) = (0, 0);
     for _ in 0..RAYS {
-        let s = Sphere {
-            center: random_point(&mut rng, 5.0),
-            radius: 0.1 + 3.0 * rng.uniform(),
-        };
+        let s = Sphere { center: random_point(&mut rng, 5.0), radius: 0.1 + 3.0 * rng.uniform() };
         // Aim near the sphere so that about half the rays hit.
         let o = random_point(&mut rng, 10.0);
         let target = s.center + random_point(&mut rng, 1.5 * s.radius);
         let ray = Ray::new(o, (target - o).normalize());
-        let t_max = if rng.uniform() < 0.3 {
-            20.0 * rng.uniform()
-        } else {
-            f64::INFINITY
-        };
+        let t_max = if rng.uniform() < 0.3 { 20.0 * rng.uniform() } else { f64::INFINITY };
         let (want, miss) = sphere_reference(&s, &ray);
         let want = want.filter(|&t| t < t_max);
-        let near_boundary = miss.abs() < 1e-9
-            || want.is_some_and(|t| t < 1e-9 || (t - t_max).abs() < 1e-9 * t_max.min(1e3));
+        let near_boundary =
+            miss.abs() < 1e-9 || want.is_some_and(|t| t < 1e-9 || (t - t_max).abs() < 1e-9 * t_max.min(1e3));
         let got = Shape::Sphere(s.clone()).intersect(&ray, t_max);
         if let (Some((t, n)), Some(_)) = (got, want) {
             let expect_n = (ray.at(t) - s.center) / s.radius;
@@ -342,8 +205,7 @@ fn quad_matches_cramer_on_random_rays() {
             v: random_point(&mut rng, 2.0),
         };
         let o = random_point(&mut rng, 6.0);
-        let target =
-            q.origin + (1.4 * rng.uniform() - 0.2) * q.u + (1.4 * rng.uniform() - 0.2) * q.v;
+        let target = q.origin + (1.4 * rng.uniform() - 0.2) * q.u + (1.4 * rng.uniform() - 0.2) * q.v;
         let ray = Ray::new(o, (target - o).normalize());
         let Some((a, b, t)) = cramer(o, ray.dir, q.origin, q.u, q.v) else {
             continue;
@@ -402,9 +264,7 @@ fn triangle_matches_moller_trumbore_on_random_rays() {
     let mut rng = Rng::for_task(1, Stream::Test, 103);
     let (mut agree, mut hits) = (0, 0);
     for _ in 0..RAYS {
-        let tri = Triangle {
-            p: [0, 1, 2].map(|_| random_point(&mut rng, 3.0)),
-        };
+        let tri = Triangle { p: [0, 1, 2].map(|_| random_point(&mut rng, 3.0)) };
         let o = random_point(&mut rng, 6.0);
         let (b1, b2) = (1.2 * rng.uniform() - 0.1, 1.2 * rng.uniform() - 0.1);
         let target = tri.p[0] + b1 * (tri.p[1] - tri.p[0]) + b2 * (tri.p[2] - tri.p[0]);
@@ -431,26 +291,15 @@ fn triangle_matches_moller_trumbore_on_random_rays() {
 fn hit_points_lie_on_the_surface() {
     let mut rng = Rng::for_task(1, Stream::Test, 104);
     let shapes = [
-        Shape::Sphere(Sphere {
-            center: DVec3::new(0.3, -1.0, 2.0),
-            radius: 1.7,
-        }),
+        Shape::Sphere(Sphere { center: DVec3::new(0.3, -1.0, 2.0), radius: 1.7 }),
         Shape::Quad(Quad {
             origin: DVec3::new(-1.0, 0.5, 0.2),
             u: DVec3::new(2.0, 0.3, -0.4),
             v: DVec3::new(0.1, 1.5, 0.9),
         }),
-        Shape::Disk(Disk {
-            center: DVec3::new(0.5, 0.5, -0.5),
-            normal: DVec3::new(1.0, 2.0, 3.0),
-            radius: 1.5,
-        }),
+        Shape::Disk(Disk { center: DVec3::new(0.5, 0.5, -0.5), normal: DVec3::new(1.0, 2.0, 3.0), radius: 1.5 }),
         Shape::Triangle(Triangle {
-            p: [
-                DVec3::new(-1.0, -1.0, 0.3),
-                DVec3::new(2.0, -0.5, 0.1),
-                DVec3::new(0.0, 2.0, -0.7),
-            ],
+            p: [DVec3::new(-1.0, -1.0, 0.3), DVec3::new(2.0, -0.5, 0.1), DVec3::new(0.0, 2.0, -0.7)],
         }),
     ];
     for shape in &shapes {
@@ -468,10 +317,7 @@ fn hit_points_lie_on_the_surface() {
                 Shape::Sphere(s) => (p - s.center).length() - s.radius,
                 _ => n.dot(p - shape.sample([0.5, 0.5]).point),
             };
-            assert!(
-                off.abs() < 1e-13,
-                "{shape:?}: hit point {off} off the surface"
-            );
+            assert!(off.abs() < 1e-13, "{shape:?}: hit point {off} off the surface");
         }
         assert!(hits > 1000, "{shape:?}: {hits} hits");
     }
@@ -483,10 +329,7 @@ const SAMPLES: usize = 200_000;
 
 #[test]
 fn sphere_samples_are_uniform_by_area() {
-    let s = Sphere {
-        center: DVec3::new(2.0, -3.0, 1.0),
-        radius: 2.5,
-    };
+    let s = Sphere { center: DVec3::new(2.0, -3.0, 1.0), radius: 2.5 };
     let shape = Shape::Sphere(s.clone());
     let mut rng = Rng::for_task(2, Stream::Test, 0);
     let p = chi2_sphere(
@@ -518,11 +361,7 @@ fn cell(x: f64, y: f64, nx: usize, ny: usize) -> usize {
 
 #[test]
 fn quad_samples_are_uniform_by_area() {
-    let q = Quad {
-        origin: DVec3::new(1.0, 2.0, 3.0),
-        u: DVec3::new(2.0, 0.5, 0.0),
-        v: DVec3::new(-0.3, 1.0, 1.0),
-    };
+    let q = Quad { origin: DVec3::new(1.0, 2.0, 3.0), u: DVec3::new(2.0, 0.5, 0.0), v: DVec3::new(-0.3, 1.0, 1.0) };
     let shape = Shape::Quad(q.clone());
     let n = q.u.cross(q.v).normalize();
     let p = grid_chi2(&[1.0; 100], 1, |u| {
@@ -538,11 +377,7 @@ fn quad_samples_are_uniform_by_area() {
 
 #[test]
 fn disk_samples_are_uniform_by_area_and_a_wrong_sampler_is_rejected() {
-    let d = Disk {
-        center: DVec3::new(-1.0, 0.5, 2.0),
-        normal: DVec3::new(0.3, -1.0, 0.2),
-        radius: 1.5,
-    };
+    let d = Disk { center: DVec3::new(-1.0, 0.5, 2.0), normal: DVec3::new(0.3, -1.0, 0.2), radius: 1.5 };
     let n = d.normal.normalize();
     let e1 = n.cross(DVec3::X).normalize();
     let e2 = n.cross(e1);
@@ -568,13 +403,7 @@ fn disk_samples_are_uniform_by_area_and_a_wrong_sampler_is_rejected() {
 
 #[test]
 fn triangle_samples_are_uniform_by_area_and_a_wrong_sampler_is_rejected() {
-    let tri = Triangle {
-        p: [
-            DVec3::new(0.0, 1.0, 0.0),
-            DVec3::new(3.0, 0.0, 1.0),
-            DVec3::new(1.0, 2.0, -1.0),
-        ],
-    };
+    let tri = Triangle { p: [DVec3::new(0.0, 1.0, 0.0), DVec3::new(3.0, 0.0, 1.0), DVec3::new(1.0, 2.0, -1.0)] };
     let (e1, e2) = (tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
     let n = e1.cross(e2).normalize();
     const N: usize = 12;
@@ -596,56 +425,27 @@ fn triangle_samples_are_uniform_by_area_and_a_wrong_sampler_is_rejected() {
     let p = grid_chi2(&weights, 4, |u| classify(shape.sample(u).point));
     assert!(p > 1e-3, "p = {p}");
     // Power check: b1 = u, b2 = v (1 − u) crowds the b1 → 1 corner.
-    let p_bad = grid_chi2(&weights, 5, |u| {
-        classify(tri.p[0] + u[0] * e1 + u[1] * (1.0 - u[0]) * e2)
-    });
+    let p_bad = grid_chi2(&weights, 5, |u| classify(tri.p[0] + u[0] * e1 + u[1] * (1.0 - u[0]) * e2));
     assert!(p_bad < 1e-6, "wrong sampler accepted: p = {p_bad}");
 }
 
 #[test]
 fn check_rejects_degenerate_shapes() {
     let bad = [
-        Shape::Sphere(Sphere {
-            center: DVec3::ZERO,
-            radius: 0.0,
-        }),
-        Shape::Sphere(Sphere {
-            center: DVec3::new(f64::NAN, 0.0, 0.0),
-            radius: 1.0,
-        }),
-        Shape::Quad(Quad {
-            origin: DVec3::ZERO,
-            u: DVec3::X,
-            v: 2.0 * DVec3::X,
-        }),
-        Shape::Disk(Disk {
-            center: DVec3::ZERO,
-            normal: DVec3::ZERO,
-            radius: 1.0,
-        }),
-        Shape::Disk(Disk {
-            center: DVec3::ZERO,
-            normal: DVec3::Z,
-            radius: -1.0,
-        }),
-        Shape::Triangle(Triangle {
-            p: [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X],
-        }),
-        Shape::Triangle(Triangle {
-            p: [DVec3::ZERO, DVec3::X, DVec3::INFINITY],
-        }),
+        Shape::Sphere(Sphere { center: DVec3::ZERO, radius: 0.0 }),
+        Shape::Sphere(Sphere { center: DVec3::new(f64::NAN, 0.0, 0.0), radius: 1.0 }),
+        Shape::Quad(Quad { origin: DVec3::ZERO, u: DVec3::X, v: 2.0 * DVec3::X }),
+        Shape::Disk(Disk { center: DVec3::ZERO, normal: DVec3::ZERO, radius: 1.0 }),
+        Shape::Disk(Disk { center: DVec3::ZERO, normal: DVec3::Z, radius: -1.0 }),
+        Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X] }),
+        Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::X, DVec3::INFINITY] }),
     ];
     for s in &bad {
         assert!(s.check().is_err(), "{s:?} accepted");
         // Degenerate shapes never panic and never report hits with bad numbers.
-        let hit = s.intersect(
-            &Ray::new(DVec3::new(0.1, 0.1, 1.0), -DVec3::Z),
-            f64::INFINITY,
-        );
+        let hit = s.intersect(&Ray::new(DVec3::new(0.1, 0.1, 1.0), -DVec3::Z), f64::INFINITY);
         assert!(hit.is_none_or(|(t, _)| t.is_finite() && t > 0.0));
     }
-    let good = Shape::Triangle(Triangle {
-        p: [DVec3::ZERO, DVec3::X, DVec3::Y],
-    });
+    let good = Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::X, DVec3::Y] });
     assert!(good.check().is_ok());
 }

@@ -13,27 +13,15 @@ fn dist2(p: [f32; 3], q: [f32; 3]) -> f32 {
 /// The neighbours must be exactly the brute-force ones, except that among items at the same
 /// distance as the farthest one returned any may be chosen.
 fn check(pts: &[[f32; 3]], q: [f32; 3], k: usize, max_dist2: f32, got: &Neighbours, what: &str) {
-    let mut all: Vec<(f32, u32)> = pts
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| (dist2(p, q), i as u32))
-        .filter(|&(d2, _)| d2 <= max_dist2)
-        .collect();
+    let mut all: Vec<(f32, u32)> =
+        pts.iter().enumerate().map(|(i, &p)| (dist2(p, q), i as u32)).filter(|&(d2, _)| d2 <= max_dist2).collect();
     all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let want = all.len().min(k);
-    assert_eq!(
-        got.len(),
-        want,
-        "{what}: count (q {q:?}, k {k}, r² {max_dist2})"
-    );
+    assert_eq!(got.len(), want, "{what}: count (q {q:?}, k {k}, r² {max_dist2})");
     let mut seen = std::collections::HashSet::new();
     for &(i, d2) in &got.items {
         assert!(seen.insert(i), "{what}: index {i} returned twice");
-        assert_eq!(
-            d2,
-            dist2(pts[i as usize], q),
-            "{what}: wrong distance for {i}"
-        );
+        assert_eq!(d2, dist2(pts[i as usize], q), "{what}: wrong distance for {i}");
         assert!(d2 <= max_dist2, "{what}: {i} beyond the radius");
     }
     if want == 0 {
@@ -51,15 +39,7 @@ fn check(pts: &[[f32; 3]], q: [f32; 3], k: usize, max_dist2: f32, got: &Neighbou
 }
 
 fn uniform(rng: &mut Rng, n: usize) -> Vec<[f32; 3]> {
-    (0..n)
-        .map(|_| {
-            [
-                rng.uniform() as f32,
-                rng.uniform() as f32,
-                rng.uniform() as f32,
-            ]
-        })
-        .collect()
+    (0..n).map(|_| [rng.uniform() as f32, rng.uniform() as f32, rng.uniform() as f32]).collect()
 }
 
 fn gauss(rng: &mut Rng) -> f64 {
@@ -78,11 +58,7 @@ fn clustered(rng: &mut Rng, n: usize) -> Vec<[f32; 3]> {
     (0..n)
         .map(|_| {
             let (c, s) = centres[rng.below(centres.len() as u64) as usize];
-            [
-                (c[0] + s * gauss(rng)) as f32,
-                (c[1] + s * gauss(rng)) as f32,
-                (c[2] + s * gauss(rng)) as f32,
-            ]
+            [(c[0] + s * gauss(rng)) as f32, (c[1] + s * gauss(rng)) as f32, (c[2] + s * gauss(rng)) as f32]
         })
         .collect()
 }
@@ -92,11 +68,7 @@ fn planes(rng: &mut Rng, n: usize) -> Vec<[f32; 3]> {
     (0..n)
         .map(|i| {
             let (u, v) = (rng.uniform(), rng.uniform());
-            if i % 2 == 0 {
-                [u as f32, v as f32, 0.0]
-            } else {
-                [u as f32, v as f32, (0.3 * u + 0.2 * v) as f32]
-            }
+            if i % 2 == 0 { [u as f32, v as f32, 0.0] } else { [u as f32, v as f32, (0.3 * u + 0.2 * v) as f32] }
         })
         .collect()
 }
@@ -106,11 +78,7 @@ fn degenerate(rng: &mut Rng, n: usize) -> Vec<[f32; 3]> {
     (0..n)
         .map(|i| match i % 3 {
             0 => [0.5, 0.5, 0.5],
-            1 => [
-                rng.below(4) as f32 * 0.25,
-                rng.below(4) as f32 * 0.25,
-                rng.below(2) as f32 * 0.25,
-            ],
+            1 => [rng.below(4) as f32 * 0.25, rng.below(4) as f32 * 0.25, rng.below(2) as f32 * 0.25],
             _ => [rng.uniform() as f32, 0.5, 0.5],
         })
         .collect()
@@ -118,12 +86,8 @@ fn degenerate(rng: &mut Rng, n: usize) -> Vec<[f32; 3]> {
 
 type PointSet = fn(&mut Rng, usize) -> Vec<[f32; 3]>;
 
-const SETS: [(&str, PointSet); 4] = [
-    ("uniform", uniform),
-    ("clustered", clustered),
-    ("planes", planes),
-    ("degenerate", degenerate),
-];
+const SETS: [(&str, PointSet); 4] =
+    [("uniform", uniform), ("clustered", clustered), ("planes", planes), ("degenerate", degenerate)];
 
 /// Query points: near the data (a data point jittered), plus far away.
 fn queries(rng: &mut Rng, pts: &[[f32; 3]], n: usize) -> Vec<[f32; 3]> {
@@ -245,12 +209,7 @@ fn items_with_nan_coordinates_are_never_returned() {
     let tree = KdTree::build(pts);
     let items = tree.items().to_vec();
     let mut out = Neighbours::default();
-    for q in [
-        [0.5f32; 3],
-        [0.1, 0.9, 0.2],
-        [0.0, 0.0, 0.0],
-        [2.0, 0.5, 0.5],
-    ] {
+    for q in [[0.5f32; 3], [0.1, 0.9, 0.2], [0.0, 0.0, 0.0], [2.0, 0.5, 0.5]] {
         for k in [1, 50, 500] {
             tree.knn(q, k, f32::INFINITY, &mut out);
             check(&items, q, k, f32::INFINITY, &out, "nan items");
@@ -276,11 +235,7 @@ fn query_buffer_is_reused_without_reallocation() {
 
 /// Builds `items` on a pool of `threads` threads.
 fn build_on(threads: usize, items: Vec<[f32; 3]>) -> KdTree<[f32; 3]> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(|| KdTree::build(items))
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| KdTree::build(items))
 }
 
 #[test]
@@ -291,9 +246,7 @@ fn build_is_identical_for_one_and_two_threads() {
         let pts = make(&mut rng, 300_000);
         let a = build_on(1, pts.clone());
         let b = build_on(2, pts);
-        let bits = |t: &KdTree<[f32; 3]>| -> Vec<[u32; 3]> {
-            t.items().iter().map(|p| p.map(f32::to_bits)).collect()
-        };
+        let bits = |t: &KdTree<[f32; 3]>| -> Vec<[u32; 3]> { t.items().iter().map(|p| p.map(f32::to_bits)).collect() };
         assert!(bits(&a) == bits(&b), "{name}: item order differs");
         assert_eq!(a.depth(), b.depth());
         let mut oa = Neighbours::default();

@@ -55,10 +55,7 @@ fn records_round_trip_within_stated_precision() {
         let want = &recs[id];
         let err = (got.position - want.position).abs();
         // Resolution ≈ extent × 6e-8; rounding errs by half of it.
-        assert!(
-            err.cmple(size * 3e-8).all(),
-            "position error {err} for extent {size}"
-        );
+        assert!(err.cmple(size * 3e-8).all(), "position error {err} for extent {size}");
         assert!(angle_deg(got.dir, want.dir) < 0.01);
         if want.normal == DVec3::ZERO {
             assert_eq!(got.normal, DVec3::ZERO);
@@ -163,21 +160,14 @@ fn memory_is_32_bytes_per_photon_plus_nodes() {
     let (recs, _, _) = records(100_000, 6);
     let map = PhotonMap::build(&recs);
     let per_photon = map.memory_bytes() as f64 / map.len() as f64;
-    assert!(
-        (32.0..33.0).contains(&per_photon),
-        "{per_photon} bytes per photon"
-    );
+    assert!((32.0..33.0).contains(&per_photon), "{per_photon} bytes per photon");
 }
 
 #[test]
 fn build_is_identical_for_one_and_two_threads() {
     let (recs, _, _) = records(200_000, 7);
     let build = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| PhotonMap::build(&recs))
+        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| PhotonMap::build(&recs))
     };
     let (a, b) = (build(1), build(2));
     assert_eq!(a.origin(), b.origin());

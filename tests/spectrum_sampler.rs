@@ -10,11 +10,7 @@ const SIGNIFICANCE: f64 = 1e-3;
 fn tabulated() -> Spectrum {
     // Domain 420–680 nm inside a 400–700 nm range, so the density jumps at both domain edges.
     Spectrum::Tabulated(
-        Tabulated::new(
-            vec![420.0, 470.0, 500.0, 560.0, 600.0, 680.0],
-            vec![0.2, 1.0, 0.1, 0.9, 0.9, 0.3],
-        )
-        .unwrap(),
+        Tabulated::new(vec![420.0, 470.0, 500.0, 560.0, 600.0, 680.0], vec![0.2, 1.0, 0.1, 0.9, 0.9, 0.3]).unwrap(),
     )
 }
 
@@ -36,13 +32,7 @@ fn p_value(spectrum: &Spectrum, range: (f64, f64), bins: usize, seed: u64) -> f6
     let sampler = SpectrumSampler::new(spectrum, range.0, range.1).unwrap();
     let total = spectrum.integral(range.0, range.1);
     let mut rng = Rng::for_task(seed, Stream::Test, 0);
-    chi2_1d(
-        range,
-        bins,
-        400_000,
-        || Some(sampler.sample(rng.uniform()).0),
-        |l| spectrum.eval(l) / total,
-    )
+    chi2_1d(range, bins, 400_000, || Some(sampler.sample(rng.uniform()).0), |l| spectrum.eval(l) / total)
 }
 
 #[test]
@@ -56,12 +46,7 @@ fn blackbody_samples_follow_planck() {
     // 0.5 nm bins, finer than the representation's grid, so the inversion inside each grid
     // segment is tested too.
     for (i, t) in [1500.0, 5800.0, 20_000.0].into_iter().enumerate() {
-        let p = p_value(
-            &Spectrum::Blackbody { temperature_k: t },
-            (360.0, 830.0),
-            940,
-            10 + i as u64,
-        );
+        let p = p_value(&Spectrum::Blackbody { temperature_k: t }, (360.0, 830.0), 940, 10 + i as u64);
         assert!(p > SIGNIFICANCE, "T = {t}: p = {p}");
     }
 }
@@ -76,26 +61,11 @@ fn spiky_samples_follow_the_lines() {
 #[test]
 fn a_wrong_claim_is_rejected() {
     // Sampling a 3000 K black body while claiming 3300 K must fail the test.
-    let sampler = SpectrumSampler::new(
-        &Spectrum::Blackbody {
-            temperature_k: 3000.0,
-        },
-        360.0,
-        830.0,
-    )
-    .unwrap();
-    let claimed = Spectrum::Blackbody {
-        temperature_k: 3300.0,
-    };
+    let sampler = SpectrumSampler::new(&Spectrum::Blackbody { temperature_k: 3000.0 }, 360.0, 830.0).unwrap();
+    let claimed = Spectrum::Blackbody { temperature_k: 3300.0 };
     let total = claimed.integral(360.0, 830.0);
     let mut rng = Rng::for_task(3, Stream::Test, 0);
-    let p = chi2_1d(
-        (360.0, 830.0),
-        94,
-        400_000,
-        || Some(sampler.sample(rng.uniform()).0),
-        |l| claimed.eval(l) / total,
-    );
+    let p = chi2_1d((360.0, 830.0), 94, 400_000, || Some(sampler.sample(rng.uniform()).0), |l| claimed.eval(l) / total);
     assert!(p < 1e-6, "p = {p}");
 }
 
@@ -105,13 +75,7 @@ fn pdf_is_normalised_and_matches_sample() {
     let cases = [
         (tabulated(), 400.0, 700.0),
         (spiky(), 380.0, 780.0),
-        (
-            Spectrum::Blackbody {
-                temperature_k: 2700.0,
-            },
-            360.0,
-            830.0,
-        ),
+        (Spectrum::Blackbody { temperature_k: 2700.0 }, 360.0, 830.0),
         (sigmoid, 380.0, 780.0),
         (Spectrum::Constant(3.0).scaled(2.0), 500.0, 510.0),
     ];
@@ -120,10 +84,7 @@ fn pdf_is_normalised_and_matches_sample() {
         // ∫ pdf over the range, piece by piece (the pdf is linear on each piece, so a
         // Gauss–Legendre rule per piece is exact).
         let nodes = sampler.nodes();
-        let mass: f64 = nodes
-            .windows(2)
-            .map(|w| gauss_legendre(&|l| sampler.pdf(l), w[0], w[1], 1))
-            .sum();
+        let mass: f64 = nodes.windows(2).map(|w| gauss_legendre(&|l| sampler.pdf(l), w[0], w[1], 1)).sum();
         assert!((mass - 1.0).abs() < 1e-9, "{s:?}: ∫pdf = {mass}");
         assert_eq!(sampler.pdf(lo - 1.0), 0.0);
         assert_eq!(sampler.pdf(hi + 1.0), 0.0);
@@ -131,10 +92,7 @@ fn pdf_is_normalised_and_matches_sample() {
         for _ in 0..1000 {
             let (l, pdf) = sampler.sample(rng.uniform());
             assert!((lo..=hi).contains(&l));
-            assert!(
-                (pdf - sampler.pdf(l)).abs() <= 1e-9 * pdf.max(1e-12),
-                "{l}: {pdf}"
-            );
+            assert!((pdf - sampler.pdf(l)).abs() <= 1e-9 * pdf.max(1e-12), "{l}: {pdf}");
             assert!(pdf > 0.0);
         }
         // Endpoints of u map to the ends of the support.
@@ -145,23 +103,13 @@ fn pdf_is_normalised_and_matches_sample() {
 #[test]
 fn integral_matches_the_spectrum() {
     // Exact for piecewise-linear spectra.
-    for (s, lo, hi) in [
-        (tabulated(), 400.0, 700.0),
-        (spiky(), 380.0, 780.0),
-        (tabulated(), 450.0, 650.0),
-    ] {
+    for (s, lo, hi) in [(tabulated(), 400.0, 700.0), (spiky(), 380.0, 780.0), (tabulated(), 450.0, 650.0)] {
         let sampler = SpectrumSampler::new(&s, lo, hi).unwrap();
         let want = s.integral(lo, hi);
-        assert!(
-            (sampler.integral() - want).abs() < 1e-12 * want,
-            "{} vs {want}",
-            sampler.integral()
-        );
+        assert!((sampler.integral() - want).abs() < 1e-12 * want, "{} vs {want}", sampler.integral());
     }
     // Tabulated by hand: the triangle (0, 1, 0) over 500–520 nm has area 10.
-    let tri = Spectrum::Tabulated(
-        Tabulated::new(vec![500.0, 510.0, 520.0], vec![0.0, 1.0, 0.0]).unwrap(),
-    );
+    let tri = Spectrum::Tabulated(Tabulated::new(vec![500.0, 510.0, 520.0], vec![0.0, 1.0, 0.0]).unwrap());
     let sampler = SpectrumSampler::new(&tri.scaled(3.0), 400.0, 700.0).unwrap();
     assert!((sampler.integral() - 30.0).abs() < 1e-12);
     // Within the representation tolerance for smooth spectra.
@@ -185,11 +133,7 @@ fn smooth_representation_error_is_bounded() {
         let (lo, hi) = (360.0, 830.0);
         let sampler = SpectrumSampler::new(&s, lo, hi).unwrap();
         let total = sampler.integral();
-        let max = sampler
-            .nodes()
-            .iter()
-            .map(|&l| s.eval(l))
-            .fold(0.0, f64::max);
+        let max = sampler.nodes().iter().map(|&l| s.eval(l)).fold(0.0, f64::max);
         // Dense check, 16 points per segment, against the exact spectrum.
         let mut worst = 0.0f64;
         for w in sampler.nodes().windows(2) {
@@ -198,10 +142,7 @@ fn smooth_representation_error_is_bounded() {
                 worst = worst.max((sampler.pdf(l) * total - s.eval(l)).abs());
             }
         }
-        assert!(
-            worst <= 1.05e-4 * max,
-            "{s:?}: |s − f̃| = {worst} vs max {max}"
-        );
+        assert!(worst <= 1.05e-4 * max, "{s:?}: |s − f̃| = {worst} vs max {max}");
     }
 }
 
@@ -212,7 +153,6 @@ fn refuses_unsamplable_spectra() {
     assert!(SpectrumSampler::new(&tabulated(), 700.0, 800.0).is_none());
     assert!(SpectrumSampler::new(&Spectrum::Constant(1.0), 700.0, 400.0).is_none());
     assert!(SpectrumSampler::new(&Spectrum::Constant(1.0), f64::NAN, 400.0).is_none());
-    let negative =
-        Spectrum::Tabulated(Tabulated::new(vec![400.0, 700.0], vec![1.0, -0.1]).unwrap());
+    let negative = Spectrum::Tabulated(Tabulated::new(vec![400.0, 700.0], vec![1.0, -0.1]).unwrap());
     assert!(SpectrumSampler::new(&negative, 400.0, 700.0).is_none());
 }

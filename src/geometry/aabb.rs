@@ -9,21 +9,12 @@ pub struct Aabb {
 }
 
 impl Aabb {
-    pub const EMPTY: Aabb = Aabb {
-        min: DVec3::splat(f64::INFINITY),
-        max: DVec3::splat(f64::NEG_INFINITY),
-    };
+    pub const EMPTY: Aabb = Aabb { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) };
     pub fn union(self, o: Aabb) -> Aabb {
-        Aabb {
-            min: self.min.min(o.min),
-            max: self.max.max(o.max),
-        }
+        Aabb { min: self.min.min(o.min), max: self.max.max(o.max) }
     }
     pub fn include(self, p: DVec3) -> Aabb {
-        Aabb {
-            min: self.min.min(p),
-            max: self.max.max(p),
-        }
+        Aabb { min: self.min.min(p), max: self.max.max(p) }
     }
     pub fn centre(&self) -> DVec3 {
         0.5 * (self.min + self.max)
@@ -47,10 +38,7 @@ impl Aabb {
     pub fn padded(self, pad: f64) -> Aabb {
         let down = |v: DVec3| DVec3::new(v.x.next_down(), v.y.next_down(), v.z.next_down());
         let up = |v: DVec3| DVec3::new(v.x.next_up(), v.y.next_up(), v.z.next_up());
-        Aabb {
-            min: down(self.min - DVec3::splat(pad)),
-            max: up(self.max + DVec3::splat(pad)),
-        }
+        Aabb { min: down(self.min - DVec3::splat(pad)), max: up(self.max + DVec3::splat(pad)) }
     }
     /// The largest coordinate magnitude in the box.
     pub fn max_abs(&self) -> f64 {

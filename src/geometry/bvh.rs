@@ -44,12 +44,7 @@ impl Bvh {
         let (prim, t) = self.traverse::<false>(shapes, ray, t_max)?;
         let shape = &shapes[prim as usize];
         let point = shape.hit_point(ray, t);
-        Some(Hit {
-            t,
-            point,
-            normal: shape.normal_at(point),
-            prim,
-        })
+        Some(Hit { t, point, normal: shape.normal_at(point), prim })
     }
 
     /// Whether anything is hit with t in (0, t_max).
@@ -71,19 +66,12 @@ impl Bvh {
         match self.nodes.get(index) {
             None => 0,
             Some(node) if node.count > 0 => 1,
-            Some(node) => {
-                1 + self
-                    .depth_below(index + 1)
-                    .max(self.depth_below(index + node.offset as usize))
-            }
+            Some(node) => 1 + self.depth_below(index + 1).max(self.depth_below(index + node.offset as usize)),
         }
     }
 
     /// Box around all shapes (empty when there are none).
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, |n| Aabb {
-            min: n.bounds[0].into(),
-            max: n.bounds[1].into(),
-        })
+        self.nodes.first().map_or(Aabb::EMPTY, |n| Aabb { min: n.bounds[0].into(), max: n.bounds[1].into() })
     }
 }

@@ -16,14 +16,9 @@ pub fn load_obj(path: &Path) -> Result<Vec<Triangle>, String> {
     let name = path.display();
     let file = File::open(path).map_err(|e| format!("{name}: cannot open OBJ file: {e}"))?;
     let mut reader = LineCounter::new(BufReader::new(file));
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
-    let (models, _materials) =
-        tobj::load_obj_buf(&mut reader, &options, |_| Ok(Default::default()))
-            .map_err(|e| parse_error(&name.to_string(), &e, reader.line))?;
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
+    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| Ok(Default::default()))
+        .map_err(|e| parse_error(&name.to_string(), &e, reader.line))?;
     let mut triangles = Vec::new();
     let mut degenerate = 0usize;
     for model in &models {
@@ -37,9 +32,7 @@ pub fn load_obj(path: &Path) -> Result<Vec<Triangle>, String> {
     }
     match (triangles.is_empty(), degenerate) {
         (true, 0) => Err(format!("{name}: no triangles (the file has no faces)")),
-        (true, n) => Err(format!(
-            "{name}: all {n} triangles are degenerate (zero area)"
-        )),
+        (true, n) => Err(format!("{name}: all {n} triangles are degenerate (zero area)")),
         _ => Ok(triangles),
     }
 }
@@ -69,24 +62,10 @@ fn model_triangles(model: &tobj::Model) -> Result<Vec<Triangle>, String> {
             .positions
             .get(k..k + 3)
             .ok_or_else(|| format!("object \"{}\": face vertex {i} is missing", model.name))?;
-        let p = DVec3::new(f64::from(xyz[0]), f64::from(xyz[1]), f64::from(xyz[2]));
-        if p.is_finite() {
-            Ok(p)
-        } else {
-            Err(format!(
-                "object \"{}\": vertex {p} is not finite",
-                model.name
-            ))
-        }
+        let p = DVec3::new(xyz[0], xyz[1], xyz[2]);
+        if p.is_finite() { Ok(p) } else { Err(format!("object \"{}\": vertex {p} is not finite", model.name)) }
     };
-    mesh.indices
-        .chunks_exact(3)
-        .map(|f| {
-            Ok(Triangle {
-                p: [vertex(f[0])?, vertex(f[1])?, vertex(f[2])?],
-            })
-        })
-        .collect()
+    mesh.indices.chunks_exact(3).map(|f| Ok(Triangle { p: [vertex(f[0])?, vertex(f[1])?, vertex(f[2])?] })).collect()
 }
 
 /// A buffered reader that knows which line it is reading (1-based), for error messages.
@@ -98,11 +77,7 @@ struct LineCounter {
 
 impl LineCounter {
     fn new(inner: BufReader<File>) -> LineCounter {
-        LineCounter {
-            inner,
-            line: 0,
-            at_line_start: true,
-        }
+        LineCounter { inner, line: 0, at_line_start: true }
     }
 }
 

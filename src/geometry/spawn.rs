@@ -31,17 +31,9 @@ pub const SPAWN_ERROR_FACTOR: f64 = 128.0;
 /// surface whose intersection arithmetic rounds at the coordinate scale `scale` (metres).
 pub fn offset_origin(p: DVec3, n: DVec3, dir: DVec3, scale: f64) -> DVec3 {
     let delta = SPAWN_ERROR_FACTOR * UNIT_ROUNDOFF * scale.max(max_abs(p));
-    let offset = if n.dot(dir) < 0.0 {
-        -delta * n
-    } else {
-        delta * n
-    };
+    let offset = if n.dot(dir) < 0.0 { -delta * n } else { delta * n };
     let o = p + offset;
-    DVec3::new(
-        round_away(o.x, offset.x),
-        round_away(o.y, offset.y),
-        round_away(o.z, offset.z),
-    )
+    DVec3::new(round_away(o.x, offset.x), round_away(o.y, offset.y), round_away(o.z, offset.z))
 }
 
 /// `x` moved one ulp further in the direction of `offset`, so that rounding of p + offset cannot

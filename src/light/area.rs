@@ -78,11 +78,7 @@ impl AreaLight {
         let dist = dist2.sqrt();
         let wi = d / dist;
         let cos_l = self.emitted_cos(s.normal, -wi);
-        (cos_l > 0.0).then(|| Incident {
-            wi,
-            dist,
-            weight: cos_l * self.shape.area() / dist2,
-        })
+        (cos_l > 0.0).then(|| Incident { wi, dist, weight: cos_l * self.shape.area() / dist2 })
     }
 }
 
@@ -96,11 +92,7 @@ mod tests {
 
     fn light(side: Side) -> AreaLight {
         AreaLight {
-            shape: Shape::Quad(Quad {
-                origin: DVec3::ZERO,
-                u: DVec3::X * 2.0,
-                v: DVec3::Y,
-            }),
+            shape: Shape::Quad(Quad { origin: DVec3::ZERO, u: DVec3::X * 2.0, v: DVec3::Y }),
             side,
             emission: LightSpectrum::new(Spectrum::Constant(1.0), 400.0, 700.0).unwrap(),
         }
@@ -129,13 +121,7 @@ mod tests {
     fn emission_points_are_uniform_over_the_area() {
         let l = light(Side::Front);
         let mut rng = Rng::for_task(42, Stream::Test, 0);
-        let p = chi2_1d(
-            (0.0, 2.0),
-            20,
-            100_000,
-            || Some(l.emit(&mut rng).0.x),
-            |_| 0.5,
-        );
+        let p = chi2_1d((0.0, 2.0), 20, 100_000, || Some(l.emit(&mut rng).0.x), |_| 0.5);
         assert!(p > 1e-3, "p = {p}");
         assert!((l.power_w() - std::f64::consts::PI * 2.0 * 300.0).abs() < 1e-9);
     }
@@ -146,11 +132,7 @@ mod tests {
         // E = π L a²/(h² + a²) (Modest, Radiative Heat Transfer, view factor of a disk).
         let (a, h) = (0.5, 1.0);
         let l = AreaLight {
-            shape: Shape::Disk(crate::geometry::Disk {
-                center: DVec3::ZERO,
-                normal: DVec3::Z,
-                radius: a,
-            }),
+            shape: Shape::Disk(crate::geometry::Disk { center: DVec3::ZERO, normal: DVec3::Z, radius: a }),
             side: Side::Front,
             emission: LightSpectrum::new(Spectrum::Constant(1.0), 400.0, 700.0).unwrap(),
         };

@@ -31,16 +31,11 @@ impl DirectionalLight {
     pub fn emit_origin(&self, u: [f64; 2]) -> DVec3 {
         let [x, y] = concentric_disk(u);
         let frame = Frame::from_normal(self.dir);
-        self.scene_centre - self.dir * (1.001 * self.scene_radius)
-            + self.scene_radius * (x * frame.s + y * frame.t)
+        self.scene_centre - self.dir * (1.001 * self.scene_radius) + self.scene_radius * (x * frame.s + y * frame.t)
     }
 
     /// Irradiance normal to the beam is E, so weight = 1 toward −dir at infinite distance.
     pub fn incident(&self) -> Incident {
-        Incident {
-            wi: -self.dir,
-            dist: f64::INFINITY,
-            weight: 1.0,
-        }
+        Incident { wi: -self.dir, dist: f64::INFINITY, weight: 1.0 }
     }
 }

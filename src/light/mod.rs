@@ -100,19 +100,10 @@ impl Light {
         let (origin, dir, normal) = match self {
             Light::Area(l) => l.emit(rng),
             Light::Point(l) => (l.position, l.emit_dir(rng.uniform2()), DVec3::ZERO),
-            Light::Spot(l) => (
-                l.position,
-                l.emit_dir(rng.uniform(), rng.uniform2()),
-                DVec3::ZERO,
-            ),
+            Light::Spot(l) => (l.position, l.emit_dir(rng.uniform(), rng.uniform2()), DVec3::ZERO),
             Light::Directional(l) => (l.emit_origin(rng.uniform2()), l.dir, l.dir),
         };
-        Emission {
-            origin,
-            dir,
-            wavelength_nm,
-            normal,
-        }
+        Emission { origin, dir, wavelength_nm, normal }
     }
 
     /// Samples the light as seen from `p`; `None` when it sends nothing toward `p`.

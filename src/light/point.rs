@@ -27,11 +27,7 @@ impl PointLight {
         let dist2 = d.length_squared();
         (dist2 > 0.0).then(|| {
             let dist = dist2.sqrt();
-            Incident {
-                wi: d / dist,
-                dist,
-                weight: 1.0 / dist2,
-            }
+            Incident { wi: d / dist, dist, weight: 1.0 / dist2 }
         })
     }
 }

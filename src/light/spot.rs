@@ -71,11 +71,7 @@ impl SpotLight {
         let dist = dist2.sqrt();
         let wi = d / dist;
         let s = self.falloff(-wi.dot(self.axis));
-        (s > 0.0).then(|| Incident {
-            wi,
-            dist,
-            weight: s / dist2,
-        })
+        (s > 0.0).then(|| Incident { wi, dist, weight: s / dist2 })
     }
 }
 
@@ -91,16 +87,8 @@ fn invert_ring_cdf(u: f64) -> f64 {
             lo = t
         }
         let df = 6.0 * t * t - 4.0 * t * t * t;
-        let next = if df > 0.0 {
-            t - f / df
-        } else {
-            0.5 * (lo + hi)
-        };
-        t = if next > lo && next < hi {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
+        let next = if df > 0.0 { t - f / df } else { 0.5 * (lo + hi) };
+        t = if next > lo && next < hi { next } else { 0.5 * (lo + hi) };
         if hi - lo < 1e-14 {
             break;
         }
@@ -144,10 +132,7 @@ mod tests {
         for i in 0..=100 {
             let u = i as f64 / 100.0;
             let t = invert_ring_cdf(u);
-            assert!(
-                (2.0 * t.powi(3) - t.powi(4) - u).abs() < 1e-12,
-                "u = {u}, t = {t}"
-            );
+            assert!((2.0 * t.powi(3) - t.powi(4) - u).abs() < 1e-12, "u = {u}, t = {t}");
         }
     }
 

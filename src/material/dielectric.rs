@@ -21,34 +21,18 @@ impl Dielectric {
         let cos_i = dir.dot(n).abs();
         let f = fresnel_dielectric(cos_i, eta);
         if u < f {
-            return SpecularSample {
-                dir: reflect(dir, n),
-                weight: 1.0,
-                transmitted: false,
-            };
+            return SpecularSample { dir: reflect(dir, n), weight: 1.0, transmitted: false };
         }
         match refract(dir, n, eta) {
-            Some(t) => SpecularSample {
-                dir: t,
-                weight: 1.0,
-                transmitted: true,
-            },
-            None => SpecularSample {
-                dir: reflect(dir, n),
-                weight: 1.0,
-                transmitted: false,
-            },
+            Some(t) => SpecularSample { dir: t, weight: 1.0, transmitted: true },
+            None => SpecularSample { dir: reflect(dir, n), weight: 1.0, transmitted: false },
         }
     }
 
     /// Fresnel reflectance for a path arriving along `dir` at normal `n`.
     pub fn reflectance(&self, dir: DVec3, n: DVec3, wavelength_nm: f64) -> f64 {
         let n_body = self.ior.eval(wavelength_nm);
-        let eta = if dir.dot(n) < 0.0 {
-            n_body
-        } else {
-            1.0 / n_body
-        };
+        let eta = if dir.dot(n) < 0.0 { n_body } else { 1.0 / n_body };
         fresnel_dielectric(dir.dot(n).abs(), eta)
     }
 }
@@ -59,18 +43,12 @@ mod tests {
 
     #[test]
     fn reflection_probability_is_the_fresnel_reflectance() {
-        let d = Dielectric {
-            ior: Ior::Constant { n: 1.5 },
-        };
+        let d = Dielectric { ior: Ior::Constant { n: 1.5 } };
         let dir = DVec3::new(0.5, 0.0, -(0.75f64).sqrt());
         let f = d.reflectance(dir, DVec3::Z, 550.0);
         let n = 100_000;
-        let reflected = (0..n)
-            .filter(|i| {
-                !d.sample(dir, DVec3::Z, 550.0, (*i as f64 + 0.5) / n as f64)
-                    .transmitted
-            })
-            .count();
+        let reflected =
+            (0..n).filter(|i| !d.sample(dir, DVec3::Z, 550.0, (*i as f64 + 0.5) / n as f64).transmitted).count();
         assert!((reflected as f64 / n as f64 - f).abs() < 2.0 / n as f64);
     }
 }

@@ -52,10 +52,7 @@ mod tests {
         // F(0) = ((η − 1)/(η + 1))², 0.04 for η = 1.5.
         assert!((fresnel_dielectric(1.0, 1.5) - 0.04).abs() < 1e-12);
         assert!((fresnel_dielectric(1.0, 1.0 / 1.5) - 0.04).abs() < 1e-12);
-        assert!(
-            (fresnel_dielectric(0.0, 1.5) - 1.0).abs() < 1e-12,
-            "grazing incidence reflects all"
-        );
+        assert!((fresnel_dielectric(0.0, 1.5) - 1.0).abs() < 1e-12, "grazing incidence reflects all");
     }
 
     #[test]
@@ -74,10 +71,7 @@ mod tests {
         let theta_i: f64 = 0.6;
         let d = DVec3::new(theta_i.sin(), 0.0, -theta_i.cos());
         let t = refract(d, n, 1.5).expect("no TIR entering glass");
-        assert!(
-            (t.x - theta_i.sin() / 1.5).abs() < 1e-12,
-            "n_i sin θ_i = n_t sin θ_t"
-        );
+        assert!((t.x - theta_i.sin() / 1.5).abs() < 1e-12, "n_i sin θ_i = n_t sin θ_t");
         assert!(t.z < 0.0 && (t.length() - 1.0).abs() < 1e-12);
         // Leaving glass beyond the critical angle asin(1/1.5) = 41.8°.
         let d = DVec3::new(0.8f64.sin(), 0.0, 0.8f64.cos());

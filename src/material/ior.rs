@@ -72,11 +72,7 @@ pub fn named_glass(name: &str) -> Option<Ior> {
         }),
         "fused_silica" => Some(Ior::Sellmeier {
             b: [0.696_166_3, 0.407_942_6, 0.897_479_4],
-            c_um2: [
-                0.068_404_3f64.powi(2),
-                0.116_241_4f64.powi(2),
-                9.896_161f64.powi(2),
-            ],
+            c_um2: [0.068_404_3f64.powi(2), 0.116_241_4f64.powi(2), 9.896_161f64.powi(2)],
         }),
         _ => None,
     }
@@ -95,10 +91,7 @@ mod tests {
         let bk7 = named_glass("N-BK7").unwrap().eval(587.5618);
         assert!((bk7 - 1.51680).abs() < 2e-5, "N-BK7 n_d = {bk7}");
         let silica = named_glass("fused_silica").unwrap().eval(587.5618);
-        assert!(
-            (silica - 1.4585).abs() < 1e-4,
-            "fused silica n_d = {silica}"
-        );
+        assert!((silica - 1.4585).abs() < 1e-4, "fused silica n_d = {silica}");
         // Abbe number of N-BK7 is 64.17 (SCHOTT): (n_d − 1)/(n_F − n_C), F = 486.1327, C = 656.2725 nm.
         let g = named_glass("N-BK7").unwrap();
         let v = (g.eval(587.5618) - 1.0) / (g.eval(486.1327) - g.eval(656.2725));
@@ -110,11 +103,7 @@ mod tests {
         let g = named_glass("BK7").unwrap();
         assert!(g.eval(450.0) > g.eval(650.0), "blue bends more");
         assert!(g.is_dispersive() && !Ior::Constant { n: 1.5 }.is_dispersive());
-        let cauchy = Ior::Cauchy {
-            a: 1.5046,
-            b_um2: 0.00420,
-            c_um4: 0.0,
-        };
+        let cauchy = Ior::Cauchy { a: 1.5046, b_um2: 0.00420, c_um4: 0.0 };
         assert!((cauchy.eval(500.0) - (1.5046 + 0.0042 / 0.25)).abs() < 1e-12);
         assert!(Ior::Constant { n: 0.9 }.validate(380.0, 780.0).is_err());
         assert!(g.validate(380.0, 780.0).is_ok());

@@ -11,10 +11,6 @@ pub struct Mirror {
 
 impl Mirror {
     pub fn sample(&self, dir: DVec3, n: DVec3, wavelength_nm: f64) -> SpecularSample {
-        SpecularSample {
-            dir: reflect(dir, n),
-            weight: self.reflectance.eval(wavelength_nm),
-            transmitted: false,
-        }
+        SpecularSample { dir: reflect(dir, n), weight: self.reflectance.eval(wavelength_nm), transmitted: false }
     }
 }

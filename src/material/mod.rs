@@ -59,13 +59,7 @@ impl Material {
     /// The specular direction for a path arriving along `dir` at a surface with normal `n`, at
     /// `wavelength_nm`, using `u` to choose between reflection and refraction; `None` for
     /// diffuse materials.
-    pub fn sample_specular(
-        &self,
-        dir: DVec3,
-        n: DVec3,
-        wavelength_nm: f64,
-        u: f64,
-    ) -> Option<SpecularSample> {
+    pub fn sample_specular(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, u: f64) -> Option<SpecularSample> {
         match self {
             Material::Lambertian(_) => None,
             Material::Mirror(m) => Some(m.sample(dir, n, wavelength_nm)),

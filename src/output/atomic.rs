@@ -49,11 +49,7 @@ impl Staged {
             let temp = dir.join(temp_name);
             match OpenOptions::new().write(true).create_new(true).open(&temp) {
                 Ok(_) => {
-                    return Ok(Staged {
-                        target: target.to_path_buf(),
-                        temp,
-                        committed: false,
-                    });
+                    return Ok(Staged { target: target.to_path_buf(), temp, committed: false });
                 }
                 Err(e) if e.kind() == io::ErrorKind::AlreadyExists => last_err = Some(e),
                 Err(e) => {
@@ -77,11 +73,7 @@ impl Staged {
         fs::rename(&self.temp, &self.target).map_err(|e| {
             io::Error::new(
                 e.kind(),
-                format!(
-                    "cannot move '{}' onto '{}': {e}",
-                    self.temp.display(),
-                    self.target.display()
-                ),
+                format!("cannot move '{}' onto '{}': {e}", self.temp.display(), self.target.display()),
             )
         })?;
         self.committed = true;
@@ -132,10 +124,7 @@ mod tests {
         let dir = scratch_dir("drop");
         let target = dir.join("out.txt");
         let (a, b) = (Staged::new(&target).unwrap(), Staged::new(&target).unwrap());
-        assert_ne!(
-            a.temp, b.temp,
-            "two staged files for one target must differ"
-        );
+        assert_ne!(a.temp, b.temp, "two staged files for one target must differ");
         fs::write(&a.temp, "partial").unwrap();
         let temp = a.temp.clone();
         assert!(temp.exists());

@@ -44,11 +44,7 @@ pub const BAND_MAX_ATTRIBUTE: &str = "morganaBandMaxNm";
 /// to 10⁻⁴ nm, at least one decimal (`S0.550,0nm`).
 pub fn emissive_channel_name(centre_nm: f64) -> String {
     let rounded = (centre_nm * 1e4).round() / 1e4;
-    let text = if rounded.fract() == 0.0 {
-        format!("{rounded:.1}")
-    } else {
-        format!("{rounded}")
-    };
+    let text = if rounded.fract() == 0.0 { format!("{rounded:.1}") } else { format!("{rounded}") };
     format!("S0.{}nm", text.replace('.', ","))
 }
 
@@ -80,28 +76,16 @@ pub fn write_spectral_exr(path: &Path, image: &SpectralImage) -> io::Result<()> 
         white_luminance: Some(1.0),
         ..LayerAttributes::default()
     };
-    layer_attributes.other.insert(
-        Text::from("spectralLayoutVersion"),
-        AttributeValue::Text(Text::from(SPECTRAL_LAYOUT_VERSION)),
-    );
-    layer_attributes.other.insert(
-        Text::from("emissiveUnits"),
-        AttributeValue::Text(Text::from(EMISSIVE_UNITS)),
-    );
-    layer_attributes.other.insert(
-        Text::from(BAND_MIN_ATTRIBUTE),
-        AttributeValue::F64(image.bands.min_nm),
-    );
-    layer_attributes.other.insert(
-        Text::from(BAND_MAX_ATTRIBUTE),
-        AttributeValue::F64(image.bands.max_nm),
-    );
-    let layer = Layer::new(
-        (w, h),
-        layer_attributes,
-        Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(channels.into()),
-    );
+    layer_attributes
+        .other
+        .insert(Text::from("spectralLayoutVersion"), AttributeValue::Text(Text::from(SPECTRAL_LAYOUT_VERSION)));
+    layer_attributes.other.insert(Text::from("emissiveUnits"), AttributeValue::Text(Text::from(EMISSIVE_UNITS)));
+    layer_attributes.other.insert(Text::from(BAND_MIN_ATTRIBUTE), AttributeValue::F64(image.bands.min_nm));
+    layer_attributes.other.insert(Text::from(BAND_MAX_ATTRIBUTE), AttributeValue::F64(image.bands.max_nm));
+    // Increasing line order, compressed on one thread: the file's bytes do not depend on thread
+    // timing (the exr crate's parallel writer emits chunks in completion order).
+    let encoding = Encoding { line_order: exr::meta::attribute::LineOrder::Increasing, ..Encoding::SMALL_LOSSLESS };
+    let layer = Layer::new((w, h), layer_attributes, encoding, AnyChannels::sort(channels.into()));
     let mut exr_image = Image::from_layer(layer);
     exr_image.attributes.chromaticities = Some(exr::meta::attribute::Chromaticities {
         red: Vec2(0.64, 0.33),
@@ -109,13 +93,45 @@ pub fn write_spectral_exr(path: &Path, image: &SpectralImage) -> io::Result<()> 
         blue: Vec2(0.15, 0.06),
         white: Vec2(0.3127, 0.3290),
     });
-    exr_image.write().to_file(path).map_err(|e| match e {
+    exr_image.write().non_parallel().to_file(path).map_err(|e| match e {
         exr::error::Error::Io(io) => io,
-        other => io::Error::other(format!(
-            "cannot write spectral EXR '{}': {other}",
-            path.display()
-        )),
-    })
+        other => io::Error::other(format!("cannot write spectral EXR '{}': {other}", path.display())),
+    })?;
+    let mut bytes = std::fs::read(path)?;
+    sort_header_attributes(&mut bytes)?;
+    std::fs::write(path, bytes)
+}
+
+/// Sorts the attributes of a single-part EXR header by name, in place.
+///
+/// The exr crate writes custom attributes in `HashMap` order, which changes from run to run; the
+/// header is a sequence of `name\0 type\0 size:i32le value` records ended by a zero byte
+/// (OpenEXR file layout, §"Header"), and offsets after it are absolute, so permuting the records
+/// leaves the file valid and makes its bytes reproducible.
+fn sort_header_attributes(bytes: &mut [u8]) -> io::Result<()> {
+    let bad = || invalid("EXR header could not be parsed for canonical ordering".to_string());
+    let start = 8;
+    let mut pos = start;
+    let mut records: Vec<(Vec<u8>, Vec<u8>)> = Vec::new();
+    let cstr_end = |from: usize| bytes[from..].iter().position(|b| *b == 0).map(|i| from + i);
+    while *bytes.get(pos).ok_or_else(bad)? != 0 {
+        let name_end = cstr_end(pos).ok_or_else(bad)?;
+        let type_end = cstr_end(name_end + 1).ok_or_else(bad)?;
+        let size_bytes: [u8; 4] =
+            bytes.get(type_end + 1..type_end + 5).ok_or_else(bad)?.try_into().map_err(|_| bad())?;
+        let size = usize::try_from(i32::from_le_bytes(size_bytes)).map_err(|_| bad())?;
+        let end = type_end + 5 + size;
+        let record = bytes.get(pos..end).ok_or_else(bad)?.to_vec();
+        records.push((bytes[pos..name_end].to_vec(), record));
+        pos = end;
+    }
+    records.sort();
+    let mut out = start;
+    for (_, r) in records {
+        bytes[out..out + r.len()].copy_from_slice(&r);
+        out += r.len();
+    }
+    Ok(())
 }
 
 /// The image's buffers must match its size and band count.
@@ -182,12 +198,8 @@ mod tests {
         std::fs::remove_file(&path).unwrap();
         let layer = &read.layer_data[0];
         let get = |name: &str| -> Vec<f32> {
-            let ch = layer
-                .channel_data
-                .list
-                .iter()
-                .find(|c| c.name == *name)
-                .unwrap_or_else(|| panic!("no channel {name}"));
+            let ch =
+                layer.channel_data.list.iter().find(|c| c.name == *name).unwrap_or_else(|| panic!("no channel {name}"));
             ch.sample_data.values_as_f32().collect()
         };
         assert_eq!(get("S0.450,0nm"), vec![1.0, 4.0]);
@@ -196,18 +208,9 @@ mod tests {
         assert_eq!(get("G"), vec![0.2, 0.5]);
         let other = &layer.attributes.other;
         assert_eq!(layer.attributes.white_luminance, Some(1.0));
-        assert_eq!(
-            other.get(&Text::from("spectralLayoutVersion")),
-            Some(&AttributeValue::Text(Text::from("1.0")))
-        );
-        assert_eq!(
-            other.get(&Text::from("emissiveUnits")),
-            Some(&AttributeValue::Text(Text::from("W.m^-2.sr^-1")))
-        );
-        assert_eq!(
-            other.get(&Text::from(BAND_MAX_ATTRIBUTE)),
-            Some(&AttributeValue::F64(700.0))
-        );
+        assert_eq!(other.get(&Text::from("spectralLayoutVersion")), Some(&AttributeValue::Text(Text::from("1.0"))));
+        assert_eq!(other.get(&Text::from("emissiveUnits")), Some(&AttributeValue::Text(Text::from("W.m^-2.sr^-1"))));
+        assert_eq!(other.get(&Text::from(BAND_MAX_ATTRIBUTE)), Some(&AttributeValue::F64(700.0)));
     }
 
     #[test]

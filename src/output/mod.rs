@@ -37,38 +37,25 @@ pub fn write_outputs(
     threads: usize,
     total_seconds: f64,
 ) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| {
-        Error::internal(format!(
-            "cannot create output directory {}: {e}",
-            dir.display()
-        ))
-    })?;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Error::internal(format!("cannot create output directory {}: {e}", dir.display())))?;
     let o = &scene.output;
     let mut staged: Vec<Staged> = Vec::new();
     if o.exr {
-        stage(&mut staged, dir, format!("{}.exr", o.name), &|p| {
-            exr::write_spectral_exr(p, &r.image)
-        })?;
+        stage(&mut staged, dir, format!("{}.exr", o.name), &|p| exr::write_spectral_exr(p, &r.image))?;
     }
     if o.png {
-        stage(&mut staged, dir, format!("{}.png", o.name), &|p| {
-            png::write_png_preview(p, &r.image, o.exposure)
-        })?;
+        stage(&mut staged, dir, format!("{}.png", o.name), &|p| png::write_png_preview(p, &r.image, o.exposure))?;
     }
     if o.csv {
-        stage(&mut staged, dir, format!("{}.csv", o.name), &|p| {
-            write_csv(p, &r.image)
-        })?;
+        stage(&mut staged, dir, format!("{}.csv", o.name), &|p| write_csv(p, &r.image))?;
     }
     let mut outputs: Vec<PathBuf> = staged.iter().map(|s| s.target.clone()).collect();
     outputs.push(dir.join("report.json"));
     let names = outputs.iter().map(|p| p.display().to_string()).collect();
     let report = report::Report::new(scene, &r.stats, threads, total_seconds, names);
-    let json = serde_json::to_string_pretty(&report)
-        .map_err(|e| Error::internal(format!("report.json: {e}")))?;
-    stage(&mut staged, dir, "report.json".into(), &|p| {
-        std::fs::write(p, json.as_bytes())
-    })?;
+    let json = serde_json::to_string_pretty(&report).map_err(|e| Error::internal(format!("report.json: {e}")))?;
+    stage(&mut staged, dir, "report.json".into(), &|p| std::fs::write(p, json.as_bytes()))?;
     for s in staged {
         let target = s.target.clone();
         s.commit().map_err(|e| io_error(&target, e))?;

@@ -51,10 +51,7 @@ pub fn write_png_preview(path: &Path, image: &SpectralImage, exposure: Exposure)
     let (Ok(w), Ok(h)) = (u32::try_from(image.width), u32::try_from(image.height)) else {
         return Err(io::Error::new(
             io::ErrorKind::InvalidInput,
-            format!(
-                "a {}×{} image is too large for PNG (at most 2³²−1 per side)",
-                image.width, image.height
-            ),
+            format!("a {}×{} image is too large for PNG (at most 2³²−1 per side)", image.width, image.height),
         ));
     };
     let bytes = encode_pixels(&image.rgb, exposure_scale(&image.rgb, exposure));
@@ -99,11 +96,7 @@ fn encode_pixels(rgb: &[f32], scale: f64) -> Vec<u8> {
     rgb.iter()
         .map(|&c| {
             let v = f64::from(c) * scale;
-            let v = if v.is_finite() {
-                v.clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
+            let v = if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 };
             (255.0 * srgb_encode(v)).round() as u8
         })
         .collect()

@@ -31,10 +31,7 @@ pub fn shoot(
     seed: u64,
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> (Vec<PhotonRecord>, PhotonStats) {
-    let mut stats = PhotonStats {
-        emitted,
-        ..PhotonStats::default()
-    };
+    let mut stats = PhotonStats { emitted, ..PhotonStats::default() };
     let Some(chooser) = LightChooser::new(&scene.lights) else {
         return (Vec::new(), stats);
     };
@@ -67,16 +64,7 @@ pub fn shoot(
                     None => (scene.lights[l].emit(&mut rng), 1.0),
                 };
                 if factor > 0.0 {
-                    trace::trace(
-                        scene,
-                        &prop,
-                        &em,
-                        power * factor,
-                        kind,
-                        &mut rng,
-                        &mut out,
-                        &mut st,
-                    );
+                    trace::trace(scene, &prop, &em, power * factor, kind, &mut rng, &mut out, &mut st);
                 } else {
                     st.missed += 1;
                 }

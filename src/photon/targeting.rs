@@ -1,18 +1,18 @@
 //! Aiming caustic photons at specular objects (Jensen's projection maps, done analytically).
 //!
-//! Each specular material's primitives are bounded by one sphere. A caustic photon's direction
+//! Each specular material's primitives are bounded by one sphere (the sphere itself when the
+//! material is on a single sphere). A caustic photon's direction
 //! (or, for a directional light, its start point) is drawn from an equal-weight mixture of
 //! "uniform within the cone (disk) that sphere subtends", and its power is multiplied by
 //! p_light / p_mixture, so the estimator stays unbiased for every path that reaches a specular
 //! surface first — and no path that does is impossible to sample, because each sphere contains
 //! its objects.
 
-use crate::geometry::{Aabb, Frame};
+use crate::geometry::{Aabb, Frame, Shape};
 use crate::light::{Emission, Light, Side};
 use crate::rng::Rng;
 use crate::sampling::{
-    concentric_disk, cosine_hemisphere_pdf, uniform_cone, uniform_cone_pdf, uniform_sphere,
-    uniform_sphere_pdf,
+    concentric_disk, cosine_hemisphere_pdf, uniform_cone, uniform_cone_pdf, uniform_sphere, uniform_sphere_pdf,
 };
 use crate::scene::Scene;
 use glam::DVec3;
@@ -30,19 +30,25 @@ impl CausticTargets {
             if !material.is_specular() {
                 continue;
             }
-            let b = scene
+            let shapes: Vec<&Shape> = scene
                 .prims
                 .iter()
                 .zip(&scene.shapes)
                 .filter(|(p, _)| p.material == Some(m as u32))
-                .fold(Aabb::EMPTY, |b, (_, s)| b.union(s.bounds()));
-            if !b.is_empty() {
-                // A small margin so surfaces on the bounding sphere are not missed by rounding.
-                spheres.push((
-                    b.centre(),
-                    0.5 * b.diagonal().length() * (1.0 + 1e-6) + 1e-9,
-                ));
-            }
+                .map(|(_, s)| s)
+                .collect();
+            // One sphere bounds the material's shapes: the shape itself for a lone sphere, else the
+            // sphere around their bounding box; a small margin keeps surfaces on it from being
+            // missed by rounding.
+            let (centre, radius) = match shapes.as_slice() {
+                [] => continue,
+                [Shape::Sphere(s)] => (s.center, s.radius),
+                _ => {
+                    let b = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
+                    (b.centre(), 0.5 * b.diagonal().length())
+                }
+            };
+            spheres.push((centre, radius * (1.0 + 1e-6) + 1e-9));
         }
         (!spheres.is_empty()).then_some(CausticTargets { spheres })
     }
@@ -58,20 +64,8 @@ impl CausticTargets {
                 let j = rng.below(self.spheres.len() as u64) as usize;
                 let dir = self.sample_toward(origin, j, rng.uniform2());
                 let p_mix = self.pdf_toward(origin, dir);
-                let factor = if p_mix > 0.0 {
-                    p_light(dir) / p_mix
-                } else {
-                    0.0
-                };
-                (
-                    Emission {
-                        origin,
-                        dir,
-                        wavelength_nm,
-                        normal,
-                    },
-                    factor,
-                )
+                let factor = if p_mix > 0.0 { p_light(dir) / p_mix } else { 0.0 };
+                (Emission { origin, dir, wavelength_nm, normal }, factor)
             }
         }
     }
@@ -98,11 +92,7 @@ impl CausticTargets {
                     return uniform_sphere_pdf();
                 }
                 let cos_max = (1.0 - r * r / dist2).max(0.0).sqrt();
-                if dir.dot(d) / dist2.sqrt() >= cos_max {
-                    uniform_cone_pdf(cos_max)
-                } else {
-                    0.0
-                }
+                if dir.dot(d) / dist2.sqrt() >= cos_max { uniform_cone_pdf(cos_max) } else { 0.0 }
             })
             .sum();
         sum / self.spheres.len() as f64
@@ -118,43 +108,24 @@ impl CausticTargets {
     ) -> (Emission, f64) {
         let frame = Frame::from_normal(d.dir);
         let plane_centre = d.scene_centre - d.dir * (1.001 * d.scene_radius);
-        let project = |c: DVec3| {
-            plane_centre
-                + frame.to_world(frame.to_local(c - plane_centre) * DVec3::new(1.0, 1.0, 0.0))
-        };
+        let project =
+            |c: DVec3| plane_centre + frame.to_world(frame.to_local(c - plane_centre) * DVec3::new(1.0, 1.0, 0.0));
         let j = rng.below(self.spheres.len() as u64) as usize;
         let (c, r) = self.spheres[j];
         let [x, y] = concentric_disk(rng.uniform2());
         let origin = project(c) + r * (x * frame.s + y * frame.t);
-        let inside_light =
-            (origin - plane_centre).length_squared() <= d.scene_radius * d.scene_radius;
+        let inside_light = (origin - plane_centre).length_squared() <= d.scene_radius * d.scene_radius;
         let p_mix: f64 = self
             .spheres
             .iter()
             .map(|&(c, r)| {
-                if (origin - project(c)).length_squared() <= r * r {
-                    1.0 / (std::f64::consts::PI * r * r)
-                } else {
-                    0.0
-                }
+                if (origin - project(c)).length_squared() <= r * r { 1.0 / (std::f64::consts::PI * r * r) } else { 0.0 }
             })
             .sum::<f64>()
             / self.spheres.len() as f64;
         let p_light = 1.0 / (std::f64::consts::PI * d.scene_radius * d.scene_radius);
-        let factor = if inside_light && p_mix > 0.0 {
-            p_light / p_mix
-        } else {
-            0.0
-        };
-        (
-            Emission {
-                origin,
-                dir: d.dir,
-                wavelength_nm,
-                normal: d.dir,
-            },
-            factor,
-        )
+        let factor = if inside_light && p_mix > 0.0 { p_light / p_mix } else { 0.0 };
+        (Emission { origin, dir: d.dir, wavelength_nm, normal: d.dir }, factor)
     }
 }
 
@@ -172,20 +143,14 @@ fn start<'a>(light: &'a Light, rng: &mut Rng) -> (DVec3, DVec3, Box<dyn Fn(DVec3
                 Side::Both => (s.normal, true),
             };
             let p = move |w: DVec3| {
-                if both {
-                    0.5 * cosine_hemisphere_pdf(w.dot(n).abs())
-                } else {
-                    cosine_hemisphere_pdf(w.dot(n))
-                }
+                if both { 0.5 * cosine_hemisphere_pdf(w.dot(n).abs()) } else { cosine_hemisphere_pdf(w.dot(n)) }
             };
             (s.point, n, Box::new(p))
         }
         Light::Point(p) => (p.position, DVec3::ZERO, Box::new(|_| uniform_sphere_pdf())),
-        Light::Spot(s) => (
-            s.position,
-            DVec3::ZERO,
-            Box::new(move |w: DVec3| s.falloff(w.dot(s.axis)) / s.falloff_solid_angle()),
-        ),
+        Light::Spot(s) => {
+            (s.position, DVec3::ZERO, Box::new(move |w: DVec3| s.falloff(w.dot(s.axis)) / s.falloff_solid_angle()))
+        }
         Light::Directional(_) => unreachable!("directional lights are aimed by emit_directional"),
     }
 }

@@ -67,16 +67,8 @@ pub fn trace(
     st: &mut PhotonStats,
 ) {
     let lambda = em.wavelength_nm;
-    let origin = if em.normal == glam::DVec3::ZERO {
-        em.origin
-    } else {
-        spawn_origin(em.origin, em.normal, em.dir)
-    };
-    let mut state = RayState {
-        position: origin,
-        dir: em.dir,
-        wavelength_nm: Some(lambda),
-    };
+    let origin = if em.normal == glam::DVec3::ZERO { em.origin } else { spawn_origin(em.origin, em.normal, em.dir) };
+    let mut state = RayState { position: origin, dir: em.dir, wavelength_nm: Some(lambda) };
     let (mut diffuse_bounces, mut specular_bounces) = (0usize, 0usize);
     for _ in 0..MAX_PHOTON_BOUNCES {
         let (hit, dir) = match prop.next_event(&state) {
@@ -97,13 +89,7 @@ pub fn trace(
                 MapKind::Caustic => specular_bounces > 0,
             };
             if store {
-                out.push(PhotonRecord {
-                    position: hit.point,
-                    dir,
-                    normal: hit.normal,
-                    wavelength_nm: lambda,
-                    power_w,
-                });
+                out.push(PhotonRecord { position: hit.point, dir, normal: hit.normal, wavelength_nm: lambda, power_w });
                 st.stored += 1;
             }
             if kind == MapKind::Caustic {

@@ -39,23 +39,11 @@ impl Estimator<'_> {
 
     /// Radiance per band (W m⁻² sr⁻¹ nm⁻¹) reflected by a Lambertian surface of reflectance
     /// `rho(λ)` at `x` toward the side of normal `n` (f_r = ρ(λ_p)/π at each photon's λ).
-    pub fn lambertian_radiance(
-        &self,
-        x: DVec3,
-        n: DVec3,
-        rho: &dyn Fn(f64) -> f64,
-        nb: &mut Neighbours,
-    ) -> BandValues {
+    pub fn lambertian_radiance(&self, x: DVec3, n: DVec3, rho: &dyn Fn(f64) -> f64, nb: &mut Neighbours) -> BandValues {
         self.estimate(x, n, nb, |p| rho(p.wavelength_nm) / PI)
     }
 
-    fn estimate(
-        &self,
-        x: DVec3,
-        n: DVec3,
-        nb: &mut Neighbours,
-        f: impl Fn(&PhotonRecord) -> f64,
-    ) -> BandValues {
+    fn estimate(&self, x: DVec3, n: DVec3, nb: &mut Neighbours, f: impl Fn(&PhotonRecord) -> f64) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         self.map.knn(x, self.k, self.max_radius, nb);
         let r2 = nb.max_dist2() as f64;
@@ -74,9 +62,7 @@ impl Estimator<'_> {
             out[b] += filter_weight(self.filter, (d2 as f64).sqrt(), r) * f(&p) * p.power_w;
         }
         let scale = 1.0 / (filter_norm(self.filter) * PI * r2 * self.bands.width_nm());
-        out.iter_mut()
-            .take(self.bands.count)
-            .for_each(|v| *v *= scale);
+        out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         out
     }
 }
@@ -106,17 +92,9 @@ mod tests {
     #[test]
     fn filter_normalisations_integrate_the_weights() {
         // (1/(π r²)) ∫₀ʳ w(d) 2π d dd, by quadrature, for r = 1.
-        for f in [
-            Filter::Box,
-            Filter::Cone { k: 1.0 },
-            Filter::Cone { k: 1.1 },
-            Filter::Epanechnikov,
-        ] {
+        for f in [Filter::Box, Filter::Cone { k: 1.0 }, Filter::Cone { k: 1.1 }, Filter::Epanechnikov] {
             let integral = gauss_legendre(&|d| filter_weight(f, d, 1.0) * 2.0 * d, 0.0, 1.0, 8);
-            assert!(
-                (integral - filter_norm(f)).abs() < 1e-12,
-                "{f:?}: {integral}"
-            );
+            assert!((integral - filter_norm(f)).abs() < 1e-12, "{f:?}: {integral}");
         }
     }
 }

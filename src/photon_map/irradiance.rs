@@ -46,11 +46,7 @@ impl IrradianceCache {
             .par_iter()
             .map_init(Neighbours::default, |nb, &i| {
                 let p = map.record(i);
-                let side = if p.dir.dot(p.normal) < 0.0 {
-                    p.normal
-                } else {
-                    -p.normal
-                };
+                let side = if p.dir.dot(p.normal) < 0.0 { p.normal } else { -p.normal };
                 (p.position, side, est.irradiance(p.position, side, nb))
             })
             .collect();
@@ -68,13 +64,7 @@ impl IrradianceCache {
                 }
             })
             .collect();
-        IrradianceCache {
-            origin,
-            tree: KdTree::build(points),
-            bands,
-            values,
-            max_radius: est.max_radius,
-        }
+        IrradianceCache { origin, tree: KdTree::build(points), bands, values, max_radius: est.max_radius }
     }
 
     pub fn len(&self) -> usize {
@@ -94,8 +84,7 @@ impl IrradianceCache {
     /// normal agrees with `n`; `None` if there is none.
     pub fn lookup(&self, x: DVec3, n: DVec3, nb: &mut Neighbours) -> Option<BandValues> {
         let q = (x - self.origin).as_vec3().to_array();
-        self.tree
-            .knn(q, 8, (self.max_radius * self.max_radius) as f32, nb);
+        self.tree.knn(q, 8, (self.max_radius * self.max_radius) as f32, nb);
         let items = self.tree.items();
         let best = nb
             .items

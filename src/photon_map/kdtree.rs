@@ -127,29 +127,16 @@ impl<T: KdPoint> KdTree<T> {
     /// tuning. Sizes below 2 count as 2 (so that no leaf is empty).
     pub fn build_with_leaf_size(mut items: Vec<T>, leaf_size: usize) -> KdTree<T> {
         let n = items.len();
-        assert!(
-            n < u32::MAX as usize,
-            "kd-tree holds fewer than 2^32 - 1 items"
-        );
+        assert!(n < u32::MAX as usize, "kd-tree holds fewer than 2^32 - 1 items");
         let leaf_size = leaf_size.max(2);
         let mut depth = 0;
         while n.div_ceil(1 << depth) > leaf_size {
             depth += 1;
         }
-        let mut nodes = vec![
-            Split {
-                value: 0.0,
-                axis: 0
-            };
-            (1usize << depth) - 1
-        ];
+        let mut nodes = vec![Split { value: 0.0, axis: 0 }; (1usize << depth) - 1];
         let shape = Shape { n, depth };
         shape.build_subtree(&mut items, &mut nodes, depth, 0);
-        KdTree {
-            items,
-            nodes,
-            depth,
-        }
+        KdTree { items, nodes, depth }
     }
     pub fn len(&self) -> usize {
         self.items.len()
@@ -167,9 +154,7 @@ impl<T: KdPoint> KdTree<T> {
     }
     /// Bytes held by the tree (items and nodes, by capacity, plus the struct itself).
     pub fn memory_bytes(&self) -> usize {
-        size_of::<Self>()
-            + self.items.capacity() * size_of::<T>()
-            + self.nodes.capacity() * size_of::<Split>()
+        size_of::<Self>() + self.items.capacity() * size_of::<T>() + self.nodes.capacity() * size_of::<Split>()
     }
 
     /// The up-to-`k` items nearest to `q` with squared distance ≤ `max_dist2`.
@@ -181,12 +166,7 @@ impl<T: KdPoint> KdTree<T> {
     ///
     /// Does not allocate once `out` has held `2 · min(k, len)` items.
     pub fn knn(&self, q: [f32; 3], k: usize, max_dist2: f32, out: &mut Neighbours) {
-        if k == 0
-            || self.items.is_empty()
-            || q.iter().any(|c| c.is_nan())
-            || max_dist2.is_nan()
-            || max_dist2 < 0.0
-        {
+        if k == 0 || self.items.is_empty() || q.iter().any(|c| c.is_nan()) || max_dist2.is_nan() || max_dist2 < 0.0 {
             out.items.clear();
             return;
         }
@@ -195,10 +175,7 @@ impl<T: KdPoint> KdTree<T> {
         out.items.resize(2 * k, (0, 0.0));
         let mut search = Search {
             tree: self,
-            shape: Shape {
-                n: self.items.len(),
-                depth: self.depth,
-            },
+            shape: Shape { n: self.items.len(), depth: self.depth },
             q,
             k,
             bound: max_dist2,
@@ -249,10 +226,7 @@ impl Shape {
             (true, false) => f32::INFINITY,
             (true, true) => f32::NEG_INFINITY,
         };
-        nodes[0] = Split {
-            value,
-            axis: axis as u32,
-        };
+        nodes[0] = Split { value, axis: axis as u32 };
         let parallel = items.len() >= PARALLEL_MIN;
         let (left_items, right_items) = items.split_at_mut(mid);
         let (left_nodes, right_nodes) = nodes[1..].split_at_mut(half - 1);
@@ -320,10 +294,7 @@ impl<T: KdPoint> Search<'_, T> {
         let nodes = &self.tree.nodes[..];
         let mut stack = [Pending::default(); MAX_DEPTH];
         let mut sp = 0;
-        let mut cur = Pending {
-            h: self.shape.depth,
-            ..Pending::default()
-        };
+        let mut cur = Pending { h: self.shape.depth, ..Pending::default() };
         loop {
             // Descend to the leaf on the query's side, deferring the far children.
             while cur.h > 0 {
@@ -333,24 +304,14 @@ impl<T: KdPoint> Search<'_, T> {
                 let half = 1u32 << (cur.h - 1);
                 let left = (cur.node + 1, cur.leaf0);
                 let right = (cur.node + half, cur.leaf0 + half);
-                let (near, far) = if diff < 0.0 {
-                    (left, right)
-                } else {
-                    (right, left)
-                };
+                let (near, far) = if diff < 0.0 { (left, right) } else { (right, left) };
                 cur.h -= 1;
                 let old = cur.off[axis];
                 let far_rd = cur.rd - old * old + diff * diff;
                 if far_rd <= self.bound {
                     let mut off = cur.off;
                     off[axis] = diff;
-                    stack[sp] = Pending {
-                        node: far.0,
-                        leaf0: far.1,
-                        h: cur.h,
-                        rd: far_rd,
-                        off,
-                    };
+                    stack[sp] = Pending { node: far.0, leaf0: far.1, h: cur.h, rd: far_rd, off };
                     sp += 1;
                 }
                 (cur.node, cur.leaf0) = near;
@@ -413,11 +374,7 @@ mod tests {
         let mut rng = Rng::for_task(seed, Stream::Test, 0);
         (0..n)
             .map(|i| {
-                let p = [
-                    rng.uniform() as f32,
-                    rng.uniform() as f32,
-                    rng.uniform() as f32,
-                ];
+                let p = [rng.uniform() as f32, rng.uniform() as f32, rng.uniform() as f32];
                 // A third on a plane, some exact duplicates.
                 match i % 6 {
                     0 | 1 => [p[0], p[1], 0.0],
@@ -430,19 +387,13 @@ mod tests {
 
     /// Every leaf holds at most `leaf_size` items, and every split plane separates its subtrees.
     fn check_structure(tree: &KdTree<[f32; 3]>, leaf_size: usize) {
-        let shape = Shape {
-            n: tree.len(),
-            depth: tree.depth,
-        };
+        let shape = Shape { n: tree.len(), depth: tree.depth };
         assert_eq!(tree.nodes.len(), (1 << tree.depth) - 1);
         for j in 0..1usize << tree.depth {
             let size = shape.leaf_start(j + 1) - shape.leaf_start(j);
             let leaf_size = leaf_size.max(2);
             assert!(size <= leaf_size);
-            assert!(
-                tree.len() <= leaf_size || size >= leaf_size / 2,
-                "leaf {j}: {size}"
-            );
+            assert!(tree.len() <= leaf_size || size >= leaf_size / 2, "leaf {j}: {size}");
         }
         fn walk(t: &KdTree<[f32; 3]>, s: Shape, node: usize, h: u32, leaf0: usize) {
             if h == 0 {
@@ -450,11 +401,7 @@ mod tests {
             }
             let half = 1usize << (h - 1);
             let Split { value, axis } = t.nodes[node];
-            let (lo, mid, hi) = (
-                s.leaf_start(leaf0),
-                s.leaf_start(leaf0 + half),
-                s.leaf_start(leaf0 + 2 * half),
-            );
+            let (lo, mid, hi) = (s.leaf_start(leaf0), s.leaf_start(leaf0 + half), s.leaf_start(leaf0 + 2 * half));
             let a = axis as usize;
             assert!(t.items[lo..mid].iter().all(|p| p[a] <= value));
             assert!(t.items[mid..hi].iter().all(|p| p[a] >= value));
@@ -477,20 +424,13 @@ mod tests {
     fn nodes_are_identical_for_one_and_two_threads() {
         let pts = points(200_000, 2);
         let build = |threads| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap()
-                .install(|| KdTree::build(pts.clone()))
+            rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| KdTree::build(pts.clone()))
         };
         let (a, b) = (build(1), build(2));
         let bits = |t: &KdTree<[f32; 3]>| -> (Vec<[u32; 3]>, Vec<(u32, u32)>) {
             (
                 t.items.iter().map(|p| p.map(f32::to_bits)).collect(),
-                t.nodes
-                    .iter()
-                    .map(|s| (s.value.to_bits(), s.axis))
-                    .collect(),
+                t.nodes.iter().map(|s| (s.value.to_bits(), s.axis)).collect(),
             )
         };
         assert!(bits(&a) == bits(&b));
@@ -499,11 +439,8 @@ mod tests {
 
     #[test]
     fn keep_nearest_orders_by_distance_bits() {
-        let mut c: Vec<(u32, f32)> = [3.0, 0.0, 2.5, 1e-30, 7.0, 1.0]
-            .iter()
-            .enumerate()
-            .map(|(i, &d)| (i as u32, d))
-            .collect();
+        let mut c: Vec<(u32, f32)> =
+            [3.0, 0.0, 2.5, 1e-30, 7.0, 1.0].iter().enumerate().map(|(i, &d)| (i as u32, d)).collect();
         keep_nearest(&mut c, 3);
         let mut first: Vec<f32> = c[..3].iter().map(|e| e.1).collect();
         first.sort_by(f32::total_cmp);

@@ -45,28 +45,11 @@ impl PhotonMap {
         let (lo, hi) = records
             .par_iter()
             .filter(finite)
-            .fold(
-                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-                |(lo, hi), r| (lo.min(r.position), hi.max(r.position)),
-            )
-            .reduce(
-                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-                |a, b| (a.0.min(b.0), a.1.max(b.1)),
-            );
-        let origin = if lo.x <= hi.x {
-            (lo + hi) * 0.5
-        } else {
-            DVec3::ZERO
-        };
-        let photons: Vec<Photon> = records
-            .par_iter()
-            .filter(finite)
-            .map(|r| Photon::encode(r, origin))
-            .collect();
-        PhotonMap {
-            origin,
-            tree: KdTree::build(photons),
-        }
+            .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), r| (lo.min(r.position), hi.max(r.position)))
+            .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+        let origin = if lo.x <= hi.x { (lo + hi) * 0.5 } else { DVec3::ZERO };
+        let photons: Vec<Photon> = records.par_iter().filter(finite).map(|r| Photon::encode(r, origin)).collect();
+        PhotonMap { origin, tree: KdTree::build(photons) }
     }
     pub fn len(&self) -> usize {
         self.tree.len()
@@ -97,11 +80,7 @@ impl PhotonMap {
     pub fn knn(&self, x: DVec3, k: usize, max_radius: f64, out: &mut Neighbours) {
         let rel = x - self.origin;
         let q = [rel.x as f32, rel.y as f32, rel.z as f32];
-        let max_dist2 = if max_radius >= 0.0 {
-            (max_radius * max_radius) as f32
-        } else {
-            f32::NAN
-        };
+        let max_dist2 = if max_radius >= 0.0 { (max_radius * max_radius) as f32 } else { f32::NAN };
         self.tree.knn(q, k, max_dist2, out);
     }
     /// Photon `i` (an index from [`Neighbours`]) decoded.

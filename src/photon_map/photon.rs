@@ -68,11 +68,7 @@ impl Photon {
             power_w: record.power_w as f32,
             wavelength_nm: record.wavelength_nm as f32,
             dir: oct_encode(record.dir),
-            normal: if has_normal {
-                oct_encode(record.normal)
-            } else {
-                [0; 2]
-            },
+            normal: if has_normal { oct_encode(record.normal) } else { [0; 2] },
             flags: if has_normal { Self::FLAG_SURFACE } else { 0 },
         }
     }
@@ -116,11 +112,7 @@ impl Photon {
     /// Unit surface normal, or zero for a photon stored in a medium.
     #[inline]
     pub fn normal(&self) -> DVec3 {
-        if self.is_surface() {
-            oct_decode(self.normal)
-        } else {
-            DVec3::ZERO
-        }
+        if self.is_surface() { oct_decode(self.normal) } else { DVec3::ZERO }
     }
 
     /// Whether the photon lies on a surface (has a normal).
@@ -173,14 +165,8 @@ pub fn oct_decode(code: [u16; 2]) -> DVec3 {
     let x = from_snorm16(code[0]);
     let y = from_snorm16(code[1]);
     let z = 1.0 - x.abs() - y.abs();
-    let (x, y) = if z < 0.0 {
-        (
-            (1.0 - y.abs()) * sign_not_zero(x),
-            (1.0 - x.abs()) * sign_not_zero(y),
-        )
-    } else {
-        (x, y)
-    };
+    let (x, y) =
+        if z < 0.0 { ((1.0 - y.abs()) * sign_not_zero(x), (1.0 - x.abs()) * sign_not_zero(y)) } else { (x, y) };
     DVec3::new(x, y, z).normalize()
 }
 
@@ -257,14 +243,7 @@ mod tests {
             assert!(angle_deg(v, d) < 0.01, "{v} -> {d}");
         }
         // Axes are exact.
-        for v in [
-            DVec3::X,
-            DVec3::NEG_X,
-            DVec3::Y,
-            DVec3::NEG_Y,
-            DVec3::Z,
-            DVec3::NEG_Z,
-        ] {
+        for v in [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z] {
             assert_eq!(oct_decode(oct_encode(v)), v);
         }
     }
@@ -293,18 +272,12 @@ mod tests {
         let origin = DVec3::new(1.0e4, -3.0e3, 250.0);
         let extent = 2.0e3; // box half-width 1e3 on each axis
         for i in 0..100_000 {
-            let position = origin
-                + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * extent
-                - extent / 2.0;
+            let position = origin + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * extent - extent / 2.0;
             let surface = i % 2 == 0;
             let rec = PhotonRecord {
                 position,
                 dir: uniform_dir(&mut rng),
-                normal: if surface {
-                    uniform_dir(&mut rng)
-                } else {
-                    DVec3::ZERO
-                },
+                normal: if surface { uniform_dir(&mut rng) } else { DVec3::ZERO },
                 wavelength_nm: 380.0 + 400.0 * rng.uniform(),
                 power_w: 1e-6 * rng.uniform(),
             };

@@ -24,11 +24,7 @@ pub struct RayState {
 pub enum Event {
     /// A surface; `dir` is the unit direction of travel on arrival, `path_length` the distance
     /// travelled along the path (arc length once paths curve).
-    Surface {
-        hit: Hit,
-        dir: DVec3,
-        path_length: f64,
-    },
+    Surface { hit: Hit, dir: DVec3, path_length: f64 },
     /// Nothing more is hit; `dir` is the final direction of travel.
     Escape { dir: DVec3 },
 }
@@ -49,11 +45,7 @@ impl<'a> Propagator<'a> {
     pub fn next_event(&self, state: &RayState) -> Event {
         let ray = Ray::new(state.position, state.dir);
         match self.bvh.intersect(self.shapes, &ray, f64::INFINITY) {
-            Some(hit) => Event::Surface {
-                hit,
-                dir: state.dir,
-                path_length: hit.t,
-            },
+            Some(hit) => Event::Surface { hit, dir: state.dir, path_length: hit.t },
             None => Event::Escape { dir: state.dir },
         }
     }
@@ -61,11 +53,7 @@ impl<'a> Propagator<'a> {
     /// The state leaving surface `hit` in direction `dir`, offset so it does not re-hit the
     /// surface it leaves.
     pub fn leave(&self, hit: &Hit, dir: DVec3, wavelength_nm: Option<f64>) -> RayState {
-        RayState {
-            position: hit.spawn_origin(self.shapes, dir),
-            dir,
-            wavelength_nm,
-        }
+        RayState { position: hit.spawn_origin(self.shapes, dir), dir, wavelength_nm }
     }
 
     /// Whether the straight segment from surface point `hit` toward `wi` is free
@@ -75,11 +63,7 @@ impl<'a> Propagator<'a> {
     pub fn unoccluded(&self, hit: &Hit, wi: DVec3, dist: f64) -> bool {
         let p = hit.point;
         let origin = hit.spawn_origin(self.shapes, wi);
-        let t_max = if dist.is_finite() {
-            (dist - (origin - p).length()) * (1.0 - 1e-7)
-        } else {
-            f64::INFINITY
-        };
+        let t_max = if dist.is_finite() { (dist - (origin - p).length()) * (1.0 - 1e-7) } else { f64::INFINITY };
         t_max > 0.0 && !self.bvh.occluded(self.shapes, &Ray::new(origin, wi), t_max)
     }
 }

@@ -20,26 +20,11 @@ pub struct Camera {
 
 impl Camera {
     /// `up` must not be parallel to the viewing direction (the scene validator checks).
-    pub fn new(
-        position: DVec3,
-        look_at: DVec3,
-        up: DVec3,
-        fov_deg: f64,
-        width: usize,
-        height: usize,
-    ) -> Camera {
+    pub fn new(position: DVec3, look_at: DVec3, up: DVec3, fov_deg: f64, width: usize, height: usize) -> Camera {
         let forward = (look_at - position).normalize();
         let right = forward.cross(up).normalize();
         let true_up = right.cross(forward);
-        Camera {
-            position,
-            look_at,
-            up,
-            fov_deg,
-            width,
-            height,
-            basis: [right, true_up, forward],
-        }
+        Camera { position, look_at, up, fov_deg, width, height, basis: [right, true_up, forward] }
     }
 
     /// The ray through image position (x, y) in pixels (continuous: pixel i spans [i, i+1)).
@@ -59,14 +44,7 @@ mod tests {
 
     #[test]
     fn centre_and_edges_follow_the_field_of_view() {
-        let c = Camera::new(
-            DVec3::ZERO,
-            DVec3::new(0.0, 0.0, -1.0),
-            DVec3::Y,
-            60.0,
-            200,
-            100,
-        );
+        let c = Camera::new(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), DVec3::Y, 60.0, 200, 100);
         let centre = c.ray(100.0, 50.0).dir;
         assert!((centre - DVec3::new(0.0, 0.0, -1.0)).length() < 1e-12);
         // Top edge is 30° above the axis; right edge at atan(2 tan 30°) to the right.

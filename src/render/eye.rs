@@ -10,7 +10,8 @@
 //! With `direct = "photon_map"` the global map alone gives all of it. Gather rays that reach an
 //! emitter — directly or through specular surfaces — add nothing: that light is already counted
 //! by the shadow rays and the caustic map. Specular surfaces are followed; an eye path carrying
-//! several wavelengths splits into one path per lane at a dispersive surface.
+//! several wavelengths splits into one path per lane at a dispersive surface (a gather path
+//! instead follows one lane chosen at random, weighted by the lane count).
 
 use super::lanes::Lanes;
 use super::maps::Maps;
@@ -50,33 +51,18 @@ pub struct EyeTracer<'a> {
 impl<'a> EyeTracer<'a> {
     pub fn new(scene: &'a Scene, maps: &'a Maps) -> EyeTracer<'a> {
         let s = &scene.integrator;
-        let est = |map, k, max_radius| Estimator {
-            map,
-            k,
-            max_radius,
-            filter: s.filter,
-            bands: scene.bands,
-        };
+        let est = |map, k, max_radius| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands };
         EyeTracer {
             scene,
             prop: Propagator::new(&scene.shapes, &scene.bvh),
             maps,
             global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m)),
-            caustic: maps
-                .caustic
-                .as_ref()
-                .map(|m| est(m, s.caustic_k, s.caustic_max_radius_m)),
+            caustic: maps.caustic.as_ref().map(|m| est(m, s.caustic_k, s.caustic_max_radius_m)),
         }
     }
 
     /// Radiance arriving at a camera along `state`, per lane (W m⁻² sr⁻¹ nm⁻¹).
-    pub fn camera_radiance(
-        &self,
-        state: &RayState,
-        lanes: &Lanes,
-        rng: &mut Rng,
-        sc: &mut Scratch,
-    ) -> BandValues {
+    pub fn camera_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
         self.radiance(state, lanes, 0, Mode::Camera, rng, sc)
     }
 
@@ -135,6 +121,13 @@ impl<'a> EyeTracer<'a> {
         sc: &mut Scratch,
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
+        if m.is_dispersive() && lanes.len > 1 && mode == Mode::Gather {
+            // A gather path follows one lane chosen uniformly, weighted by the lane count: an
+            // unbiased estimate of every lane at the cost of one.
+            let j = rng.below(lanes.len as u64) as usize;
+            out[j] = lanes.len as f64 * self.specular(hit, dir, m, &lanes.single(j), depth, mode, rng, sc)[0];
+            return out;
+        }
         if m.is_dispersive() && lanes.len > 1 {
             for (i, o) in out.iter_mut().enumerate().take(lanes.len) {
                 *o = self.specular(hit, dir, m, &lanes.single(i), depth, mode, rng, sc)[0];
@@ -145,14 +138,10 @@ impl<'a> EyeTracer<'a> {
         let Some(s) = m.sample_specular(dir, hit.normal, lanes.nm[0], u) else {
             return out;
         };
-        let next = self
-            .prop
-            .leave(hit, s.dir, (lanes.len == 1).then_some(lanes.nm[0]));
+        let next = self.prop.leave(hit, s.dir, (lanes.len == 1).then_some(lanes.nm[0]));
         let l = self.radiance(&next, lanes, depth + 1, mode, rng, sc);
         for i in 0..lanes.len {
-            let w = m
-                .sample_specular(dir, hit.normal, lanes.nm[i], u)
-                .map_or(0.0, |s| s.weight);
+            let w = m.sample_specular(dir, hit.normal, lanes.nm[i], u).map_or(0.0, |s| s.weight);
             out[i] = w * l[i];
         }
         out
@@ -170,21 +159,12 @@ impl<'a> EyeTracer<'a> {
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
-        let n = if dir.dot(hit.normal) < 0.0 {
-            hit.normal
-        } else {
-            -hit.normal
-        };
+        let n = if dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let rho = |l: f64| m.diffuse_reflectance(l);
         let mut out = [0.0; MAX_BANDS];
-        let estimate =
-            |e: &Estimator, nb: &mut Neighbours| e.lambertian_radiance(hit.point, n, &rho, nb);
+        let estimate = |e: &Estimator, nb: &mut Neighbours| e.lambertian_radiance(hit.point, n, &rho, nb);
         if mode == Mode::Gather {
-            let cached = self
-                .maps
-                .irradiance
-                .as_ref()
-                .and_then(|c| c.lookup(hit.point, n, &mut sc.nb));
+            let cached = self.maps.irradiance.as_ref().and_then(|c| c.lookup(hit.point, n, &mut sc.nb));
             match (cached, &self.global) {
                 (Some(e), _) => add_by_band(&mut out, &e, lanes, &|i| rho(lanes.nm[i]) / PI),
                 (None, Some(g)) => add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0),
@@ -223,7 +203,7 @@ impl<'a> EyeTracer<'a> {
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
-        let count = self.scene.integrator.gather_rays;
+        let count = lanes.share_of(self.scene.integrator.gather_rays);
         let mut sum = [0.0; MAX_BANDS];
         for _ in 0..count {
             let d = Lambertian::sample(dir, hit.normal, rng.uniform2());
@@ -233,22 +213,13 @@ impl<'a> EyeTracer<'a> {
                 sum[i] += l[i];
             }
         }
-        sum.iter_mut()
-            .take(lanes.len)
-            .for_each(|v| *v /= count as f64);
+        sum.iter_mut().take(lanes.len).for_each(|v| *v /= count as f64);
         sum
     }
 
     /// Incident irradiance per lane from every light by one shadow ray each:
     /// E(λ) = Σ_lights S(λ) · weight · cos θ, weight being the light's sampling factor.
-    fn direct(
-        &self,
-        hit: &Hit,
-        n: DVec3,
-        lanes: &Lanes,
-        rng: &mut Rng,
-        sc: &mut Scratch,
-    ) -> BandValues {
+    fn direct(&self, hit: &Hit, n: DVec3, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
         let mut e = [0.0; MAX_BANDS];
         for light in &self.scene.lights {
             let u = rng.uniform2();

@@ -16,19 +16,19 @@ pub struct Lanes {
     pub nm: [f64; MAX_BANDS],
     /// Band holding each lane's wavelength.
     pub band: [u8; MAX_BANDS],
+    /// Number of lanes the camera sample started with; a path split at a dispersive surface
+    /// carries `len` of them.
+    pub camera_len: usize,
 }
 
 impl Lanes {
     /// Wavelengths for one eye sample from uniform `u`.
     pub fn new(bands: &Bands, sampling: WavelengthSampling, u: f64) -> Lanes {
-        let mut l = Lanes {
-            len: 0,
-            nm: [0.0; MAX_BANDS],
-            band: [0; MAX_BANDS],
-        };
+        let mut l = Lanes { len: 0, nm: [0.0; MAX_BANDS], band: [0; MAX_BANDS], camera_len: 0 };
         match sampling {
             WavelengthSampling::Bands => {
                 l.len = bands.count;
+                l.camera_len = bands.count;
                 for b in 0..bands.count {
                     let (lo, hi) = bands.edges_nm(b);
                     l.nm[b] = lo + u * (hi - lo);
@@ -37,6 +37,7 @@ impl Lanes {
             }
             WavelengthSampling::Hero => {
                 l.len = HERO_WAVELENGTHS;
+                l.camera_len = HERO_WAVELENGTHS;
                 let w = bands.max_nm - bands.min_nm;
                 for j in 0..HERO_WAVELENGTHS {
                     let t = (u + j as f64 / HERO_WAVELENGTHS as f64).fract();
@@ -50,14 +51,16 @@ impl Lanes {
 
     /// Just lane `i`.
     pub fn single(&self, i: usize) -> Lanes {
-        let mut l = Lanes {
-            len: 1,
-            nm: [0.0; MAX_BANDS],
-            band: [0; MAX_BANDS],
-        };
+        let mut l = Lanes { len: 1, nm: [0.0; MAX_BANDS], band: [0; MAX_BANDS], camera_len: self.camera_len };
         l.nm[0] = self.nm[i];
         l.band[0] = self.band[i];
         l
+    }
+
+    /// `n` scaled by the share of the camera sample's lanes this path carries (at least 1): a
+    /// path split into single wavelengths spends per lane what the unsplit path spends for all.
+    pub fn share_of(&self, n: usize) -> usize {
+        (n * self.len).div_ceil(self.camera_len.max(1)).max(1)
     }
 
     /// Weight with which a lane's radiance enters its band's average.

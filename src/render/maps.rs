@@ -20,12 +20,7 @@ pub struct Maps {
 }
 
 /// Runs the photon passes the plan asks for.
-pub fn build(
-    scene: &Scene,
-    quiet: bool,
-    phases: &mut Phases,
-    reports: &mut Vec<MapReport>,
-) -> Maps {
+pub fn build(scene: &Scene, quiet: bool, phases: &mut Phases, reports: &mut Vec<MapReport>) -> Maps {
     let s = &scene.integrator;
     let mut maps = Maps::default();
     if scene.plan.global_map.on {
@@ -36,14 +31,7 @@ pub fn build(
         maps.global = Some(map);
     }
     if scene.plan.caustic_map.on {
-        let (map, report) = one_map(
-            scene,
-            MapKind::Caustic,
-            s.caustic_photons,
-            "caustic",
-            quiet,
-            phases,
-        );
+        let (map, report) = one_map(scene, MapKind::Caustic, s.caustic_photons, "caustic", quiet, phases);
         reports.push(report);
         maps.caustic = Some(map);
     }
@@ -51,13 +39,7 @@ pub fn build(
         && let Some(global) = &maps.global
     {
         let t = Instant::now();
-        let est = Estimator {
-            map: global,
-            k: s.k,
-            max_radius: s.max_radius_m,
-            filter: s.filter,
-            bands: scene.bands,
-        };
+        let est = Estimator { map: global, k: s.k, max_radius: s.max_radius_m, filter: s.filter, bands: scene.bands };
         maps.irradiance = Some(IrradianceCache::build(&est, IRRADIANCE_STRIDE));
         phases.add("irradiance precompute", t);
     }
@@ -74,8 +56,7 @@ fn one_map(
 ) -> (PhotonMap, MapReport) {
     let t = Instant::now();
     let pb = progress::bar(quiet, emitted, &format!("{name} photons"));
-    let (records, stats) =
-        photon::shoot(scene, kind, emitted, scene.integrator.seed, &|n| pb.inc(n));
+    let (records, stats) = photon::shoot(scene, kind, emitted, scene.integrator.seed, &|n| pb.inc(n));
     pb.finish_and_clear();
     let trace_s = phases.add(&format!("{name} photon tracing"), t);
     let t = Instant::now();

@@ -91,13 +91,7 @@ fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCoun
 }
 
 /// The band averages of one pixel: the mean over `spp` jittered samples.
-fn pixel(
-    scene: &Scene,
-    tracer: &EyeTracer,
-    x: usize,
-    y: usize,
-    sc: &mut Scratch,
-) -> [f64; crate::spectrum::MAX_BANDS] {
+fn pixel(scene: &Scene, tracer: &EyeTracer, x: usize, y: usize, sc: &mut Scratch) -> [f64; crate::spectrum::MAX_BANDS] {
     let s = &scene.integrator;
     let mut rng = Rng::for_task(s.seed, Stream::Eye, (y * scene.camera.width + x) as u64);
     let weight = Lanes::film_weight(&scene.bands, scene.sampling) / s.spp as f64;
@@ -106,11 +100,7 @@ fn pixel(
         let [jx, jy] = rng.uniform2();
         let ray = scene.camera.ray(x as f64 + jx, y as f64 + jy);
         let lanes = Lanes::new(&scene.bands, scene.sampling, rng.uniform());
-        let state = RayState {
-            position: ray.origin,
-            dir: ray.dir,
-            wavelength_nm: None,
-        };
+        let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None };
         let l = tracer.camera_radiance(&state, &lanes, &mut rng, sc);
         for i in 0..lanes.len {
             acc[lanes.band[i] as usize] += weight * l[i];
@@ -129,11 +119,5 @@ fn to_image(scene: &Scene, data: Vec<f32>) -> SpectralImage {
             conv.linear_srgb(&v).map(|c| c as f32)
         })
         .collect();
-    SpectralImage {
-        width: scene.camera.width,
-        height: scene.camera.height,
-        bands: scene.bands,
-        data,
-        rgb,
-    }
+    SpectralImage { width: scene.camera.width, height: scene.camera.height, bands: scene.bands, data, rgb }
 }

@@ -18,10 +18,7 @@ impl Phases {
     /// Records the time since `start` under `phase` and returns it in seconds.
     pub fn add(&mut self, phase: &str, start: Instant) -> f64 {
         let seconds = start.elapsed().as_secs_f64();
-        self.0.push(PhaseTime {
-            phase: phase.to_string(),
-            seconds,
-        });
+        self.0.push(PhaseTime { phase: phase.to_string(), seconds });
         seconds
     }
 }

@@ -34,11 +34,7 @@ impl Discrete1D {
         // Skip zero-weight bins that share the same CDF value.
         let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
         let w = self.cdf[i] - lo;
-        let remapped = if w > 0.0 {
-            ((target - lo) / w).clamp(0.0, 1.0 - f64::EPSILON)
-        } else {
-            0.0
-        };
+        let remapped = if w > 0.0 { ((target - lo) / w).clamp(0.0, 1.0 - f64::EPSILON) } else { 0.0 };
         (i, w / self.total, remapped)
     }
 

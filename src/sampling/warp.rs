@@ -10,11 +10,7 @@ pub fn concentric_disk(u: [f64; 2]) -> [f64; 2] {
     if a == 0.0 && b == 0.0 {
         return [0.0, 0.0];
     }
-    let (r, theta) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (r, theta) = if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, FRAC_PI_2 - FRAC_PI_4 * (a / b)) };
     [r * theta.cos(), r * theta.sin()]
 }
 
@@ -85,11 +81,7 @@ mod tests {
             200_000,
             || Some(uniform_cone(rng.uniform2(), cos_max)),
             |w| {
-                if w.z >= cos_max {
-                    uniform_cone_pdf(cos_max)
-                } else {
-                    0.0
-                }
+                if w.z >= cos_max { uniform_cone_pdf(cos_max) } else { 0.0 }
             },
         );
         assert!(p > 1e-3, "p = {p}");
@@ -128,22 +120,10 @@ mod tests {
     fn triangle_barycentrics_are_uniform() {
         // For a uniform point on a triangle, each barycentric b has density 2(1 − b).
         let mut rng = Rng::for_task(14, Stream::Test, 0);
-        let p = chi2_1d(
-            (0.0, 1.0),
-            40,
-            100_000,
-            || Some(uniform_triangle(rng.uniform2())[0]),
-            |b| 2.0 * (1.0 - b),
-        );
+        let p = chi2_1d((0.0, 1.0), 40, 100_000, || Some(uniform_triangle(rng.uniform2())[0]), |b| 2.0 * (1.0 - b));
         assert!(p > 1e-3, "p = {p}");
         let mut rng = Rng::for_task(15, Stream::Test, 0);
-        let p = chi2_1d(
-            (0.0, 1.0),
-            40,
-            100_000,
-            || Some(uniform_triangle(rng.uniform2())[2]),
-            |b| 2.0 * (1.0 - b),
-        );
+        let p = chi2_1d((0.0, 1.0), 40, 100_000, || Some(uniform_triangle(rng.uniform2())[2]), |b| 2.0 * (1.0 - b));
         assert!(p > 1e-3, "p = {p}");
     }
 }

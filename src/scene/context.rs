@@ -19,11 +19,7 @@ pub type R<T> = Result<T, Error>;
 
 impl<'a> Ctx<'a> {
     pub fn new(file: &Path, source: &'a str, dir: &Path) -> Ctx<'a> {
-        Ctx {
-            file: file.to_path_buf(),
-            source,
-            dir: dir.to_path_buf(),
-        }
+        Ctx { file: file.to_path_buf(), source, dir: dir.to_path_buf() }
     }
 
     pub fn loc(&self, span: &Range<usize>) -> Location {
@@ -43,27 +39,18 @@ impl<'a> Ctx<'a> {
         owner: &Range<usize>,
         what: &str,
     ) -> R<&'v Spanned<T>> {
-        f.as_ref()
-            .ok_or_else(|| self.err(owner, format!("{what}: missing field `{name}`")))
+        f.as_ref().ok_or_else(|| self.err(owner, format!("{what}: missing field `{name}`")))
     }
 
     /// Rejects fields present in `present` but absent from `allowed`.
-    pub fn only(
-        &self,
-        present: &[(&str, Option<Range<usize>>)],
-        allowed: &[&str],
-        what: &str,
-    ) -> R<()> {
+    pub fn only(&self, present: &[(&str, Option<Range<usize>>)], allowed: &[&str], what: &str) -> R<()> {
         for (name, span) in present {
             if let Some(span) = span
                 && !allowed.contains(name)
             {
                 return Err(self.err(
                     span,
-                    format!(
-                        "{what}: field `{name}` is not used here; allowed fields: {}",
-                        allowed.join(", ")
-                    ),
+                    format!("{what}: field `{name}` is not used here; allowed fields: {}", allowed.join(", ")),
                 ));
             }
         }
@@ -73,12 +60,7 @@ impl<'a> Ctx<'a> {
     /// A finite number within [lo, hi] (bounds inclusive unless `open` says otherwise).
     pub fn number(&self, v: &Spanned<f64>, what: &str, lo: f64, hi: f64, open: bool) -> R<f64> {
         let x = *v.get_ref();
-        let ok = x.is_finite()
-            && if open {
-                x > lo && x < hi
-            } else {
-                x >= lo && x <= hi
-            };
+        let ok = x.is_finite() && if open { x > lo && x < hi } else { x >= lo && x <= hi };
         if ok {
             return Ok(x);
         }
@@ -88,10 +70,7 @@ impl<'a> Ctx<'a> {
             (true, false) => format!("strictly between {lo} and {hi}"),
             (false, false) => format!("between {lo} and {hi}"),
         };
-        Err(self.err(
-            &v.span(),
-            format!("{what} = {x} is out of range: it must be {range}"),
-        ))
+        Err(self.err(&v.span(), format!("{what} = {x} is out of range: it must be {range}")))
     }
 
     /// An integer within [lo, hi].
@@ -100,10 +79,7 @@ impl<'a> Ctx<'a> {
         if (lo..=hi).contains(&x) {
             Ok(x)
         } else {
-            Err(self.err(
-                &v.span(),
-                format!("{what} = {x} is out of range: allowed {lo} to {hi}"),
-            ))
+            Err(self.err(&v.span(), format!("{what} = {x} is out of range: allowed {lo} to {hi}")))
         }
     }
 
@@ -113,10 +89,7 @@ impl<'a> Ctx<'a> {
         if a.iter().all(|x| x.is_finite()) {
             Ok(DVec3::from_array(*a))
         } else {
-            Err(self.err(
-                &v.span(),
-                format!("{what} = {a:?} must have three finite numbers"),
-            ))
+            Err(self.err(&v.span(), format!("{what} = {a:?} must have three finite numbers")))
         }
     }
 
@@ -136,24 +109,14 @@ impl<'a> Ctx<'a> {
         if allowed.contains(&s) {
             Ok(s)
         } else {
-            Err(self.err(
-                &v.span(),
-                format!(
-                    "{what} \"{s}\" is not known; allowed: {}",
-                    allowed.join(", ")
-                ),
-            ))
+            Err(self.err(&v.span(), format!("{what} \"{s}\" is not known; allowed: {}", allowed.join(", "))))
         }
     }
 
     /// A path from the scene, resolved relative to the scene's directory.
     pub fn path(&self, v: &Spanned<String>) -> PathBuf {
         let p = Path::new(v.get_ref());
-        if p.is_absolute() {
-            p.to_path_buf()
-        } else {
-            self.dir.join(p)
-        }
+        if p.is_absolute() { p.to_path_buf() } else { self.dir.join(p) }
     }
 }
 

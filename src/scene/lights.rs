@@ -11,9 +11,7 @@ use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
-use crate::light::{
-    AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SpotLight,
-};
+use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SpotLight};
 use crate::present_fields;
 use crate::spectrum::Bands;
 use toml::Spanned;
@@ -37,86 +35,45 @@ pub fn light(
 ) -> R<NamedLight> {
     let span = rec.span();
     let l = rec.get_ref();
-    let name = l
-        .name
-        .as_ref()
-        .map_or_else(|| format!("light #{}", index + 1), |n| n.get_ref().clone());
+    let name = l.name.as_ref().map_or_else(|| format!("light #{}", index + 1), |n| n.get_ref().clone());
     let owner = format!("light \"{name}\"");
-    let kind = ctx.choice(
-        ctx.require(&l.kind, "type", &span, &owner)?,
-        &format!("{owner}: type"),
-        KINDS,
-    )?;
+    let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
     let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg);
     let allowed: &[&str] = match kind {
-        "area" => &[
-            "power_w", "scale", "shape", "side", "center", "radius", "normal", "origin", "u", "v",
-        ],
+        "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
-        "spot" => &[
-            "power_w",
-            "scale",
-            "position",
-            "direction",
-            "look_at",
-            "cone_deg",
-            "falloff_start_deg",
-        ],
+        "spot" => &["power_w", "scale", "position", "direction", "look_at", "cone_deg", "falloff_start_deg"],
         _ => &["scale", "irradiance_w_m2", "direction"],
     };
     ctx.only(&present, allowed, &what)?;
     let spec = ctx.require(&l.spectrum, "spectrum", &span, &what)?;
-    let shape_spectrum = lib.parse(
-        ctx,
-        spec,
-        &format!("{what}: spectrum"),
-        Use::Emission,
-        (bands.min_nm, bands.max_nm),
-    )?;
-    let emission =
-        LightSpectrum::new(shape_spectrum, bands.min_nm, bands.max_nm).ok_or_else(|| {
-            ctx.err(
-                &spec.span(),
-                format!(
-                    "{what}: the spectrum emits nothing within {}–{} nm",
-                    bands.min_nm, bands.max_nm
-                ),
-            )
-        })?;
+    let shape_spectrum =
+        lib.parse(ctx, spec, &format!("{what}: spectrum"), Use::Emission, (bands.min_nm, bands.max_nm))?;
+    let emission = LightSpectrum::new(shape_spectrum, bands.min_nm, bands.max_nm).ok_or_else(|| {
+        ctx.err(&spec.span(), format!("{what}: the spectrum emits nothing within {}–{} nm", bands.min_nm, bands.max_nm))
+    })?;
     let mut light = match kind {
         "area" => Light::Area(area(ctx, l, &span, &what, emission)?),
         "point" => {
-            let position = ctx.vec3(
-                ctx.require(&l.position, "position", &span, &what)?,
-                "position",
-            )?;
+            let position = ctx.vec3(ctx.require(&l.position, "position", &span, &what)?, "position")?;
             Light::Point(PointLight { position, emission })
         }
         "spot" => Light::Spot(spot(ctx, l, &span, &what, emission)?),
         _ => {
-            let dir = ctx.direction(
-                ctx.require(&l.direction, "direction", &span, &what)?,
-                "direction",
-            )?;
+            let dir = ctx.direction(ctx.require(&l.direction, "direction", &span, &what)?, "direction")?;
             if bounds.is_empty() {
-                return Err(ctx.err(&span, format!("{what}: a directional light needs geometry to light; the scene has no shapes")));
+                return Err(ctx.err(
+                    &span,
+                    format!("{what}: a directional light needs geometry to light; the scene has no shapes"),
+                ));
             }
             let scene_radius = (0.5 * bounds.diagonal().length()).max(1e-6);
-            Light::Directional(DirectionalLight {
-                dir,
-                scene_centre: bounds.centre(),
-                scene_radius,
-                emission,
-            })
+            Light::Directional(DirectionalLight { dir, scene_centre: bounds.centre(), scene_radius, emission })
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;
-    Ok(NamedLight {
-        name,
-        light,
-        material: l.material.clone(),
-    })
+    Ok(NamedLight { name, light, material: l.material.clone() })
 }
 
 /// Scales the light's spectrum to the absolute level the record asks for: k = scale, or
@@ -129,20 +86,11 @@ fn set_level(
     light: &mut Light,
     bands: &Bands,
 ) -> R<()> {
-    let given: Vec<&Spanned<f64>> = [&l.power_w, &l.scale, &l.irradiance_w_m2]
-        .into_iter()
-        .flatten()
-        .collect();
+    let given: Vec<&Spanned<f64>> = [&l.power_w, &l.scale, &l.irradiance_w_m2].into_iter().flatten().collect();
     if given.len() != 1 {
-        let options = if matches!(light, Light::Directional(_)) {
-            "irradiance_w_m2 or scale"
-        } else {
-            "power_w or scale"
-        };
-        return Err(ctx.err(
-            span,
-            format!("{what}: give exactly one of {options} to set the light's level"),
-        ));
+        let options =
+            if matches!(light, Light::Directional(_)) { "irradiance_w_m2 or scale" } else { "power_w or scale" };
+        return Err(ctx.err(span, format!("{what}: give exactly one of {options} to set the light's level")));
     }
     let v = given[0];
     let x = ctx.number(v, "light level", 0.0, f64::INFINITY, true)?;
@@ -154,19 +102,12 @@ fn set_level(
         x / light.power_w()
     };
     let emission = emission_mut(light);
-    let scaled = LightSpectrum::new(
-        emission.spectrum.clone().scaled(k),
-        bands.min_nm,
-        bands.max_nm,
-    )
-    .ok_or_else(|| ctx.err(&v.span(), format!("{what}: level {x} gives no emission")))?;
+    let scaled = LightSpectrum::new(emission.spectrum.clone().scaled(k), bands.min_nm, bands.max_nm)
+        .ok_or_else(|| ctx.err(&v.span(), format!("{what}: level {x} gives no emission")))?;
     *emission = scaled;
     let power = light.power_w();
     if !(power.is_finite() && power > 0.0) {
-        return Err(ctx.err(
-            &v.span(),
-            format!("{what}: the light's power {power} W is not a positive finite number"),
-        ));
+        return Err(ctx.err(&v.span(), format!("{what}: the light's power {power} W is not a positive finite number")));
     }
     Ok(())
 }
@@ -180,13 +121,7 @@ fn emission_mut(light: &mut Light) -> &mut LightSpectrum {
     }
 }
 
-fn area(
-    ctx: &Ctx,
-    l: &RawLight,
-    span: &std::ops::Range<usize>,
-    what: &str,
-    emission: LightSpectrum,
-) -> R<AreaLight> {
+fn area(ctx: &Ctx, l: &RawLight, span: &std::ops::Range<usize>, what: &str, emission: LightSpectrum) -> R<AreaLight> {
     let shape_kind = ctx.choice(
         ctx.require(&l.shape, "shape", span, what)?,
         &format!("{what}: shape"),
@@ -195,57 +130,28 @@ fn area(
     let fields = present_fields!(l; center, radius, normal, origin, u, v);
     let shape = match shape_kind {
         "quad" => {
-            ctx.only(
-                &fields,
-                &["origin", "u", "v"],
-                &format!("{what} with shape \"quad\""),
-            )?;
+            ctx.only(&fields, &["origin", "u", "v"], &format!("{what} with shape \"quad\""))?;
             let origin = ctx.vec3(ctx.require(&l.origin, "origin", span, what)?, "origin")?;
             let u = ctx.vec3(ctx.require(&l.u, "u", span, what)?, "u")?;
             let v = ctx.vec3(ctx.require(&l.v, "v", span, what)?, "v")?;
             if u.cross(v).length_squared() == 0.0 {
-                return Err(ctx.err(
-                    span,
-                    format!("{what}: edges u and v are parallel or zero; the light has no area"),
-                ));
+                return Err(ctx.err(span, format!("{what}: edges u and v are parallel or zero; the light has no area")));
             }
             Shape::Quad(Quad { origin, u, v })
         }
         "disk" => {
-            ctx.only(
-                &fields,
-                &["center", "radius", "normal"],
-                &format!("{what} with shape \"disk\""),
-            )?;
+            ctx.only(&fields, &["center", "radius", "normal"], &format!("{what} with shape \"disk\""))?;
             let center = ctx.vec3(ctx.require(&l.center, "center", span, what)?, "center")?;
-            let radius = ctx.number(
-                ctx.require(&l.radius, "radius", span, what)?,
-                "radius",
-                0.0,
-                f64::INFINITY,
-                true,
-            )?;
+            let radius =
+                ctx.number(ctx.require(&l.radius, "radius", span, what)?, "radius", 0.0, f64::INFINITY, true)?;
             let normal = ctx.direction(ctx.require(&l.normal, "normal", span, what)?, "normal")?;
-            Shape::Disk(Disk {
-                center,
-                normal,
-                radius,
-            })
+            Shape::Disk(Disk { center, normal, radius })
         }
         _ => {
-            ctx.only(
-                &fields,
-                &["center", "radius"],
-                &format!("{what} with shape \"sphere\""),
-            )?;
+            ctx.only(&fields, &["center", "radius"], &format!("{what} with shape \"sphere\""))?;
             let center = ctx.vec3(ctx.require(&l.center, "center", span, what)?, "center")?;
-            let radius = ctx.number(
-                ctx.require(&l.radius, "radius", span, what)?,
-                "radius",
-                0.0,
-                f64::INFINITY,
-                true,
-            )?;
+            let radius =
+                ctx.number(ctx.require(&l.radius, "radius", span, what)?, "radius", 0.0, f64::INFINITY, true)?;
             Shape::Sphere(Sphere { center, radius })
         }
     };
@@ -257,24 +163,11 @@ fn area(
             _ => Side::Front,
         },
     };
-    Ok(AreaLight {
-        shape,
-        side,
-        emission,
-    })
+    Ok(AreaLight { shape, side, emission })
 }
 
-fn spot(
-    ctx: &Ctx,
-    l: &RawLight,
-    span: &std::ops::Range<usize>,
-    what: &str,
-    emission: LightSpectrum,
-) -> R<SpotLight> {
-    let position = ctx.vec3(
-        ctx.require(&l.position, "position", span, what)?,
-        "position",
-    )?;
+fn spot(ctx: &Ctx, l: &RawLight, span: &std::ops::Range<usize>, what: &str, emission: LightSpectrum) -> R<SpotLight> {
+    let position = ctx.vec3(ctx.require(&l.position, "position", span, what)?, "position")?;
     let axis = match (&l.direction, &l.look_at) {
         (Some(d), None) => ctx.direction(d, "direction")?,
         (None, Some(t)) => {
@@ -286,28 +179,13 @@ fn spot(
             d.normalize()
         }
         _ => {
-            return Err(ctx.err(
-                span,
-                format!("{what}: give exactly one of direction or look_at"),
-            ));
+            return Err(ctx.err(span, format!("{what}: give exactly one of direction or look_at")));
         }
     };
-    let cone = ctx.number(
-        ctx.require(&l.cone_deg, "cone_deg", span, what)?,
-        "cone_deg",
-        0.0,
-        180.0,
-        true,
-    )?;
+    let cone = ctx.number(ctx.require(&l.cone_deg, "cone_deg", span, what)?, "cone_deg", 0.0, 180.0, true)?;
     let start = match &l.falloff_start_deg {
         None => cone,
         Some(v) => ctx.number(v, "falloff_start_deg", 0.0, cone, false)?,
     };
-    Ok(SpotLight {
-        position,
-        axis,
-        cos_total: cone.to_radians().cos(),
-        cos_start: start.to_radians().cos(),
-        emission,
-    })
+    Ok(SpotLight { position, axis, cos_total: cone.to_radians().cos(), cos_start: start.to_radians().cos(), emission })
 }

@@ -23,10 +23,7 @@ pub fn material(
     let span = rec.span();
     let m = rec.get_ref();
     let owner = format!("material #{}", index + 1);
-    let name = ctx
-        .require(&m.name, "name", &span, &owner)?
-        .get_ref()
-        .clone();
+    let name = ctx.require(&m.name, "name", &span, &owner)?.get_ref().clone();
     let what = format!("material \"{name}\"");
     let kind = ctx.choice(
         ctx.require(&m.kind, "type", &span, &what)?,
@@ -39,22 +36,14 @@ pub fn material(
         "lambertian" | "mirror" => {
             ctx.only(&present, &["reflectance"], &format!("{what} ({kind})"))?;
             let r = ctx.require(&m.reflectance, "reflectance", &span, &what)?;
-            let reflectance = lib.parse(
-                ctx,
-                r,
-                &format!("{what}: reflectance"),
-                Use::Reflectance,
-                range,
-            )?;
+            let reflectance = lib.parse(ctx, r, &format!("{what}: reflectance"), Use::Reflectance, range)?;
             if kind == "mirror" {
                 Material::Mirror(Mirror { reflectance })
             } else {
                 Material::Lambertian(Lambertian { reflectance })
             }
         }
-        _ => Material::Dielectric(Dielectric {
-            ior: ior(ctx, m, &span, &what, &present, bands)?,
-        }),
+        _ => Material::Dielectric(Dielectric { ior: ior(ctx, m, &span, &what, &present, bands)? }),
     };
     Ok(NamedMaterial { name, material })
 }
@@ -70,19 +59,12 @@ fn ior(
     bands: &Bands,
 ) -> R<Ior> {
     let model = match (&m.ior_model, &m.ior) {
-        (Some(model), _) => ctx.choice(
-            model,
-            &format!("{what}: ior_model"),
-            &["constant", "cauchy", "sellmeier"],
-        )?,
+        (Some(model), _) => ctx.choice(model, &format!("{what}: ior_model"), &["constant", "cauchy", "sellmeier"])?,
         (None, Some(_)) => "constant",
         (None, None) => {
-            return Err(ctx.err(
-                span,
-                format!(
-                    "{what} (dielectric): needs `ior` (a number or a glass name) or `ior_model`"
-                ),
-            ));
+            return Err(
+                ctx.err(span, format!("{what} (dielectric): needs `ior` (a number or a glass name) or `ior_model`"))
+            );
         }
     };
     let dwhat = format!("{what} (dielectric, ior_model \"{model}\")");
@@ -95,32 +77,23 @@ fn ior(
         "cauchy" => {
             ctx.only(present, &["ior_model", "a", "b_um2", "c_um4"], &dwhat)?;
             let (Some(a), Some(b)) = (&m.a, &m.b_um2) else {
-                return Err(ctx.err(span, format!("{what}: ior_model \"cauchy\" needs both a and b_um2 (n = a + b/λ² + c/λ⁴, λ in μm)")));
+                return Err(ctx.err(
+                    span,
+                    format!("{what}: ior_model \"cauchy\" needs both a and b_um2 (n = a + b/λ² + c/λ⁴, λ in μm)"),
+                ));
             };
             let c = m.c_um4.as_ref().map_or(0.0, |c| *c.get_ref());
-            Ior::Cauchy {
-                a: *a.get_ref(),
-                b_um2: *b.get_ref(),
-                c_um4: c,
-            }
+            Ior::Cauchy { a: *a.get_ref(), b_um2: *b.get_ref(), c_um4: c }
         }
         _ => {
-            ctx.only(
-                present,
-                &["ior_model", "sellmeier_b", "sellmeier_c_um2"],
-                &dwhat,
-            )?;
+            ctx.only(present, &["ior_model", "sellmeier_b", "sellmeier_c_um2"], &dwhat)?;
             let (Some(b), Some(c)) = (&m.sellmeier_b, &m.sellmeier_c_um2) else {
                 return Err(ctx.err(span, format!("{what}: ior_model \"sellmeier\" needs both sellmeier_b and sellmeier_c_um2 (three numbers each)")));
             };
-            Ior::Sellmeier {
-                b: *b.get_ref(),
-                c_um2: *c.get_ref(),
-            }
+            Ior::Sellmeier { b: *b.get_ref(), c_um2: *c.get_ref() }
         }
     };
-    ior.validate(bands.min_nm, bands.max_nm)
-        .map_err(|e| ctx.err(span, format!("{what}: {e}")))?;
+    ior.validate(bands.min_nm, bands.max_nm).map_err(|e| ctx.err(span, format!("{what}: {e}")))?;
     Ok(ior)
 }
 
@@ -137,9 +110,6 @@ fn constant_or_glass(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Ior> {
                 ),
             )
         }),
-        _ => Err(ctx.err(
-            &v.span(),
-            format!("{what}: ior must be a number or a glass name"),
-        )),
+        _ => Err(ctx.err(&v.span(), format!("{what}: ior must be a number or a glass name"))),
     }
 }

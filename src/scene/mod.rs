@@ -13,10 +13,7 @@ mod shapes;
 mod spectrum_spec;
 
 pub use plan::{Decision, EffectPlan};
-pub use settings::{
-    DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, OutputSettings,
-    WavelengthSampling,
-};
+pub use settings::{DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, OutputSettings, WavelengthSampling};
 pub use spectrum_spec::parse_two_column_csv;
 
 use crate::error::{Error, Location, Result};
@@ -64,17 +61,12 @@ pub struct Scene {
 impl Scene {
     /// The material of primitive `prim`, if it has one.
     pub fn material_of(&self, prim: u32) -> Option<&Material> {
-        self.prims[prim as usize]
-            .material
-            .map(|m| &self.materials[m as usize])
+        self.prims[prim as usize].material.map(|m| &self.materials[m as usize])
     }
 
     /// The area light that primitive `prim` emits as, if any.
     pub fn area_light_of(&self, prim: u32) -> Option<&AreaLight> {
-        match self.prims[prim as usize]
-            .light
-            .map(|l| &self.lights[l as usize])
-        {
+        match self.prims[prim as usize].light.map(|l| &self.lights[l as usize]) {
             Some(Light::Area(a)) => Some(a),
             _ => None,
         }
@@ -101,29 +93,16 @@ impl Scene {
 
     /// A short label for messages and reports: the file path or "default scene".
     pub fn label(&self) -> String {
-        self.file.as_ref().map_or_else(
-            || "<embedded default scene>".to_string(),
-            |p| p.display().to_string(),
-        )
+        self.file.as_ref().map_or_else(|| "<embedded default scene>".to_string(), |p| p.display().to_string())
     }
 }
 
 /// Loads and validates a scene file.
 pub fn load_scene_file(path: &Path) -> Result<Scene> {
-    let source = std::fs::read_to_string(path).map_err(|e| {
-        Error::input(
-            Some(Location::file(path)),
-            format!("cannot read scene file: {e}"),
-        )
-    })?;
-    let dir = path
-        .parent()
-        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    let stem = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("scene")
-        .to_string();
+    let source = std::fs::read_to_string(path)
+        .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read scene file: {e}")))?;
+    let dir = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene").to_string();
     let mut scene = load_scene_str(&source, path, &dir, &stem)?;
     scene.file = Some(path.to_path_buf());
     Ok(scene)
@@ -131,12 +110,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene> {
 
 /// The embedded default scene.
 pub fn default_scene() -> Result<Scene> {
-    load_scene_str(
-        DEFAULT_SCENE,
-        Path::new("<embedded default scene>"),
-        Path::new("."),
-        "default",
-    )
+    load_scene_str(DEFAULT_SCENE, Path::new("<embedded default scene>"), Path::new("."), "default")
 }
 
 /// Validates scene text. `file` names it in errors, `dir` resolves relative paths, and
@@ -154,14 +128,8 @@ fn toml_error(ctx: &Ctx, e: &toml::de::Error) -> Error {
     };
     let loc = ctx.loc(&span);
     // Name the key written on the offending line, since serde's type errors do not.
-    let line = loc
-        .line
-        .and_then(|l| ctx.source.lines().nth(l - 1))
-        .unwrap_or("");
-    let key = line
-        .split_once('=')
-        .map(|(k, _)| k.trim())
-        .filter(|k| !k.is_empty() && !k.starts_with('['));
+    let line = loc.line.and_then(|l| ctx.source.lines().nth(l - 1)).unwrap_or("");
+    let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
     let message = match key {
         Some(k) if !message.contains(&format!("`{k}`")) => format!("field `{k}`: {message}"),
         _ => message,
@@ -172,21 +140,13 @@ fn toml_error(ctx: &Ctx, e: &toml::de::Error) -> Error {
 fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let camera = settings::camera(ctx, &raw.camera)?;
     let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name)?;
-    let lib = SpectrumLibrary {
-        named: &raw.spectra,
-    };
+    let lib = SpectrumLibrary { named: &raw.spectra };
     let mut material_names: Vec<String> = Vec::new();
     let mut materials = Vec::new();
     for (i, rec) in raw.material.iter().enumerate() {
         let m = materials::material(ctx, &lib, rec, i, &bands)?;
         if material_names.contains(&m.name) {
-            return Err(ctx.err(
-                &rec.span(),
-                format!(
-                    "material \"{}\" is defined twice; names must be unique",
-                    m.name
-                ),
-            ));
+            return Err(ctx.err(&rec.span(), format!("material \"{}\" is defined twice; names must be unique", m.name)));
         }
         material_names.push(m.name);
         materials.push(m.material);
@@ -197,15 +157,11 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         let group = shapes::shape(ctx, rec, i)?;
         let m = material_index(ctx, &material_names, &group.material, &group.name)?;
         for s in &group.shapes {
-            s.check()
-                .map_err(|e| ctx.err(&rec.span(), format!("{}: {e}", group.name)))?;
+            s.check().map_err(|e| ctx.err(&rec.span(), format!("{}: {e}", group.name)))?;
         }
         for s in group.shapes {
             shapes.push(s);
-            prims.push(Prim {
-                material: Some(m),
-                light: None,
-            });
+            prims.push(Prim { material: Some(m), light: None });
         }
     }
     let geometry_bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
@@ -216,18 +172,10 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         if let Light::Area(a) = &l.light {
             let material = match &l.material {
                 None => None,
-                Some(m) => Some(material_index(
-                    ctx,
-                    &material_names,
-                    m,
-                    &format!("light \"{}\"", l.name),
-                )?),
+                Some(m) => Some(material_index(ctx, &material_names, m, &format!("light \"{}\"", l.name))?),
             };
             shapes.push(a.shape.clone());
-            prims.push(Prim {
-                material,
-                light: Some(i as u32),
-            });
+            prims.push(Prim { material, light: Some(i as u32) });
         }
         light_names.push(l.name);
         lights.push(l.light);
@@ -240,14 +188,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     }
     let bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
-    let plan = decide_plan(
-        &materials,
-        &material_names,
-        &prims,
-        &integrator,
-        sampling,
-        bands.count,
-    );
+    let plan = decide_plan(&materials, &material_names, &prims, &integrator, sampling, bands.count);
     let bvh = Bvh::build(&shapes);
     Ok(Scene {
         file: None,
@@ -280,41 +221,17 @@ fn decide_plan(
         .filter(|m| prims.iter().any(|p| p.material == Some(*m as u32)))
         .map(|m| (names[m].as_str(), &materials[m]))
         .collect();
-    let facts = plan::SceneFacts {
-        used_materials: used,
-        sampling,
-        bands,
-    };
+    let facts = plan::SceneFacts { used_materials: used, sampling, bands };
     EffectPlan::decide(&facts, integrator)
 }
 
 /// Index of the material a record refers to, or an error at the reference.
-fn material_index(
-    ctx: &Ctx,
-    names: &[String],
-    name: &toml::Spanned<String>,
-    owner: &str,
-) -> Result<u32> {
-    names
-        .iter()
-        .position(|n| n == name.get_ref())
-        .map(|i| i as u32)
-        .ok_or_else(|| {
-            ctx.err(
-                &name.span(),
-                format!(
-                    "{owner}: no material named \"{}\"; defined: {}",
-                    name.get_ref(),
-                    list(names)
-                ),
-            )
-        })
+fn material_index(ctx: &Ctx, names: &[String], name: &toml::Spanned<String>, owner: &str) -> Result<u32> {
+    names.iter().position(|n| n == name.get_ref()).map(|i| i as u32).ok_or_else(|| {
+        ctx.err(&name.span(), format!("{owner}: no material named \"{}\"; defined: {}", name.get_ref(), list(names)))
+    })
 }
 
 fn list(names: &[String]) -> String {
-    if names.is_empty() {
-        "none".to_string()
-    } else {
-        names.join(", ")
-    }
+    if names.is_empty() { "none".to_string() } else { names.join(", ") }
 }

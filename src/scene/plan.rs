@@ -15,16 +15,10 @@ pub struct Decision {
 
 impl Decision {
     fn on(why: impl Into<String>) -> Decision {
-        Decision {
-            on: true,
-            why: why.into(),
-        }
+        Decision { on: true, why: why.into() }
     }
     fn off(why: impl Into<String>) -> Decision {
-        Decision {
-            on: false,
-            why: why.into(),
-        }
+        Decision { on: false, why: why.into() }
     }
 }
 
@@ -56,21 +50,9 @@ pub struct SceneFacts<'a> {
 
 impl EffectPlan {
     pub fn decide(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
-        let diffuse = facts
-            .used_materials
-            .iter()
-            .find(|(_, m)| m.is_diffuse())
-            .map(|(n, _)| *n);
-        let specular = facts
-            .used_materials
-            .iter()
-            .find(|(_, m)| m.is_specular())
-            .map(|(n, _)| *n);
-        let dispersive = facts
-            .used_materials
-            .iter()
-            .find(|(_, m)| m.is_dispersive())
-            .map(|(n, _)| *n);
+        let diffuse = facts.used_materials.iter().find(|(_, m)| m.is_diffuse()).map(|(n, _)| *n);
+        let specular = facts.used_materials.iter().find(|(_, m)| m.is_specular()).map(|(n, _)| *n);
+        let dispersive = facts.used_materials.iter().find(|(_, m)| m.is_dispersive()).map(|(n, _)| *n);
         let photon_direct = s.direct == DirectLighting::PhotonMap;
         let global_map = match (diffuse, s.photons) {
             (None, _) => Decision::off("no diffuse surface in the scene stores photons"),
@@ -78,48 +60,37 @@ impl EffectPlan {
             (Some(d), _) if photon_direct => Decision::on(format!(
                 "direct = \"photon_map\": all light on diffuse surfaces (e.g. \"{d}\") comes from the global map"
             )),
-            (Some(d), _) => {
-                Decision::on(format!("diffuse material \"{d}\" receives indirect light"))
-            }
+            (Some(d), _) => Decision::on(format!("diffuse material \"{d}\" receives indirect light")),
         };
         let caustic_map = match (diffuse, specular) {
-            _ if photon_direct => {
-                Decision::off("direct = \"photon_map\": caustics are part of the global map")
-            }
+            _ if photon_direct => Decision::off("direct = \"photon_map\": caustics are part of the global map"),
             (None, _) => Decision::off("no diffuse surface to receive caustics"),
             (_, None) => Decision::off("no specular surface (mirror or glass) can focus light"),
             _ if s.caustic_photons == 0 => Decision::off("[integrator] caustic_photons = 0"),
-            (Some(d), Some(sp)) => Decision::on(format!(
-                "specular material \"{sp}\" can focus light onto diffuse \"{d}\""
-            )),
+            (Some(d), Some(sp)) => {
+                Decision::on(format!("specular material \"{sp}\" can focus light onto diffuse \"{d}\""))
+            }
         };
         let shadow_rays = match diffuse {
             None => Decision::off("no diffuse surface to light"),
             Some(_) if photon_direct => Decision::off("direct = \"photon_map\""),
-            Some(_) => Decision::on(
-                "direct = \"shadow_rays\": direct light on diffuse surfaces by shadow rays",
-            ),
+            Some(_) => Decision::on("direct = \"shadow_rays\": direct light on diffuse surfaces by shadow rays"),
         };
         let final_gather = match (s.final_gather, global_map.on) {
-            (true, true) => Decision::on(format!(
-                "{} gather rays per shading point read the global map",
-                s.gather_rays
-            )),
+            (true, true) => {
+                Decision::on(format!("{} gather rays per shading point read the global map", s.gather_rays))
+            }
             (true, false) => Decision::off("no global map to gather from"),
             (false, _) if photon_direct => {
                 Decision::off("direct = \"photon_map\": the global map is visualised directly")
             }
-            (false, _) => Decision::off(
-                "final_gather = false: indirect light read directly from the global map",
-            ),
+            (false, _) => Decision::off("final_gather = false: indirect light read directly from the global map"),
         };
         let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
         let dispersion_splitting = match (dispersive, multi) {
             (None, _) => Decision::off("no material's refractive index depends on wavelength"),
             (Some(_), false) => Decision::off("a single band: every path carries one wavelength"),
-            (Some(m), true) => Decision::on(format!(
-                "material \"{m}\" refracts each wavelength differently"
-            )),
+            (Some(m), true) => Decision::on(format!("material \"{m}\" refracts each wavelength differently")),
         };
         EffectPlan {
             global_map,
@@ -153,13 +124,7 @@ impl EffectPlan {
 impl std::fmt::Display for EffectPlan {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         for (name, d) in self.entries() {
-            writeln!(
-                f,
-                "  {:<22} {:<3}  {}",
-                name,
-                if d.on { "on" } else { "off" },
-                d.why
-            )?;
+            writeln!(f, "  {:<22} {:<3}  {}", name, if d.on { "on" } else { "off" }, d.why)?;
         }
         Ok(())
     }

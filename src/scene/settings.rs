@@ -79,49 +79,21 @@ pub fn camera(ctx: &Ctx, c: &Spanned<RawCamera>) -> R<Camera> {
     let span = c.span();
     let c = c.get_ref();
     let what = "[camera]";
-    let position = ctx.vec3(
-        ctx.require(&c.position, "position", &span, what)?,
-        "camera position",
-    )?;
-    let look_at = ctx.vec3(
-        ctx.require(&c.look_at, "look_at", &span, what)?,
-        "camera look_at",
-    )?;
+    let position = ctx.vec3(ctx.require(&c.position, "position", &span, what)?, "camera position")?;
+    let look_at = ctx.vec3(ctx.require(&c.look_at, "look_at", &span, what)?, "camera look_at")?;
     let up = match &c.up {
         Some(u) => ctx.direction(u, "camera up")?,
         None => glam::DVec3::Y,
     };
-    let fov = ctx.number(
-        ctx.require(&c.fov_deg, "fov_deg", &span, what)?,
-        "fov_deg",
-        0.0,
-        180.0,
-        true,
-    )?;
-    let width = ctx.integer(
-        ctx.require(&c.width, "width", &span, what)?,
-        "width",
-        1,
-        16384,
-    )? as usize;
-    let height = ctx.integer(
-        ctx.require(&c.height, "height", &span, what)?,
-        "height",
-        1,
-        16384,
-    )? as usize;
+    let fov = ctx.number(ctx.require(&c.fov_deg, "fov_deg", &span, what)?, "fov_deg", 0.0, 180.0, true)?;
+    let width = ctx.integer(ctx.require(&c.width, "width", &span, what)?, "width", 1, 16384)? as usize;
+    let height = ctx.integer(ctx.require(&c.height, "height", &span, what)?, "height", 1, 16384)? as usize;
     let forward = look_at - position;
     if forward.length_squared() == 0.0 {
-        return Err(ctx.err(
-            &span,
-            "[camera]: look_at equals position; the camera needs a viewing direction",
-        ));
+        return Err(ctx.err(&span, "[camera]: look_at equals position; the camera needs a viewing direction"));
     }
     if forward.normalize().cross(up).length() < 1e-9 {
-        return Err(ctx.err(
-            &span,
-            "[camera]: up is parallel to the viewing direction; choose another up",
-        ));
+        return Err(ctx.err(&span, "[camera]: up is parallel to the viewing direction; choose another up"));
     }
     Ok(Camera::new(position, look_at, up, fov, width, height))
 }
@@ -134,29 +106,16 @@ pub fn output(
 ) -> R<(OutputSettings, Bands, WavelengthSampling)> {
     let Some(o) = o else {
         let bands = Bands::new(380.0, 780.0, 16).map_err(crate::error::Error::internal)?;
-        let out = OutputSettings {
-            name: default_name.into(),
-            exr: true,
-            png: true,
-            csv: false,
-            exposure: Exposure::Auto,
-        };
+        let out =
+            OutputSettings { name: default_name.into(), exr: true, png: true, csv: false, exposure: Exposure::Auto };
         return Ok((out, bands, WavelengthSampling::Bands));
     };
     let span = o.span();
     let o = o.get_ref();
-    let min_nm = o.min_nm.as_ref().map_or(Ok(380.0), |v| {
-        ctx.number(v, "min_nm", 0.0, f64::INFINITY, true)
-    })?;
-    let max_nm = o.max_nm.as_ref().map_or(Ok(780.0), |v| {
-        ctx.number(v, "max_nm", 0.0, f64::INFINITY, true)
-    })?;
-    let count = o
-        .bands
-        .as_ref()
-        .map_or(Ok(16), |v| ctx.integer(v, "bands", 1, MAX_BANDS as i64))? as usize;
-    let bands =
-        Bands::new(min_nm, max_nm, count).map_err(|e| ctx.err(&span, format!("[output]: {e}")))?;
+    let min_nm = o.min_nm.as_ref().map_or(Ok(380.0), |v| ctx.number(v, "min_nm", 0.0, f64::INFINITY, true))?;
+    let max_nm = o.max_nm.as_ref().map_or(Ok(780.0), |v| ctx.number(v, "max_nm", 0.0, f64::INFINITY, true))?;
+    let count = o.bands.as_ref().map_or(Ok(16), |v| ctx.integer(v, "bands", 1, MAX_BANDS as i64))? as usize;
+    let bands = Bands::new(min_nm, max_nm, count).map_err(|e| ctx.err(&span, format!("[output]: {e}")))?;
     let sampling = match &o.sampling {
         None => WavelengthSampling::Bands,
         Some(s) => match ctx.choice(s, "sampling", &["bands", "hero"])? {
@@ -173,31 +132,19 @@ pub fn output(
         Some(e) => exposure(ctx, e)?,
     };
     let flag = |f: &Option<Spanned<bool>>, d: bool| f.as_ref().map_or(d, |v| *v.get_ref());
-    let out = OutputSettings {
-        name,
-        exr: flag(&o.exr, true),
-        png: flag(&o.png, true),
-        csv: flag(&o.csv, false),
-        exposure,
-    };
+    let out =
+        OutputSettings { name, exr: flag(&o.exr, true), png: flag(&o.png, true), csv: flag(&o.csv, false), exposure };
     Ok((out, bands, sampling))
 }
 
 fn valid_name(ctx: &Ctx, n: &Spanned<String>) -> R<String> {
     let s = n.get_ref();
-    let ok = !s.is_empty()
-        && s.chars()
-            .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
-        && !s.starts_with('.');
+    let ok = !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c)) && !s.starts_with('.');
     if ok {
         Ok(s.clone())
     } else {
-        Err(ctx.err(
-            &n.span(),
-            format!(
-                "[output] name \"{s}\" must be a plain file stem: letters, digits, '-', '_', '.'"
-            ),
-        ))
+        Err(ctx
+            .err(&n.span(), format!("[output] name \"{s}\" must be a plain file stem: letters, digits, '-', '_', '.'")))
     }
 }
 
@@ -206,19 +153,12 @@ fn exposure(ctx: &Ctx, e: &Spanned<Value>) -> R<Exposure> {
         Value::String(s) if s == "auto" => Ok(Exposure::Auto),
         Value::Float(x) if x.is_finite() => Ok(Exposure::Ev(*x)),
         Value::Integer(i) => Ok(Exposure::Ev(*i as f64)),
-        _ => Err(ctx.err(
-            &e.span(),
-            "[output] exposure must be \"auto\" or a number of stops (EV)",
-        )),
+        _ => Err(ctx.err(&e.span(), "[output] exposure must be \"auto\" or a number of stops (EV)")),
     }
 }
 
 /// Integrator settings; automatic radii are fractions of the scene's bounding diagonal.
-pub fn integrator(
-    ctx: &Ctx,
-    i: Option<&Spanned<RawIntegrator>>,
-    bounds: &Aabb,
-) -> R<IntegratorSettings> {
+pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) -> R<IntegratorSettings> {
     let diag = bounds.diagonal().length().max(1e-9);
     let mut s = IntegratorSettings {
         photons: 200_000,
@@ -241,22 +181,10 @@ pub fn integrator(
         v.as_ref().map_or(Ok(d), |v| ctx.integer(v, name, lo, hi))
     };
     s.photons = int(&r.photons, "photons", 0, 1 << 40, s.photons as i64)? as u64;
-    s.caustic_photons = int(
-        &r.caustic_photons,
-        "caustic_photons",
-        0,
-        1 << 40,
-        s.caustic_photons as i64,
-    )? as u64;
+    s.caustic_photons = int(&r.caustic_photons, "caustic_photons", 0, 1 << 40, s.caustic_photons as i64)? as u64;
     s.k = int(&r.k, "k", 1, 100_000, s.k as i64)? as usize;
     s.caustic_k = int(&r.caustic_k, "caustic_k", 1, 100_000, s.caustic_k as i64)? as usize;
-    s.gather_rays = int(
-        &r.gather_rays,
-        "gather_rays",
-        1,
-        1 << 20,
-        s.gather_rays as i64,
-    )? as usize;
+    s.gather_rays = int(&r.gather_rays, "gather_rays", 1, 1 << 20, s.gather_rays as i64)? as usize;
     s.spp = int(&r.spp, "spp", 1, 1 << 20, s.spp as i64)? as usize;
     s.max_depth = int(&r.max_depth, "max_depth", 1, 1000, s.max_depth as i64)? as usize;
     s.seed = int(&r.seed, "seed", 0, i64::MAX, s.seed as i64)? as u64;
@@ -294,13 +222,10 @@ fn filter(ctx: &Ctx, r: &RawIntegrator) -> R<Filter> {
     };
     match (kind, &r.cone_k) {
         ("cone", None) => Ok(Filter::Cone { k: 1.1 }),
-        ("cone", Some(k)) => Ok(Filter::Cone {
-            k: ctx.number(k, "cone_k", 1.0, f64::INFINITY, false)?,
-        }),
-        (_, Some(k)) => Err(ctx.err(
-            &k.span(),
-            format!("[integrator]: cone_k is only used with filter = \"cone\", not \"{kind}\""),
-        )),
+        ("cone", Some(k)) => Ok(Filter::Cone { k: ctx.number(k, "cone_k", 1.0, f64::INFINITY, false)? }),
+        (_, Some(k)) => {
+            Err(ctx.err(&k.span(), format!("[integrator]: cone_k is only used with filter = \"cone\", not \"{kind}\"")))
+        }
         ("epanechnikov", None) => Ok(Filter::Epanechnikov),
         _ => Ok(Filter::Box),
     }

@@ -21,15 +21,9 @@ const KINDS: &[&str] = &["sphere", "quad", "box", "disk", "triangle", "mesh"];
 pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> {
     let span = rec.span();
     let s = rec.get_ref();
-    let name = s.name.as_ref().map_or_else(
-        || format!("shape #{}", index + 1),
-        |n| format!("shape \"{}\"", n.get_ref()),
-    );
-    let kind = ctx.choice(
-        ctx.require(&s.kind, "type", &span, &name)?,
-        &format!("{name}: type"),
-        KINDS,
-    )?;
+    let name =
+        s.name.as_ref().map_or_else(|| format!("shape #{}", index + 1), |n| format!("shape \"{}\"", n.get_ref()));
+    let kind = ctx.choice(ctx.require(&s.kind, "type", &span, &name)?, &format!("{name}: type"), KINDS)?;
     let what = format!("{name} ({kind})");
     let material = ctx.require(&s.material, "material", &span, &what)?;
     let present = present_fields!(s; center, radius, normal, origin, u, v, min, max, vertices, file, scale, translate, rotate_y_deg);
@@ -37,32 +31,17 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
         "sphere" => {
             ctx.only(&present, &["center", "radius"], &what)?;
             let center = ctx.vec3(ctx.require(&s.center, "center", &span, &what)?, "center")?;
-            let radius = ctx.number(
-                ctx.require(&s.radius, "radius", &span, &what)?,
-                "radius",
-                0.0,
-                f64::INFINITY,
-                true,
-            )?;
+            let radius =
+                ctx.number(ctx.require(&s.radius, "radius", &span, &what)?, "radius", 0.0, f64::INFINITY, true)?;
             vec![Shape::Sphere(Sphere { center, radius })]
         }
         "disk" => {
             ctx.only(&present, &["center", "radius", "normal"], &what)?;
             let center = ctx.vec3(ctx.require(&s.center, "center", &span, &what)?, "center")?;
-            let radius = ctx.number(
-                ctx.require(&s.radius, "radius", &span, &what)?,
-                "radius",
-                0.0,
-                f64::INFINITY,
-                true,
-            )?;
-            let normal =
-                ctx.direction(ctx.require(&s.normal, "normal", &span, &what)?, "normal")?;
-            vec![Shape::Disk(Disk {
-                center,
-                normal,
-                radius,
-            })]
+            let radius =
+                ctx.number(ctx.require(&s.radius, "radius", &span, &what)?, "radius", 0.0, f64::INFINITY, true)?;
+            let normal = ctx.direction(ctx.require(&s.normal, "normal", &span, &what)?, "normal")?;
+            vec![Shape::Disk(Disk { center, normal, radius })]
         }
         "quad" => {
             ctx.only(&present, &["origin", "u", "v"], &what)?;
@@ -74,10 +53,7 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
             let hi_field = ctx.require(&s.max, "max", &span, &what)?;
             let hi = ctx.vec3(hi_field, "max")?;
             if !(hi.cmpgt(lo).all()) {
-                return Err(ctx.err(
-                    &hi_field.span(),
-                    format!("{what}: max {hi} must exceed min {lo} on every axis"),
-                ));
+                return Err(ctx.err(&hi_field.span(), format!("{what}: max {hi} must exceed min {lo} on every axis")));
             }
             box_quads(lo, hi)
         }
@@ -86,38 +62,22 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
             let v = ctx.require(&s.vertices, "vertices", &span, &what)?;
             let p = v.get_ref();
             if p.len() != 3 || p.iter().flatten().any(|x| !x.is_finite()) {
-                return Err(ctx.err(
-                    &v.span(),
-                    format!("{what}: vertices must be three points of three finite numbers"),
-                ));
+                return Err(
+                    ctx.err(&v.span(), format!("{what}: vertices must be three points of three finite numbers"))
+                );
             }
-            let tri = [
-                DVec3::from_array(p[0]),
-                DVec3::from_array(p[1]),
-                DVec3::from_array(p[2]),
-            ];
+            let tri = [DVec3::from_array(p[0]), DVec3::from_array(p[1]), DVec3::from_array(p[2])];
             if (tri[1] - tri[0]).cross(tri[2] - tri[0]).length_squared() == 0.0 {
-                return Err(ctx.err(
-                    &v.span(),
-                    format!("{what}: the triangle is degenerate (zero area)"),
-                ));
+                return Err(ctx.err(&v.span(), format!("{what}: the triangle is degenerate (zero area)")));
             }
             vec![Shape::Triangle(Triangle { p: tri })]
         }
         _ => {
-            ctx.only(
-                &present,
-                &["file", "scale", "translate", "rotate_y_deg"],
-                &what,
-            )?;
+            ctx.only(&present, &["file", "scale", "translate", "rotate_y_deg"], &what)?;
             mesh(ctx, s, &span, &what)?
         }
     };
-    Ok(ShapeGroup {
-        name,
-        material: material.clone(),
-        shapes,
-    })
+    Ok(ShapeGroup { name, material: material.clone(), shapes })
 }
 
 fn quad(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R<Quad> {
@@ -125,10 +85,7 @@ fn quad(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R
     let u = ctx.vec3(ctx.require(&s.u, "u", span, what)?, "u")?;
     let v = ctx.vec3(ctx.require(&s.v, "v", span, what)?, "v")?;
     if u.cross(v).length_squared() == 0.0 {
-        return Err(ctx.err(
-            span,
-            format!("{what}: edges u and v are parallel or zero; the quad has no area"),
-        ));
+        return Err(ctx.err(span, format!("{what}: edges u and v are parallel or zero; the quad has no area")));
     }
     Ok(Quad { origin, u, v })
 }
@@ -136,50 +93,24 @@ fn quad(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R
 /// Six quads with outward normals (u × v points out of the box).
 pub fn box_quads(lo: DVec3, hi: DVec3) -> Vec<Shape> {
     let d = hi - lo;
-    let (x, y, z) = (
-        DVec3::new(d.x, 0.0, 0.0),
-        DVec3::new(0.0, d.y, 0.0),
-        DVec3::new(0.0, 0.0, d.z),
-    );
-    [
-        (lo, z, y),
-        (hi, -y, -z),
-        (lo, x, z),
-        (hi, -z, -x),
-        (lo, y, x),
-        (hi, -x, -y),
-    ]
-    .into_iter()
-    .map(|(origin, u, v)| Shape::Quad(Quad { origin, u, v }))
-    .collect()
+    let (x, y, z) = (DVec3::new(d.x, 0.0, 0.0), DVec3::new(0.0, d.y, 0.0), DVec3::new(0.0, 0.0, d.z));
+    [(lo, z, y), (hi, -y, -z), (lo, x, z), (hi, -z, -x), (lo, y, x), (hi, -x, -y)]
+        .into_iter()
+        .map(|(origin, u, v)| Shape::Quad(Quad { origin, u, v }))
+        .collect()
 }
 
 /// Triangles of an OBJ file, transformed by scale, then rotation about +y, then translation.
 fn mesh(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R<Vec<Shape>> {
     let file = ctx.require(&s.file, "file", span, what)?;
     let path = ctx.path(file);
-    let tris = load_obj(&path).map_err(|e| {
-        ctx.err(
-            &file.span(),
-            format!("{what}: {e}"),
-        )
-    })?;
-    let scale = s.scale.as_ref().map_or(Ok(1.0), |v| {
-        ctx.number(v, "scale", 0.0, f64::INFINITY, true)
-    })?;
-    let translate = s
-        .translate
-        .as_ref()
-        .map_or(Ok(DVec3::ZERO), |v| ctx.vec3(v, "translate"))?;
-    let angle = s.rotate_y_deg.as_ref().map_or(Ok(0.0), |v| {
-        ctx.number(v, "rotate_y_deg", -360.0, 360.0, false)
-    })?;
+    let tris = load_obj(&path).map_err(|e| ctx.err(&file.span(), format!("{what}: {e}")))?;
+    let scale = s.scale.as_ref().map_or(Ok(1.0), |v| ctx.number(v, "scale", 0.0, f64::INFINITY, true))?;
+    let translate = s.translate.as_ref().map_or(Ok(DVec3::ZERO), |v| ctx.vec3(v, "translate"))?;
+    let angle = s.rotate_y_deg.as_ref().map_or(Ok(0.0), |v| ctx.number(v, "rotate_y_deg", -360.0, 360.0, false))?;
     let rot = DMat3::from_rotation_y(angle.to_radians());
     let xf = |p: DVec3| rot * (p * scale) + translate;
-    Ok(tris
-        .into_iter()
-        .map(|t| Shape::Triangle(Triangle { p: t.p.map(xf) }))
-        .collect())
+    Ok(tris.into_iter().map(|t| Shape::Triangle(Triangle { p: t.p.map(xf) })).collect())
 }
 
 #[cfg(test)]

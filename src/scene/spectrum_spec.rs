@@ -23,16 +23,7 @@ pub enum Use {
     Emission,
 }
 
-const TABLE_KEYS: &[&str] = &[
-    "constant",
-    "blackbody_k",
-    "rgb",
-    "illuminant",
-    "nm",
-    "values",
-    "file",
-    "scale",
-];
+const TABLE_KEYS: &[&str] = &["constant", "blackbody_k", "rgb", "illuminant", "nm", "values", "file", "scale"];
 
 /// Named spectra from the scene's `[spectra]` table, parsed on first use.
 pub struct SpectrumLibrary<'a> {
@@ -41,27 +32,13 @@ pub struct SpectrumLibrary<'a> {
 
 impl SpectrumLibrary<'_> {
     /// Parses `v` for `use_` over the scene's wavelength range and checks it there.
-    pub fn parse(
-        &self,
-        ctx: &Ctx,
-        v: &Spanned<Value>,
-        what: &str,
-        use_: Use,
-        range: (f64, f64),
-    ) -> R<Spectrum> {
+    pub fn parse(&self, ctx: &Ctx, v: &Spanned<Value>, what: &str, use_: Use, range: (f64, f64)) -> R<Spectrum> {
         let s = self.parse_unchecked(ctx, v, what, use_, 0)?;
         check_range(ctx, &v.span(), &s, what, use_, range)?;
         Ok(s)
     }
 
-    fn parse_unchecked(
-        &self,
-        ctx: &Ctx,
-        v: &Spanned<Value>,
-        what: &str,
-        use_: Use,
-        depth: usize,
-    ) -> R<Spectrum> {
+    fn parse_unchecked(&self, ctx: &Ctx, v: &Spanned<Value>, what: &str, use_: Use, depth: usize) -> R<Spectrum> {
         let span = v.span();
         match v.get_ref() {
             Value::Float(x) => Ok(Spectrum::Constant(*x)),
@@ -70,39 +47,19 @@ impl SpectrumLibrary<'_> {
             Value::Table(t) => self.table(ctx, &span, t, what, use_),
             other => Err(ctx.err(
                 &span,
-                format!(
-                    "{what}: a spectrum must be a number, a name or a table, not {}",
-                    other.type_str()
-                ),
+                format!("{what}: a spectrum must be a number, a name or a table, not {}", other.type_str()),
             )),
         }
     }
 
-    fn by_name(
-        &self,
-        ctx: &Ctx,
-        span: &Range<usize>,
-        name: &str,
-        what: &str,
-        use_: Use,
-        depth: usize,
-    ) -> R<Spectrum> {
+    fn by_name(&self, ctx: &Ctx, span: &Range<usize>, name: &str, what: &str, use_: Use, depth: usize) -> R<Spectrum> {
         if let Some(def) = self.named.get(name) {
             if depth > 0 {
-                return Err(ctx.err(
-                    span,
-                    format!(
-                        "{what}: spectrum \"{name}\" refers to another name; define it directly"
-                    ),
-                ));
+                return Err(
+                    ctx.err(span, format!("{what}: spectrum \"{name}\" refers to another name; define it directly"))
+                );
             }
-            return self.parse_unchecked(
-                ctx,
-                def,
-                &format!("spectrum \"{name}\""),
-                use_,
-                depth + 1,
-            );
+            return self.parse_unchecked(ctx, def, &format!("spectrum \"{name}\""), use_, depth + 1);
         }
         if let Some(s) = named_illuminant(name) {
             return Ok(s);
@@ -117,22 +74,11 @@ impl SpectrumLibrary<'_> {
         ))
     }
 
-    fn table(
-        &self,
-        ctx: &Ctx,
-        span: &Range<usize>,
-        t: &toml::Table,
-        what: &str,
-        use_: Use,
-    ) -> R<Spectrum> {
+    fn table(&self, ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str, use_: Use) -> R<Spectrum> {
         if let Some(k) = t.keys().find(|k| !TABLE_KEYS.contains(&k.as_str())) {
-            return Err(ctx.err(
-                span,
-                format!(
-                    "{what}: unknown spectrum key `{k}`; allowed: {}",
-                    TABLE_KEYS.join(", ")
-                ),
-            ));
+            return Err(
+                ctx.err(span, format!("{what}: unknown spectrum key `{k}`; allowed: {}", TABLE_KEYS.join(", ")))
+            );
         }
         let kinds: Vec<&str> = ["constant", "blackbody_k", "rgb", "illuminant", "nm", "file"]
             .into_iter()
@@ -157,24 +103,24 @@ impl SpectrumLibrary<'_> {
             "blackbody_k" => {
                 let temperature_k = num("blackbody_k")?;
                 if !(temperature_k > 0.0 && temperature_k.is_finite()) {
-                    return Err(ctx.err(span, format!("{what}: blackbody_k = {temperature_k} must be a positive temperature in kelvin")));
+                    return Err(ctx.err(
+                        span,
+                        format!("{what}: blackbody_k = {temperature_k} must be a positive temperature in kelvin"),
+                    ));
                 }
                 if use_ == Use::Reflectance {
-                    return Err(ctx.err(span, format!("{what}: a reflectance cannot be a black body; use rgb, nm/values or a number")));
+                    return Err(ctx.err(
+                        span,
+                        format!("{what}: a reflectance cannot be a black body; use rgb, nm/values or a number"),
+                    ));
                 }
                 Spectrum::Blackbody { temperature_k }
             }
             "rgb" => rgb(ctx, span, t, what, use_)?,
             "illuminant" => {
-                let name = t
-                    .get("illuminant")
-                    .and_then(Value::as_str)
-                    .unwrap_or_default();
+                let name = t.get("illuminant").and_then(Value::as_str).unwrap_or_default();
                 named_illuminant(name).ok_or_else(|| {
-                    ctx.err(
-                        span,
-                        format!("{what}: illuminant \"{name}\" is not known; allowed: D65, A, E"),
-                    )
+                    ctx.err(span, format!("{what}: illuminant \"{name}\" is not known; allowed: D65, A, E"))
                 })?
             }
             "nm" => inline_table(ctx, span, t, what)?,
@@ -185,10 +131,7 @@ impl SpectrumLibrary<'_> {
             Some(_) => {
                 let k = num("scale")?;
                 if !(k.is_finite() && k >= 0.0) {
-                    return Err(ctx.err(
-                        span,
-                        format!("{what}: scale = {k} must be a finite number ≥ 0"),
-                    ));
+                    return Err(ctx.err(span, format!("{what}: scale = {k} must be a finite number ≥ 0")));
                 }
                 Ok(base.scaled(k))
             }
@@ -198,57 +141,38 @@ impl SpectrumLibrary<'_> {
 
 fn rgb(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str, use_: Use) -> R<Spectrum> {
     if use_ == Use::Emission {
-        return Err(ctx.err(span, format!("{what}: rgb defines reflectances only; give a light a spectrum (blackbody_k, illuminant, nm/values)")));
-    }
-    let arr = numbers(t.get("rgb"))
-        .filter(|a| a.len() == 3)
-        .ok_or_else(|| {
-            ctx.err(
-                span,
-                format!("{what}: rgb must be three numbers (linear sRGB albedo in [0, 1])"),
-            )
-        })?;
-    let rgb = [arr[0], arr[1], arr[2]];
-    if rgb.iter().any(|c| !(0.0..=1.0).contains(c)) {
-        return Err(ctx.err(
-            span,
-            format!("{what}: rgb = {rgb:?} must lie in [0, 1] (linear sRGB albedo)"),
-        ));
-    }
-    RgbSigmoid::fit(rgb)
-        .map(Spectrum::RgbReflectance)
-        .map_err(|e| ctx.err(span, format!("{what}: {e}")))
-}
-
-fn numbers(v: Option<&Value>) -> Option<Vec<f64>> {
-    v?.as_array()?
-        .iter()
-        .map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64)))
-        .collect()
-}
-
-fn inline_table(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Spectrum> {
-    let nm = numbers(t.get("nm"))
-        .ok_or_else(|| ctx.err(span, format!("{what}: nm must be an array of numbers")))?;
-    let values = numbers(t.get("values")).ok_or_else(|| {
-        ctx.err(
-            span,
-            format!("{what}: nm needs `values`, an array of numbers of the same length"),
-        )
-    })?;
-    if nm.len() != values.len() {
         return Err(ctx.err(
             span,
             format!(
-                "{what}: nm has {} entries but values has {}; they must match",
-                nm.len(),
-                values.len()
+                "{what}: rgb defines reflectances only; give a light a spectrum (blackbody_k, illuminant, nm/values)"
             ),
         ));
     }
-    Tabulated::new(nm, values)
-        .map(Spectrum::Tabulated)
-        .map_err(|e| ctx.err(span, format!("{what}: {e}")))
+    let arr = numbers(t.get("rgb"))
+        .filter(|a| a.len() == 3)
+        .ok_or_else(|| ctx.err(span, format!("{what}: rgb must be three numbers (linear sRGB albedo in [0, 1])")))?;
+    let rgb = [arr[0], arr[1], arr[2]];
+    if rgb.iter().any(|c| !(0.0..=1.0).contains(c)) {
+        return Err(ctx.err(span, format!("{what}: rgb = {rgb:?} must lie in [0, 1] (linear sRGB albedo)")));
+    }
+    RgbSigmoid::fit(rgb).map(Spectrum::RgbReflectance).map_err(|e| ctx.err(span, format!("{what}: {e}")))
+}
+
+fn numbers(v: Option<&Value>) -> Option<Vec<f64>> {
+    v?.as_array()?.iter().map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64))).collect()
+}
+
+fn inline_table(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Spectrum> {
+    let nm = numbers(t.get("nm")).ok_or_else(|| ctx.err(span, format!("{what}: nm must be an array of numbers")))?;
+    let values = numbers(t.get("values"))
+        .ok_or_else(|| ctx.err(span, format!("{what}: nm needs `values`, an array of numbers of the same length")))?;
+    if nm.len() != values.len() {
+        return Err(ctx.err(
+            span,
+            format!("{what}: nm has {} entries but values has {}; they must match", nm.len(), values.len()),
+        ));
+    }
+    Tabulated::new(nm, values).map(Spectrum::Tabulated).map_err(|e| ctx.err(span, format!("{what}: {e}")))
 }
 
 fn from_csv(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Spectrum> {
@@ -257,30 +181,17 @@ fn from_csv(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Sp
         .and_then(Value::as_str)
         .ok_or_else(|| ctx.err(span, format!("{what}: file must be a string path")))?;
     let path = ctx.dir.join(file);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        ctx.err(
-            span,
-            format!("{what}: cannot read spectrum file {}: {e}", path.display()),
-        )
-    })?;
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| ctx.err(span, format!("{what}: cannot read spectrum file {}: {e}", path.display())))?;
     let (nm, values) = parse_two_column_csv(&text).map_err(|(line, msg)| {
         crate::error::Error::input(
-            Some(crate::error::Location {
-                file: path.clone(),
-                line: Some(line),
-                column: None,
-            }),
+            Some(crate::error::Location { file: path.clone(), line: Some(line), column: None }),
             format!("{what}: {msg}"),
         )
     })?;
     Tabulated::new(nm, values)
         .map(Spectrum::Tabulated)
-        .map_err(|e| {
-            ctx.err(
-                span,
-                format!("{what}: spectrum file {}: {e}", path.display()),
-            )
-        })
+        .map_err(|e| ctx.err(span, format!("{what}: spectrum file {}: {e}", path.display())))
 }
 
 /// Two numeric columns (wavelength_nm, value); `#` comment lines and blank lines are skipped, and
@@ -302,10 +213,7 @@ pub fn parse_two_column_csv(text: &str) -> Result<(Vec<f64>, Vec<f64>), (usize, 
             }
             _ if !seen_row => {}
             _ => {
-                return Err((
-                    i + 1,
-                    format!("expected two numbers (wavelength_nm, value), found \"{line}\""),
-                ));
+                return Err((i + 1, format!("expected two numbers (wavelength_nm, value), found \"{line}\"")));
             }
         }
         seen_row = true;
@@ -317,14 +225,7 @@ pub fn parse_two_column_csv(text: &str) -> Result<(Vec<f64>, Vec<f64>), (usize, 
 }
 
 /// Checks that a spectrum covers the range and has allowed values there.
-fn check_range(
-    ctx: &Ctx,
-    span: &Range<usize>,
-    s: &Spectrum,
-    what: &str,
-    use_: Use,
-    (lo, hi): (f64, f64),
-) -> R<()> {
+fn check_range(ctx: &Ctx, span: &Range<usize>, s: &Spectrum, what: &str, use_: Use, (lo, hi): (f64, f64)) -> R<()> {
     if let Some((a, b)) = tabulated_domain(s)
         && (a > lo || b < hi)
     {
@@ -344,15 +245,8 @@ fn check_range(
             Use::Emission => !(x >= 0.0 && x.is_finite()),
         };
         if bad {
-            let allowed = if use_ == Use::Reflectance {
-                "in [0, 1]"
-            } else {
-                "finite and ≥ 0"
-            };
-            return Err(ctx.err(
-                span,
-                format!("{what}: value {x} at {l:.1} nm; values must be {allowed}"),
-            ));
+            let allowed = if use_ == Use::Reflectance { "in [0, 1]" } else { "finite and ≥ 0" };
+            return Err(ctx.err(span, format!("{what}: value {x} at {l:.1} nm; values must be {allowed}")));
         }
     }
     Ok(())
@@ -372,8 +266,7 @@ mod tests {
 
     #[test]
     fn csv_skips_comments_and_a_header_and_reports_bad_lines() {
-        let (nm, v) =
-            parse_two_column_csv("# source: x\nwavelength_nm,value\n400,0.1\n500, 0.2\n").unwrap();
+        let (nm, v) = parse_two_column_csv("# source: x\nwavelength_nm,value\n400,0.1\n500, 0.2\n").unwrap();
         assert_eq!(nm, vec![400.0, 500.0]);
         assert_eq!(v, vec![0.1, 0.2]);
         let e = parse_two_column_csv("400,0.1\n500,abc\n").unwrap_err();

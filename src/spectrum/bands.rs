@@ -17,20 +17,12 @@ impl Bands {
     /// Validates the range (0 < min < max) and count (1..=MAX_BANDS).
     pub fn new(min_nm: f64, max_nm: f64, count: usize) -> Result<Bands, String> {
         if !(min_nm.is_finite() && max_nm.is_finite() && min_nm > 0.0 && max_nm > min_nm) {
-            return Err(format!(
-                "wavelength range [{min_nm}, {max_nm}] nm is not valid: need 0 < min_nm < max_nm"
-            ));
+            return Err(format!("wavelength range [{min_nm}, {max_nm}] nm is not valid: need 0 < min_nm < max_nm"));
         }
         if count == 0 || count > MAX_BANDS {
-            return Err(format!(
-                "bands = {count} is out of range: allowed 1 to {MAX_BANDS}"
-            ));
+            return Err(format!("bands = {count} is out of range: allowed 1 to {MAX_BANDS}"));
         }
-        Ok(Bands {
-            min_nm,
-            max_nm,
-            count,
-        })
+        Ok(Bands { min_nm, max_nm, count })
     }
 
     /// Width of every band in nm.

@@ -48,10 +48,7 @@ mod tests {
         ];
         for (t, l, want) in cases {
             let got = planck_radiance(t, l);
-            assert!(
-                ((got - want) / want).abs() < 1e-12,
-                "B({t} K, {l} nm) = {got}, want {want}"
-            );
+            assert!(((got - want) / want).abs() < 1e-12, "B({t} K, {l} nm) = {got}, want {want}");
         }
     }
 
@@ -73,10 +70,7 @@ mod tests {
                 }
             }
             let peak = 0.5 * (a + b);
-            assert!(
-                ((peak - want_nm) / want_nm).abs() < 1e-6,
-                "T = {t}: peak {peak} nm, Wien {want_nm} nm"
-            );
+            assert!(((peak - want_nm) / want_nm).abs() < 1e-6, "T = {t}: peak {peak} nm, Wien {want_nm} nm");
         }
     }
 
@@ -91,10 +85,7 @@ mod tests {
         let tail = 2.0 * LIGHT_C * BOLTZMANN_K * t / (3.0 * l_m.powi(3));
         let total = body + tail;
         let want = 5.670_374_419e-8 * t.powi(4) / std::f64::consts::PI;
-        assert!(
-            ((total - want) / want).abs() < 1e-6,
-            "∫B = {total}, σT⁴/π = {want}"
-        );
+        assert!(((total - want) / want).abs() < 1e-6, "∫B = {total}, σT⁴/π = {want}");
     }
 
     #[test]

@@ -125,8 +125,8 @@ struct ExrResponse {
 
 /// Reads the check's JSON request and answers with morgana's colorimetry as JSON.
 pub fn run(request_json: &str) -> Result<String, String> {
-    let req: Request = serde_json::from_str(request_json)
-        .map_err(|e| format!("colour-check request is not valid: {e}"))?;
+    let req: Request =
+        serde_json::from_str(request_json).map_err(|e| format!("colour-check request is not valid: {e}"))?;
     let mut out = Response::default();
     if req.cmf_integrals {
         out.cmf_integrals = Some(cmf_sums(|_| 1.0));
@@ -151,10 +151,7 @@ pub fn run(request_json: &str) -> Result<String, String> {
         .collect::<Result<Vec<_>, String>>()?;
     for (name, illuminant) in &illuminants {
         if !req.illuminant_samples_nm.is_empty() {
-            let values = req
-                .illuminant_samples_nm
-                .iter()
-                .map(|&l| illuminant.eval(l));
+            let values = req.illuminant_samples_nm.iter().map(|&l| illuminant.eval(l));
             out.illuminant_values.insert(name.clone(), values.collect());
         }
         let white = relative_xyz(&Spectrum::Constant(1.0), illuminant);
@@ -166,11 +163,7 @@ pub fn run(request_json: &str) -> Result<String, String> {
             .iter()
             .map(|(patch, r)| {
                 let xyz = relative_xyz(r, illuminant);
-                Colour {
-                    name: patch.clone(),
-                    xyz,
-                    linear_srgb: xyz_to_linear_srgb(xyz.map(|c| c / 100.0)),
-                }
+                Colour { name: patch.clone(), xyz, linear_srgb: xyz_to_linear_srgb(xyz.map(|c| c / 100.0)) }
             })
             .collect();
         out.reflectances.insert(name.clone(), colours);
@@ -180,19 +173,12 @@ pub fn run(request_json: &str) -> Result<String, String> {
             return Err(format!("black-body temperature {t} K: must be positive"));
         }
         let xyz = absolute_xyz(&Spectrum::Blackbody { temperature_k: t });
-        out.blackbodies.push(Blackbody {
-            temperature_k: t,
-            xyz_normalised: xyz.map(|c| c / xyz[1]),
-        });
+        out.blackbodies.push(Blackbody { temperature_k: t, xyz_normalised: xyz.map(|c| c / xyz[1]) });
     }
     for &rgb in &req.rgb_albedos {
         let fit = RgbSigmoid::fit(rgb)?;
         let reflectance = (360..=830).map(|nm| fit.eval(f64::from(nm))).collect();
-        out.rgb_albedos.push(Albedo {
-            rgb,
-            coefficients: fit.coefficients,
-            reflectance,
-        });
+        out.rgb_albedos.push(Albedo { rgb, coefficients: fit.coefficients, reflectance });
     }
     for exr in &req.exr {
         out.exr.push(write_exr(exr)?);
@@ -204,19 +190,10 @@ pub fn run(request_json: &str) -> Result<String, String> {
 fn write_exr(req: &ExrRequest) -> Result<ExrResponse, String> {
     let bands = Bands::new(req.min_nm, req.max_nm, req.count)?;
     if req.pixels.len() != req.width * req.height {
-        return Err(format!(
-            "exr: {} pixels given for a {}×{} image",
-            req.pixels.len(),
-            req.width,
-            req.height
-        ));
+        return Err(format!("exr: {} pixels given for a {}×{} image", req.pixels.len(), req.width, req.height));
     }
     if let Some(i) = req.pixels.iter().position(|p| p.len() != bands.count) {
-        return Err(format!(
-            "exr: pixel {i} has {} band values, need {}",
-            req.pixels[i].len(),
-            bands.count
-        ));
+        return Err(format!("exr: pixel {i} has {} band values, need {}", req.pixels[i].len(), bands.count));
     }
     let conv = BandsToColour::new(&bands);
     let data: Vec<f32> = req.pixels.iter().flatten().map(|&v| v as f32).collect();
@@ -240,9 +217,7 @@ fn write_exr(req: &ExrRequest) -> Result<ExrResponse, String> {
     staged.commit().map_err(|e| format!("exr: {e}"))?;
     Ok(ExrResponse {
         path: req.path.clone(),
-        channels: (0..bands.count)
-            .map(|b| emissive_channel_name(bands.centre_nm(b)))
-            .collect(),
+        channels: (0..bands.count).map(|b| emissive_channel_name(bands.centre_nm(b))).collect(),
         rgb,
     })
 }
@@ -273,12 +248,10 @@ mod tests {
         let path = dir.join("c.exr");
         let request = serde_json::json!({"exr": [{"path": path, "min_nm": 400, "max_nm": 700,
             "count": 2, "width": 1, "height": 1, "pixels": [[0.5, 0.25]]}]});
-        let answer: serde_json::Value =
-            serde_json::from_str(&run(&request.to_string()).unwrap()).unwrap();
+        let answer: serde_json::Value = serde_json::from_str(&run(&request.to_string()).unwrap()).unwrap();
         assert!(path.exists());
         assert_eq!(answer["exr"][0]["channels"][0], "S0.475,0nm");
-        let want =
-            BandsToColour::new(&Bands::new(400.0, 700.0, 2).unwrap()).linear_srgb(&[0.5, 0.25]);
+        let want = BandsToColour::new(&Bands::new(400.0, 700.0, 2).unwrap()).linear_srgb(&[0.5, 0.25]);
         let got = answer["exr"][0]["rgb"][0][1].as_f64().unwrap();
         assert!((got - want[1]).abs() < 1e-6 * want[1].abs());
         // Only the target is left behind: the temporary file was renamed.
@@ -290,11 +263,7 @@ mod tests {
     fn rejects_bad_requests_with_reasons() {
         assert!(run("{").unwrap_err().contains("not valid"));
         assert!(run(r#"{"bogus": 1}"#).unwrap_err().contains("bogus"));
-        assert!(
-            run(r#"{"illuminants": ["D50"]}"#)
-                .unwrap_err()
-                .contains("D50")
-        );
+        assert!(run(r#"{"illuminants": ["D50"]}"#).unwrap_err().contains("D50"));
         let e = run(r#"{"reflectances": [{"name": "x", "nm": [1], "values": [1]}]}"#);
         assert!(e.unwrap_err().contains("at least 2"));
         let e = run(r#"{"rgb_albedos": [[2, 0, 0]]}"#).unwrap_err();

@@ -62,9 +62,7 @@ pub const ILLUMINANT_NAMES: [&str; 3] = ["D65", "A", "E"];
 
 /// CIE standard illuminant D65 (relative, 100 at 560 nm), 300–830 nm.
 fn d65() -> Tabulated {
-    let nm = (0..D65_5NM.len())
-        .map(|i| D65_START_NM + 5.0 * i as f64)
-        .collect();
+    let nm = (0..D65_5NM.len()).map(|i| D65_START_NM + 5.0 * i as f64).collect();
     // The table is valid by construction: increasing wavelengths, finite values.
     Tabulated::new(nm, D65_5NM.to_vec()).unwrap_or_else(|e| unreachable!("D65 table: {e}"))
 }
@@ -108,19 +106,11 @@ mod tests {
     fn d65_matches_the_cie_1nm_table() {
         let d65 = illuminant("D65").unwrap();
         // Values from the CIE's 1 nm D65 table (dataset DOI 10.25039/CIE.DS.hjfjmt59).
-        for (nm, want) in [
-            (300.0, 0.0341),
-            (301.0, 0.36014),
-            (459.0, 117.732),
-            (560.0, 100.0),
-            (777.0, 64.4096),
-            (830.0, 60.3125),
-        ] {
+        for (nm, want) in
+            [(300.0, 0.0341), (301.0, 0.36014), (459.0, 117.732), (560.0, 100.0), (777.0, 64.4096), (830.0, 60.3125)]
+        {
             let got = d65.eval(nm);
-            assert!(
-                (got - want).abs() < 1e-4 * want.max(1.0),
-                "D65({nm}) = {got}, CIE {want}"
-            );
+            assert!((got - want).abs() < 1e-4 * want.max(1.0), "D65({nm}) = {got}, CIE {want}");
         }
         assert_eq!(d65.eval(299.0), 0.0);
     }
@@ -129,18 +119,9 @@ mod tests {
     fn illuminant_a_matches_the_cie_table() {
         let a = illuminant("a").unwrap();
         // CIE 015:2018 Table 5 (illuminant A), 6 significant figures.
-        for (nm, want) in [
-            (300.0, 0.930483),
-            (380.0, 9.7951),
-            (500.0, 59.8611),
-            (560.0, 100.0),
-            (780.0, 241.675),
-        ] {
+        for (nm, want) in [(300.0, 0.930483), (380.0, 9.7951), (500.0, 59.8611), (560.0, 100.0), (780.0, 241.675)] {
             let got = a.eval(nm);
-            assert!(
-                ((got - want) / want).abs() < 1e-5,
-                "A({nm}) = {got}, CIE {want}"
-            );
+            assert!(((got - want) / want).abs() < 1e-5, "A({nm}) = {got}, CIE {want}");
         }
     }
 

@@ -27,11 +27,8 @@ pub const SUM_START_NM: u32 = 360;
 pub const SUM_END_NM: u32 = 830;
 
 /// XYZ → linear sRGB, IEC 61966-2-1 §5.3 (D65 white, 4 decimals as published).
-pub const XYZ_TO_SRGB: [[f64; 3]; 3] = [
-    [3.2406, -1.5372, -0.4986],
-    [-0.9689, 1.8758, 0.0415],
-    [0.0557, -0.2040, 1.0570],
-];
+pub const XYZ_TO_SRGB: [[f64; 3]; 3] =
+    [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]];
 
 /// Converts per-band spectral radiance (W m⁻² sr⁻¹ nm⁻¹) to absolute XYZ (Y in cd m⁻²) and
 /// linear sRGB.
@@ -78,10 +75,7 @@ impl BandsToColour {
             }
         }
         let rgb_weights = xyz_weights.iter().map(|&w| xyz_to_linear_srgb(w)).collect();
-        BandsToColour {
-            xyz_weights,
-            rgb_weights,
-        }
+        BandsToColour { xyz_weights, rgb_weights }
     }
 
     /// Absolute XYZ (Y in cd m⁻²) of per-band spectral radiance; `values` has one entry per
@@ -157,11 +151,7 @@ pub fn linear_srgb_luminance(rgb: [f64; 3]) -> f64 {
 ///
 /// V = 12.92 L for L ≤ 0.0031308, else 1.055 L^(1/2.4) − 0.055.
 pub fn srgb_encode(linear: f64) -> f64 {
-    if linear <= 0.003_130_8 {
-        12.92 * linear
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
+    if linear <= 0.003_130_8 { 12.92 * linear } else { 1.055 * linear.powf(1.0 / 2.4) - 0.055 }
 }
 
 fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
@@ -219,10 +209,7 @@ mod tests {
         let xyz = relative_xyz(&Spectrum::Constant(1.0), &d65);
         assert!((xyz[1] - 100.0).abs() < 1e-12);
         // CIE 015:2018 Table 5: D65 white (2°) X = 95.04, Z = 108.88 (1 nm sums: 95.047, 108.883).
-        assert!(
-            (xyz[0] - 95.04).abs() < 0.01 && (xyz[2] - 108.88).abs() < 0.01,
-            "{xyz:?}"
-        );
+        assert!((xyz[0] - 95.04).abs() < 0.01 && (xyz[2] - 108.88).abs() < 0.01, "{xyz:?}");
         let rgb = xyz_to_linear_srgb(xyz.map(|c| c / 100.0));
         assert!(close(rgb, [1.0; 3], 1e-3), "{rgb:?}");
     }
@@ -259,11 +246,7 @@ mod tests {
         let got = conv.xyz(&[1.0, 0.0, 0.0]);
         let mut want = [0.0; 3];
         for nm in 500..=515u32 {
-            let phi = if nm <= 505 {
-                1.0
-            } else {
-                (515.0 - f64::from(nm)) / 10.0
-            };
+            let phi = if nm <= 505 { 1.0 } else { (515.0 - f64::from(nm)) / 10.0 };
             let c = cmf_1931_at_nm(nm);
             for k in 0..3 {
                 want[k] += K_M * phi * c[k];
@@ -276,10 +259,6 @@ mod tests {
         assert!((one.xyz(&[1.0])[1] - y).abs() < 1e-9);
         // sRGB is the matrix applied to XYZ.
         let v = [0.3, 1.2, 0.7];
-        assert!(close(
-            conv.linear_srgb(&v),
-            xyz_to_linear_srgb(conv.xyz(&v)),
-            1e-9
-        ));
+        assert!(close(conv.linear_srgb(&v), xyz_to_linear_srgb(conv.xyz(&v)), 1e-9));
     }
 }

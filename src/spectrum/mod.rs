@@ -90,9 +90,7 @@ mod tests {
         assert!((Spectrum::Tabulated(t).scaled(4.0).integral(0.0, 1000.0) - 200.0).abs() < 1e-12);
         // s = S(aλ + b) has the antiderivative λ/2 + √(1 + (aλ + b)²) / (2a).
         let (a, b) = (0.02, -11.0);
-        let s = Spectrum::RgbReflectance(RgbSigmoid {
-            coefficients: [0.0, a, b],
-        });
+        let s = Spectrum::RgbReflectance(RgbSigmoid { coefficients: [0.0, a, b] });
         let anti = |l: f64| l / 2.0 + (1.0 + (a * l + b).powi(2)).sqrt() / (2.0 * a);
         let want = anti(830.0) - anti(360.0);
         let got = s.integral(360.0, 830.0);
@@ -104,12 +102,7 @@ mod tests {
     #[test]
     fn constant_and_scaled_spectra_report_constancy() {
         assert!(Spectrum::Constant(1.0).scaled(3.0).is_constant());
-        assert!(
-            !Spectrum::Blackbody {
-                temperature_k: 3000.0
-            }
-            .is_constant()
-        );
+        assert!(!Spectrum::Blackbody { temperature_k: 3000.0 }.is_constant());
         assert_eq!(Spectrum::Constant(2.0).scaled(3.0).eval(123.0), 6.0);
         assert!(named_illuminant("E").unwrap().is_constant());
     }

@@ -53,14 +53,10 @@ impl RgbSigmoid {
             ));
         }
         if rgb == [0.0; 3] {
-            return Ok(RgbSigmoid {
-                coefficients: [0.0, 0.0, f64::NEG_INFINITY],
-            });
+            return Ok(RgbSigmoid { coefficients: [0.0, 0.0, f64::NEG_INFINITY] });
         }
         if rgb == [1.0; 3] {
-            return Ok(RgbSigmoid {
-                coefficients: [0.0, 0.0, f64::INFINITY],
-            });
+            return Ok(RgbSigmoid { coefficients: [0.0, 0.0, f64::INFINITY] });
         }
         let tables = tables();
         let mean = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
@@ -70,25 +66,15 @@ impl RgbSigmoid {
             let f = step as f64 / CONTINUATION_STEPS as f64;
             let target = [0, 1, 2].map(|k| grey + f * (rgb[k] - grey));
             let lab = tables.lab(linear_srgb_to_xyz(target));
-            let iterations = if step == CONTINUATION_STEPS {
-                FINAL_ITERATIONS
-            } else {
-                STEP_ITERATIONS
-            };
+            let iterations = if step == CONTINUATION_STEPS { FINAL_ITERATIONS } else { STEP_ITERATIONS };
             z = gauss_newton(tables, z, lab, iterations);
         }
-        Ok(RgbSigmoid {
-            coefficients: to_nm_coefficients(z),
-        })
+        Ok(RgbSigmoid { coefficients: to_nm_coefficients(z) })
     }
 
     pub fn eval(&self, wavelength_nm: f64) -> f64 {
         let [c0, c1, c2] = self.coefficients;
-        let x = if c0 == 0.0 && c1 == 0.0 {
-            c2
-        } else {
-            (c0 * wavelength_nm + c1) * wavelength_nm + c2
-        };
+        let x = if c0 == 0.0 && c1 == 0.0 { c2 } else { (c0 * wavelength_nm + c1) * wavelength_nm + c2 };
         sigmoid(x)
     }
 }
@@ -117,11 +103,7 @@ fn sigmoid_inverse(y: f64) -> f64 {
 /// x = a t² + b t + c with t = (λ − λ0)/Δ, rewritten as c0 λ² + c1 λ + c2.
 fn to_nm_coefficients([a, b, c]: [f64; 3]) -> [f64; 3] {
     let (l0, d) = (LAMBDA_0, LAMBDA_SPAN);
-    [
-        a / (d * d),
-        b / d - 2.0 * a * l0 / (d * d),
-        a * l0 * l0 / (d * d) - b * l0 / d + c,
-    ]
+    [a / (d * d), b / d - 2.0 * a * l0 / (d * d), a * l0 * l0 / (d * d) - b * l0 / d + c]
 }
 
 /// Precomputed D65-weighted colour-matching functions on the 1 nm grid.
@@ -139,19 +121,12 @@ fn tables() -> &'static Tables {
     TABLES.get_or_init(|| {
         let d65 = illuminant("D65").unwrap_or_else(|| unreachable!("D65 is built in"));
         let nms: Vec<u32> = (SUM_START_NM..=SUM_END_NM).collect();
-        let raw: Vec<[f64; 3]> = nms
-            .iter()
-            .map(|&nm| cmf_1931_at_nm(nm).map(|c| c * d65.eval(f64::from(nm))))
-            .collect();
+        let raw: Vec<[f64; 3]> =
+            nms.iter().map(|&nm| cmf_1931_at_nm(nm).map(|c| c * d65.eval(f64::from(nm)))).collect();
         let norm: f64 = raw.iter().map(|w| w[1]).sum();
         let w: Vec<[f64; 3]> = raw.iter().map(|w| w.map(|c| c / norm)).collect();
-        let white = w
-            .iter()
-            .fold([0.0; 3], |s, w| [0, 1, 2].map(|k| s[k] + w[k]));
-        let t = nms
-            .iter()
-            .map(|&nm| (f64::from(nm) - LAMBDA_0) / LAMBDA_SPAN)
-            .collect();
+        let white = w.iter().fold([0.0; 3], |s, w| [0, 1, 2].map(|k| s[k] + w[k]));
+        let t = nms.iter().map(|&nm| (f64::from(nm) - LAMBDA_0) / LAMBDA_SPAN).collect();
         Tables { t, w, white }
     })
 }
@@ -179,41 +154,25 @@ impl Tables {
     /// CIELAB of `xyz` relative to the D65 perfect reflector.
     fn lab(&self, xyz: [f64; 3]) -> [f64; 3] {
         let f = [0, 1, 2].map(|k| lab_f(xyz[k] / self.white[k]));
-        [
-            116.0 * f[1] - 16.0,
-            500.0 * (f[0] - f[1]),
-            200.0 * (f[1] - f[2]),
-        ]
+        [116.0 * f[1] - 16.0, 500.0 * (f[0] - f[1]), 200.0 * (f[1] - f[2])]
     }
 
     /// ∂Lab/∂XYZ at `xyz`.
     fn lab_jacobian(&self, xyz: [f64; 3]) -> [[f64; 3]; 3] {
         let d = [0, 1, 2].map(|k| lab_f_derivative(xyz[k] / self.white[k]) / self.white[k]);
-        [
-            [0.0, 116.0 * d[1], 0.0],
-            [500.0 * d[0], -500.0 * d[1], 0.0],
-            [0.0, 200.0 * d[1], -200.0 * d[2]],
-        ]
+        [[0.0, 116.0 * d[1], 0.0], [500.0 * d[0], -500.0 * d[1], 0.0], [0.0, 200.0 * d[1], -200.0 * d[2]]]
     }
 }
 
 /// CIELAB's f(q) = q^(1/3) above (6/29)³, else q / (3 (6/29)²) + 4/29.
 fn lab_f(q: f64) -> f64 {
     const D: f64 = 6.0 / 29.0;
-    if q > D * D * D {
-        q.cbrt()
-    } else {
-        q / (3.0 * D * D) + 4.0 / 29.0
-    }
+    if q > D * D * D { q.cbrt() } else { q / (3.0 * D * D) + 4.0 / 29.0 }
 }
 
 fn lab_f_derivative(q: f64) -> f64 {
     const D: f64 = 6.0 / 29.0;
-    if q > D * D * D {
-        1.0 / (3.0 * q.cbrt() * q.cbrt())
-    } else {
-        1.0 / (3.0 * D * D)
-    }
+    if q > D * D * D { 1.0 / (3.0 * q.cbrt() * q.cbrt()) } else { 1.0 / (3.0 * D * D) }
 }
 
 /// Gauss–Newton on r(z) = Lab(XYZ(z)) − target, with step halving.
@@ -262,8 +221,7 @@ fn mat_mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 /// Solves A x = y by Cramer's rule; `None` when A is (numerically) singular.
 fn solve3(a: &[[f64; 3]; 3], y: [f64; 3]) -> Option<[f64; 3]> {
     let det = |m: &[[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
             + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
     };
     let d = det(a);
@@ -319,11 +277,7 @@ mod tests {
             }
         }
         let per_colour = start.elapsed().as_secs_f64() / n as f64;
-        eprintln!(
-            "worst round trip {:?}, {:.3} ms per colour",
-            worst,
-            per_colour * 1e3
-        );
+        eprintln!("worst round trip {:?}, {:.3} ms per colour", worst, per_colour * 1e3);
         assert!(worst.0 < 1e-3, "worst round trip error {worst:?}");
         // Fast enough to fit every material at scene load (timing includes the check above).
         assert!(per_colour < 5e-3, "{per_colour} s per colour");

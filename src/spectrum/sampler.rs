@@ -44,14 +44,8 @@ impl SpectrumSampler {
             Some(nodes) => nodes,
             None => smooth_grid(spectrum, min_nm, max_nm),
         };
-        let ends: Vec<(f64, f64)> = nodes
-            .windows(2)
-            .map(|w| segment_ends(spectrum, w[0], w[1]))
-            .collect();
-        if ends
-            .iter()
-            .any(|&(a, b)| !(a >= 0.0 && b >= 0.0 && a.is_finite() && b.is_finite()))
-        {
+        let ends: Vec<(f64, f64)> = nodes.windows(2).map(|w| segment_ends(spectrum, w[0], w[1])).collect();
+        if ends.iter().any(|&(a, b)| !(a >= 0.0 && b >= 0.0 && a.is_finite() && b.is_finite())) {
             return None;
         }
         let mut cdf = Vec::with_capacity(nodes.len());
@@ -138,13 +132,7 @@ fn exact_breakpoints(spectrum: &Spectrum, min: f64, max: f64) -> Option<Vec<f64>
         Spectrum::Constant(_) => Some(vec![min, max]),
         Spectrum::Tabulated(t) => {
             let mut nodes = vec![min];
-            nodes.extend(
-                t.samples()
-                    .0
-                    .iter()
-                    .copied()
-                    .filter(|&x| x > min && x < max),
-            );
+            nodes.extend(t.samples().0.iter().copied().filter(|&x| x > min && x < max));
             nodes.push(max);
             Some(nodes)
         }
@@ -160,11 +148,7 @@ fn segment_ends(spectrum: &Spectrum, x0: f64, x1: f64) -> (f64, f64) {
         Spectrum::Tabulated(t) => {
             let (lo, hi) = t.domain_nm();
             let mid = 0.5 * (x0 + x1);
-            if (lo..=hi).contains(&mid) {
-                (t.eval(x0.max(lo)), t.eval(x1.min(hi)))
-            } else {
-                (0.0, 0.0)
-            }
+            if (lo..=hi).contains(&mid) { (t.eval(x0.max(lo)), t.eval(x1.min(hi))) } else { (0.0, 0.0) }
         }
         Spectrum::Scaled(k, s) => {
             let (a, b) = segment_ends(s, x0, x1);
@@ -176,16 +160,11 @@ fn segment_ends(spectrum: &Spectrum, x0: f64, x1: f64) -> (f64, f64) {
 
 /// A uniform grid fine enough for [`SMOOTH_REPRESENTATION_TOLERANCE`].
 fn smooth_grid(spectrum: &Spectrum, min: f64, max: f64) -> Vec<f64> {
-    let grid = |n: usize| -> Vec<f64> {
-        (0..=n)
-            .map(|i| min + (max - min) * i as f64 / n as f64)
-            .collect()
-    };
+    let grid = |n: usize| -> Vec<f64> { (0..=n).map(|i| min + (max - min) * i as f64 / n as f64).collect() };
     let mut n = MIN_SEGMENTS;
     loop {
         let nodes = grid(n);
-        if n >= MAX_SEGMENTS || midpoint_error(spectrum, &nodes) <= SMOOTH_REPRESENTATION_TOLERANCE
-        {
+        if n >= MAX_SEGMENTS || midpoint_error(spectrum, &nodes) <= SMOOTH_REPRESENTATION_TOLERANCE {
             return nodes;
         }
         n *= 2;
@@ -204,11 +183,7 @@ pub(super) fn midpoint_error(spectrum: &Spectrum, nodes: &[f64]) -> f64 {
         let mid = spectrum.eval(0.5 * (w[0] + w[1]));
         worst = worst.max((mid - 0.5 * (v[0] + v[1])).abs());
     }
-    if worst.is_nan() {
-        f64::INFINITY
-    } else {
-        worst / scale
-    }
+    if worst.is_nan() { f64::INFINITY } else { worst / scale }
 }
 
 /// Numerical integral of a smooth spectrum: composite 5-point Gauss–Legendre over panels of at
@@ -233,13 +208,7 @@ pub(super) fn integrate_smooth(spectrum: &Spectrum, min_nm: f64, max_nm: f64) ->
     let r2 = (5.0 + 2.0 * (10.0f64 / 7.0).sqrt()).sqrt() / 3.0;
     let w1 = (322.0 + 13.0 * 70f64.sqrt()) / 900.0;
     let w2 = (322.0 - 13.0 * 70f64.sqrt()) / 900.0;
-    let nodes = [
-        (0.0, 128.0 / 225.0),
-        (-r1, w1),
-        (r1, w1),
-        (-r2, w2),
-        (r2, w2),
-    ];
+    let nodes = [(0.0, 128.0 / 225.0), (-r1, w1), (r1, w1), (-r2, w2), (r2, w2)];
     let panels = ((max_nm - min_nm) / 2.0).ceil().clamp(8.0, 1e6) as usize;
     let h = (max_nm - min_nm) / panels as f64;
     let mut sum = 0.0;

@@ -22,10 +22,7 @@ impl Tabulated {
             ));
         }
         if nm.len() < 2 {
-            return Err(format!(
-                "tabulated spectrum has {} sample(s): need at least 2",
-                nm.len()
-            ));
+            return Err(format!("tabulated spectrum has {} sample(s): need at least 2", nm.len()));
         }
         if let Some(i) = nm.iter().position(|x| !x.is_finite()) {
             return Err(format!(

@@ -14,11 +14,7 @@ use std::f64::consts::PI;
 /// expected count below 5 are pooled into one bin; an observation where nothing was expected
 /// gives p = 0.
 pub fn chi2_test(observed: &[f64], expected: &[f64]) -> f64 {
-    assert_eq!(
-        observed.len(),
-        expected.len(),
-        "chi2_test: observed and expected lengths differ"
-    );
+    assert_eq!(observed.len(), expected.len(), "chi2_test: observed and expected lengths differ");
     let mut stat = 0.0;
     let mut dof: i64 = -1;
     let (mut pooled_obs, mut pooled_exp) = (0.0, 0.0);
@@ -223,11 +219,7 @@ pub fn gamma_q(a: f64, x: f64) -> f64 {
     if x <= 0.0 {
         return 1.0;
     }
-    if x < a + 1.0 {
-        1.0 - gamma_p_series(a, x)
-    } else {
-        gamma_q_continued_fraction(a, x)
-    }
+    if x < a + 1.0 { 1.0 - gamma_p_series(a, x) } else { gamma_q_continued_fraction(a, x) }
 }
 
 fn gamma_p_series(a: f64, x: f64) -> f64 {
@@ -276,9 +268,7 @@ fn gamma_q_continued_fraction(a: f64, x: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::rng::{Rng, Stream};
-    use crate::sampling::{
-        cosine_hemisphere, cosine_hemisphere_pdf, uniform_sphere, uniform_sphere_pdf,
-    };
+    use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf, uniform_sphere, uniform_sphere_pdf};
 
     #[test]
     fn gamma_q_matches_known_values() {
@@ -289,21 +279,14 @@ mod tests {
         assert!((ln_gamma(10.0) - 362_880f64.ln()).abs() < 1e-12);
         // Gauss–Legendre integrates x^7 exactly and e^x to machine precision.
         assert!((gauss_legendre(&|x| x.powi(7), 0.0, 2.0, 1) - 32.0).abs() < 1e-12);
-        assert!(
-            (gauss_legendre(&|x: f64| x.exp(), 0.0, 1.0, 1) - (1f64.exp() - 1.0)).abs() < 1e-14
-        );
+        assert!((gauss_legendre(&|x: f64| x.exp(), 0.0, 1.0, 1) - (1f64.exp() - 1.0)).abs() < 1e-14);
     }
 
     #[test]
     fn accepts_a_correct_sampler_and_rejects_a_wrong_one() {
         let mut rng = Rng::for_task(3, Stream::Test, 0);
-        let p_ok = chi2_sphere(
-            10,
-            20,
-            200_000,
-            || Some(cosine_hemisphere(rng.uniform2())),
-            |w| cosine_hemisphere_pdf(w.z),
-        );
+        let p_ok =
+            chi2_sphere(10, 20, 200_000, || Some(cosine_hemisphere(rng.uniform2())), |w| cosine_hemisphere_pdf(w.z));
         assert!(p_ok > 1e-3, "correct cosine sampler rejected: p = {p_ok}");
         let mut rng = Rng::for_task(4, Stream::Test, 0);
         // Uniform-sphere samples folded to the upper hemisphere, claimed to be cosine-distributed.
@@ -319,13 +302,7 @@ mod tests {
         );
         assert!(p_bad < 1e-6, "wrong sampler accepted: p = {p_bad}");
         let mut rng = Rng::for_task(5, Stream::Test, 0);
-        let p_sphere = chi2_sphere(
-            10,
-            20,
-            200_000,
-            || Some(uniform_sphere(rng.uniform2())),
-            |_| uniform_sphere_pdf(),
-        );
+        let p_sphere = chi2_sphere(10, 20, 200_000, || Some(uniform_sphere(rng.uniform2())), |_| uniform_sphere_pdf());
         assert!(p_sphere > 1e-3, "uniform sphere rejected: p = {p_sphere}");
     }
 
@@ -333,13 +310,7 @@ mod tests {
     fn one_dimensional_test_rejects_a_shifted_density() {
         let mut rng = Rng::for_task(6, Stream::Test, 0);
         // Samples of the density 2x on [0,1] by inversion.
-        let p_ok = chi2_1d(
-            (0.0, 1.0),
-            50,
-            100_000,
-            || Some(rng.uniform().sqrt()),
-            |x| 2.0 * x,
-        );
+        let p_ok = chi2_1d((0.0, 1.0), 50, 100_000, || Some(rng.uniform().sqrt()), |x| 2.0 * x);
         assert!(p_ok > 1e-3, "p = {p_ok}");
         let mut rng = Rng::for_task(7, Stream::Test, 0);
         let p_bad = chi2_1d((0.0, 1.0), 50, 100_000, || Some(rng.uniform()), |x| 2.0 * x);

@@ -23,10 +23,7 @@ pub fn scene_error(toml: &str) -> String {
 
 /// Renders on a pool of `threads` threads without progress bars.
 pub fn render_with(scene: &Scene, threads: usize) -> Rendered {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .expect("thread pool");
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
     pool.install(|| render(scene, &RenderOptions { quiet: true }))
 }
 

@@ -61,34 +61,16 @@ struct Task {
 }
 
 pub fn build(shapes: &[Shape]) -> Bvh {
-    assert!(
-        shapes.len() < u32::MAX as usize,
-        "Bvh::build: {} shapes exceed the u32 index range",
-        shapes.len()
-    );
+    assert!(shapes.len() < u32::MAX as usize, "Bvh::build: {} shapes exceed the u32 index range", shapes.len());
     if shapes.is_empty() {
         return Bvh::default();
     }
-    let mut refs: Vec<PrimRef> = shapes
-        .par_iter()
-        .enumerate()
-        .map(|(i, s)| PrimRef {
-            bounds: s.bounds(),
-            index: i as u32,
-        })
-        .collect();
+    let mut refs: Vec<PrimRef> =
+        shapes.par_iter().enumerate().map(|(i, s)| PrimRef { bounds: s.bounds(), index: i as u32 }).collect();
     let (bounds, centres) = enclose(&refs);
-    let task = Task {
-        bounds,
-        centres,
-        first: 0,
-        depth: 1,
-    };
+    let task = Task { bounds, centres, first: 0, depth: 1 };
     let chunks = build_parallel(&mut refs, task);
-    Bvh {
-        nodes: chunks.concat(),
-        prims: refs.iter().map(|r| r.index).collect(),
-    }
+    Bvh { nodes: chunks.concat(), prims: refs.iter().map(|r| r.index).collect() }
 }
 
 /// The union of the shapes' boxes and the box of their centres (in parallel when large; min
@@ -100,9 +82,7 @@ fn enclose(refs: &[PrimRef]) -> (Aabb, Aabb) {
     if refs.len() < PARALLEL_MIN {
         return refs.iter().fold(empty, add);
     }
-    refs.par_chunks(BIN_CHUNK)
-        .map(|c| c.iter().fold(empty, add))
-        .reduce(|| empty, merge)
+    refs.par_chunks(BIN_CHUNK).map(|c| c.iter().fold(empty, add)).reduce(|| empty, merge)
 }
 
 /// A large subtree: its two halves build in parallel. Returns its nodes in depth-first order,
@@ -118,10 +98,8 @@ fn build_parallel(refs: &mut [PrimRef], task: Task) -> Vec<Vec<Node>> {
         return vec![vec![leaf(&task, refs.len())]];
     };
     let (left_refs, right_refs) = refs.split_at_mut(mid);
-    let (left_chunks, right_chunks) = rayon::join(
-        || build_parallel(left_refs, left),
-        || build_parallel(right_refs, right),
-    );
+    let (left_chunks, right_chunks) =
+        rayon::join(|| build_parallel(left_refs, left), || build_parallel(right_refs, right));
     let left_size: usize = left_chunks.iter().map(Vec::len).sum();
     let mut chunks = vec![vec![interior(&task, left_size)]];
     chunks.extend(left_chunks);
@@ -144,21 +122,13 @@ fn build_serial(refs: &mut [PrimRef], task: Task, nodes: &mut Vec<Node>, bins: &
 }
 
 fn leaf(task: &Task, count: usize) -> Node {
-    Node {
-        bounds: [task.bounds.min.into(), task.bounds.max.into()],
-        offset: task.first as u32,
-        count: count as u32,
-    }
+    Node { bounds: [task.bounds.min.into(), task.bounds.max.into()], offset: task.first as u32, count: count as u32 }
 }
 
 /// An interior node whose first subtree has `left_size` nodes: the second child is
 /// `1 + left_size` nodes further on.
 fn interior(task: &Task, left_size: usize) -> Node {
-    Node {
-        bounds: [task.bounds.min.into(), task.bounds.max.into()],
-        offset: (1 + left_size) as u32,
-        count: 0,
-    }
+    Node { bounds: [task.bounds.min.into(), task.bounds.max.into()], offset: (1 + left_size) as u32, count: 0 }
 }
 
 /// Splits the shapes of `task`, reordering `refs`: the size of the first part and both parts'
@@ -175,15 +145,9 @@ fn split(refs: &mut [PrimRef], task: &Task, bins: &mut Bins) -> Option<(usize, T
         && bins.fill(refs, &task.centres)
         && let Some(best) = bins.cheapest(&task.bounds)
     {
-        let (mid, left_centres, right_centres) =
-            partition(refs, |c| bins.bin_of(c, best.axis) < best.bin);
+        let (mid, left_centres, right_centres) = partition(refs, |c| bins.bin_of(c, best.axis) < best.bin);
         if mid > 0 && mid < n {
-            let child = |bounds, centres, first| Task {
-                bounds,
-                centres,
-                first,
-                depth: task.depth + 1,
-            };
+            let child = |bounds, centres, first| Task { bounds, centres, first, depth: task.depth + 1 };
             return Some((
                 mid,
                 child(best.left_bounds, left_centres, task.first),
@@ -210,8 +174,7 @@ fn small_split(refs: &mut [PrimRef], task: &Task) -> Option<(usize, Task, Task)>
         let mut left = Aabb::EMPTY;
         for k in 1..n {
             grow(&mut left, &refs[k - 1].bounds);
-            let cost = TRAVERSAL_COST
-                + (k as f64 * area_of(&left) + (n - k) as f64 * area_of(&right[k])) / area;
+            let cost = TRAVERSAL_COST + (k as f64 * area_of(&left) + (n - k) as f64 * area_of(&right[k])) / area;
             if cost < best.map_or(n as f64, |b| b.0) {
                 best = Some((cost, axis, k));
             }
@@ -221,12 +184,7 @@ fn small_split(refs: &mut [PrimRef], task: &Task) -> Option<(usize, Task, Task)>
     sort_by_centre(refs, axis);
     let child = |part: &[PrimRef], first| {
         let (bounds, centres) = enclose(part);
-        Task {
-            bounds,
-            centres,
-            first,
-            depth: task.depth + 1,
-        }
+        Task { bounds, centres, first, depth: task.depth + 1 }
     };
     let (left, right) = refs.split_at(mid);
     Some((mid, child(left, task.first), child(right, task.first + mid)))
@@ -251,12 +209,7 @@ fn median_split(refs: &mut [PrimRef], task: &Task) -> (usize, Task, Task) {
     let (left, right) = refs.split_at(mid);
     let child = |part: &[PrimRef], first| {
         let (bounds, centres) = enclose(part);
-        Task {
-            bounds,
-            centres,
-            first,
-            depth: task.depth + 1,
-        }
+        Task { bounds, centres, first, depth: task.depth + 1 }
     };
     (mid, child(left, task.first), child(right, task.first + mid))
 }
@@ -285,13 +238,7 @@ struct Bins {
 
 impl Bins {
     fn new() -> Bins {
-        Bins {
-            count: 0,
-            origin: [0.0; 3],
-            scale: [0.0; 3],
-            bounds: [[Aabb::EMPTY; BINS]; 3],
-            counts: [[0; BINS]; 3],
-        }
+        Bins { count: 0, origin: [0.0; 3], scale: [0.0; 3], bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] }
     }
 
     /// Bins `refs` by centre; false when the centres coincide on every axis.
@@ -324,11 +271,7 @@ impl Bins {
         self.origin = centres.min.into();
         self.scale = [0, 1, 2].map(|a| {
             let s = count as f64 / extent[a];
-            if extent[a] > 0.0 && s.is_finite() {
-                s
-            } else {
-                0.0
-            }
+            if extent[a] > 0.0 && s.is_finite() { s } else { 0.0 }
         });
         for a in 0..3 {
             self.bounds[a][..count].fill(Aabb::EMPTY);
@@ -440,16 +383,8 @@ fn grow_point(a: &mut Aabb, p: DVec3) {
 fn grow(a: &mut Aabb, b: &Aabb) {
     let lo = |x: f64, y: f64| if y < x { y } else { x };
     let hi = |x: f64, y: f64| if y > x { y } else { x };
-    a.min = DVec3::new(
-        lo(a.min.x, b.min.x),
-        lo(a.min.y, b.min.y),
-        lo(a.min.z, b.min.z),
-    );
-    a.max = DVec3::new(
-        hi(a.max.x, b.max.x),
-        hi(a.max.y, b.max.y),
-        hi(a.max.z, b.max.z),
-    );
+    a.min = DVec3::new(lo(a.min.x, b.min.x), lo(a.min.y, b.min.y), lo(a.min.z, b.min.z));
+    a.max = DVec3::new(hi(a.max.x, b.max.x), hi(a.max.y, b.max.y), hi(a.max.z, b.max.z));
 }
 
 /// Moves the shapes whose centre satisfies `first` to the front (Hoare's scheme; deterministic).

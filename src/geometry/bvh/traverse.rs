@@ -27,11 +27,7 @@ struct Slabs {
 impl Slabs {
     fn new(ray: &Ray) -> Slabs {
         let inv = ray.dir.recip();
-        Slabs {
-            origin: ray.origin.into(),
-            inv_dir: inv.into(),
-            neg: [0, 1, 2].map(|i| usize::from(inv[i] < 0.0)),
-        }
+        Slabs { origin: ray.origin.into(), inv_dir: inv.into(), neg: [0, 1, 2].map(|i| usize::from(inv[i] < 0.0)) }
     }
 
     /// Distance at which the ray enters the node's box, if it does so within [0, t_max].
@@ -62,10 +58,7 @@ struct Stack {
 
 impl Stack {
     fn new() -> Stack {
-        Stack {
-            entries: [(0, 0.0); STACK],
-            len: 0,
-        }
+        Stack { entries: [(0, 0.0); STACK], len: 0 }
     }
 
     #[inline(always)]
@@ -96,19 +89,11 @@ struct Best {
 
 impl Bvh {
     /// The nearest hit (or with `ANY`, the first found) with t in (0, t_max): shape index and t.
-    pub(super) fn traverse<const ANY: bool>(
-        &self,
-        shapes: &[Shape],
-        ray: &Ray,
-        t_max: f64,
-    ) -> Option<(u32, f64)> {
+    pub(super) fn traverse<const ANY: bool>(&self, shapes: &[Shape], ray: &Ray, t_max: f64) -> Option<(u32, f64)> {
         let slabs = Slabs::new(ray);
         let shear = Shear::new(ray);
         slabs.entry(self.nodes.first()?, t_max)?;
-        let mut best = Best {
-            prim: None,
-            t: t_max,
-        };
+        let mut best = Best { prim: None, t: t_max };
         let mut stack = Stack::new();
         let mut index = 0;
         loop {
@@ -132,14 +117,7 @@ impl Bvh {
 
     /// Tests a leaf's shapes, keeping the nearest hit; whether there was one.
     #[inline(always)]
-    fn test_leaf(
-        &self,
-        node: &Node,
-        shapes: &[Shape],
-        ray: &Ray,
-        shear: &Shear,
-        best: &mut Best,
-    ) -> bool {
+    fn test_leaf(&self, node: &Node, shapes: &[Shape], ray: &Ray, shear: &Shear, best: &mut Best) -> bool {
         let first = node.offset as usize;
         let mut found = false;
         for &prim in &self.prims[first..first + node.count as usize] {
@@ -154,19 +132,9 @@ impl Bvh {
     /// The child of interior node `index` to visit next: the nearer of those the ray enters
     /// before `t_max`, the other one pushed for later.
     #[inline(always)]
-    fn descend(
-        &self,
-        index: usize,
-        node: &Node,
-        slabs: &Slabs,
-        t_max: f64,
-        stack: &mut Stack,
-    ) -> Option<usize> {
+    fn descend(&self, index: usize, node: &Node, slabs: &Slabs, t_max: f64, stack: &mut Stack) -> Option<usize> {
         let (a, b) = (index + 1, index + node.offset as usize);
-        match (
-            slabs.entry(&self.nodes[a], t_max),
-            slabs.entry(&self.nodes[b], t_max),
-        ) {
+        match (slabs.entry(&self.nodes[a], t_max), slabs.entry(&self.nodes[b], t_max)) {
             (Some(ta), Some(tb)) => {
                 let (near, far, t_far) = if ta <= tb { (a, b, tb) } else { (b, a, ta) };
                 stack.push(far, t_far);

@@ -50,11 +50,7 @@ impl Disk {
     pub fn bounds(&self) -> Aabb {
         let n = self.unit_normal();
         let half = self.radius * (DVec3::ONE - n * n).max(DVec3::ZERO).map(f64::sqrt);
-        Aabb {
-            min: self.center - half,
-            max: self.center + half,
-        }
-        .padded(gamma(4) * self.error_scale())
+        Aabb { min: self.center - half, max: self.center + half }.padded(gamma(4) * self.error_scale())
     }
 
     /// π r².
@@ -68,10 +64,7 @@ impl Disk {
         let n = self.unit_normal();
         let frame = Frame::from_normal(n);
         let [x, y] = concentric_disk(u);
-        ShapeSample {
-            point: self.center + self.radius * (x * frame.s + y * frame.t),
-            normal: n,
-        }
+        ShapeSample { point: self.center + self.radius * (x * frame.s + y * frame.t), normal: n }
     }
 
     /// |c|∞ + r.
@@ -82,19 +75,13 @@ impl Disk {
     /// Finite centre, a non-zero finite normal and a positive finite radius.
     pub fn check(&self) -> Result<(), String> {
         if !(self.center.is_finite() && self.normal.is_finite()) {
-            return Err(format!(
-                "disk centre {} or normal {} is not finite",
-                self.center, self.normal
-            ));
+            return Err(format!("disk centre {} or normal {} is not finite", self.center, self.normal));
         }
         if !self.unit_normal().is_normalized() {
             return Err(format!("disk normal {} has zero length", self.normal));
         }
         if !(self.radius > 0.0 && self.radius.is_finite()) {
-            return Err(format!(
-                "disk radius {} must be positive and finite",
-                self.radius
-            ));
+            return Err(format!("disk radius {} must be positive and finite", self.radius));
         }
         Ok(())
     }

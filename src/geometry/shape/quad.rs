@@ -68,10 +68,7 @@ impl Quad {
 
     /// Uniform by area: origin + u₀ u + u₁ v (an affine map of the unit square).
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
-        ShapeSample {
-            point: self.origin + u[0] * self.u + u[1] * self.v,
-            normal: self.normal(),
-        }
+        ShapeSample { point: self.origin + u[0] * self.u + u[1] * self.v, normal: self.normal() }
     }
 
     /// |origin|∞ + |u|∞ + |v|∞.
@@ -82,16 +79,10 @@ impl Quad {
     /// Finite corner and edges spanning a parallelogram of non-zero area.
     pub fn check(&self) -> Result<(), String> {
         if !(self.origin.is_finite() && self.u.is_finite() && self.v.is_finite()) {
-            return Err(format!(
-                "quad origin {} u {} v {} is not finite",
-                self.origin, self.u, self.v
-            ));
+            return Err(format!("quad origin {} u {} v {} is not finite", self.origin, self.u, self.v));
         }
         if !(self.area() > 0.0 && self.normal().is_normalized()) {
-            return Err(format!(
-                "quad u {} and v {} are parallel: zero area",
-                self.u, self.v
-            ));
+            return Err(format!("quad u {} and v {} are parallel: zero area", self.u, self.v));
         }
         Ok(())
     }

@@ -52,16 +52,8 @@ impl Sphere {
         let q = -(b + root.copysign(b));
         let ff = f.length_squared();
         let c = ff - r * r;
-        let t_q = if q.abs() > gamma(8) * (ff * a).sqrt() {
-            q / a
-        } else {
-            f64::NAN
-        };
-        let t_c = if c.abs() > gamma(8) * (ff + r * r) {
-            c / q
-        } else {
-            f64::NAN
-        };
+        let t_q = if q.abs() > gamma(8) * (ff * a).sqrt() { q / a } else { f64::NAN };
+        let t_c = if c.abs() > gamma(8) * (ff + r * r) { c / q } else { f64::NAN };
         let (near, far) = if t_q <= t_c { (t_q, t_c) } else { (t_c, t_q) };
         [near, far].into_iter().find(|&t| t > 0.0 && t < t_max)
     }
@@ -71,11 +63,7 @@ impl Sphere {
     pub fn hit_point(&self, ray: &Ray, t: f64) -> DVec3 {
         let w = ray.at(t) - self.center;
         let len = w.length();
-        if len > 0.0 {
-            self.center + w * (self.radius / len)
-        } else {
-            ray.at(t)
-        }
+        if len > 0.0 { self.center + w * (self.radius / len) } else { ray.at(t) }
     }
 
     /// Outward unit normal at a point on the sphere.
@@ -86,11 +74,7 @@ impl Sphere {
     /// The box c ± (r + τ), rounded outward (a tangent hit may lie τ outside the sphere).
     pub fn bounds(&self) -> Aabb {
         let pad = self.radius + self.tangent_tolerance() + gamma(2) * max_abs(self.center);
-        Aabb {
-            min: self.center,
-            max: self.center,
-        }
-        .padded(pad)
+        Aabb { min: self.center, max: self.center }.padded(pad)
     }
 
     /// 4π r².
@@ -101,10 +85,7 @@ impl Sphere {
     /// Uniform by area: the centre plus r times a uniform direction (pdf 1/(4π r²)).
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
         let n = uniform_sphere(u);
-        ShapeSample {
-            point: self.center + self.radius * n,
-            normal: n,
-        }
+        ShapeSample { point: self.center + self.radius * n, normal: n }
     }
 
     /// |c|∞ + r: the coordinate scale at which the intersection arithmetic rounds.
@@ -118,10 +99,7 @@ impl Sphere {
             return Err(format!("sphere centre {} is not finite", self.center));
         }
         if !(self.radius > 0.0 && self.radius.is_finite()) {
-            return Err(format!(
-                "sphere radius {} must be positive and finite",
-                self.radius
-            ));
+            return Err(format!("sphere radius {} must be positive and finite", self.radius));
         }
         Ok(())
     }

@@ -52,10 +52,7 @@ impl Shear {
         let d = ray.dir;
         let kz = d.abs().max_position();
         let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        Shear {
-            k: [kx, ky, kz],
-            s: [-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]],
-        }
+        Shear { k: [kx, ky, kz], s: [-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]] }
     }
 
     /// A vertex in the ray's frame, translated to its origin.
@@ -63,11 +60,7 @@ impl Shear {
     fn apply(&self, ray: &Ray, p: DVec3) -> Sheared {
         let q = p - ray.origin;
         let [kx, ky, kz] = self.k;
-        Sheared {
-            x: q[kx] + self.s[0] * q[kz],
-            y: q[ky] + self.s[1] * q[kz],
-            z: q[kz] * self.s[2],
-        }
+        Sheared { x: q[kx] + self.s[0] * q[kz], y: q[ky] + self.s[1] * q[kz], z: q[kz] * self.s[2] }
     }
 }
 
@@ -80,11 +73,8 @@ impl Triangle {
     /// [`Triangle::distance`] with the ray's shear computed once for many triangles.
     pub fn distance_sheared(&self, ray: &Ray, shear: &Shear, t_max: f64) -> Option<f64> {
         let v = self.p.map(|p| shear.apply(ray, p));
-        let e = [
-            v[1].x * v[2].y - v[1].y * v[2].x,
-            v[2].x * v[0].y - v[2].y * v[0].x,
-            v[0].x * v[1].y - v[0].y * v[1].x,
-        ];
+        let e =
+            [v[1].x * v[2].y - v[1].y * v[2].x, v[2].x * v[0].y - v[2].y * v[0].x, v[0].x * v[1].y - v[0].y * v[1].x];
         let negative = e.iter().any(|&x| x < 0.0);
         let positive = e.iter().any(|&x| x > 0.0);
         let det = e[0] + e[1] + e[2];
@@ -138,10 +128,7 @@ impl Triangle {
     /// Uniform by area: uniform barycentrics (Heitz 2019) applied to the vertices.
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
         let b = uniform_triangle(u);
-        ShapeSample {
-            point: b[0] * self.p[0] + b[1] * self.p[1] + b[2] * self.p[2],
-            normal: self.normal(),
-        }
+        ShapeSample { point: b[0] * self.p[0] + b[1] * self.p[1] + b[2] * self.p[2], normal: self.normal() }
     }
 
     /// max_i |p_i|∞.
@@ -152,16 +139,10 @@ impl Triangle {
     /// Finite vertices spanning a non-zero area.
     pub fn check(&self) -> Result<(), String> {
         if !self.p.iter().all(|p| p.is_finite()) {
-            return Err(format!(
-                "triangle vertex is not finite: {} {} {}",
-                self.p[0], self.p[1], self.p[2]
-            ));
+            return Err(format!("triangle vertex is not finite: {} {} {}", self.p[0], self.p[1], self.p[2]));
         }
         if !(self.area() > 0.0 && self.normal().is_normalized()) {
-            return Err(format!(
-                "degenerate triangle (zero area): {} {} {}",
-                self.p[0], self.p[1], self.p[2]
-            ));
+            return Err(format!("degenerate triangle (zero area): {} {} {}", self.p[0], self.p[1], self.p[2]));
         }
         Ok(())
     }
