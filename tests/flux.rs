@@ -146,3 +146,42 @@ scale = 0.02
         assert!((filtered / exact - 1.0).abs() < 0.05, "disc radius {r} too large for a point comparison at x = {x}");
     }
 }
+
+#[test]
+fn a_directional_light_delivers_its_irradiance_times_the_area_it_lights() {
+    // E = 3 W/m² straight down onto a black 2 m × 2 m plate: 12 W arrive. Photons start on a disk
+    // covering the scene's bounding sphere, so a fraction of them hit the plate; the stored power
+    // estimates 12 W with relative standard error √((1 − p)/(pN)) ≈ 0.24% for p = 4/(π·2).
+    let toml = r#"
+[camera]
+position = [0.0, 3.0, 3.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 60.0
+width = 8
+height = 8
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [-1.0, 0.0, -1.0]
+u = [0.0, 0.0, 2.0]
+v = [2.0, 0.0, 0.0]
+material = "black"
+
+[[light]]
+type = "directional"
+direction = [0.0, -1.0, 0.0]
+spectrum = "D65"
+irradiance_w_m2 = 3.0
+"#;
+    let s = scene(toml);
+    let (photons, stats) = shoot(&s, MapKind::Global { store_direct: true }, 100_000, 8, &|_| {});
+    let stored: f64 = photons.iter().map(|p| p.power_w).sum();
+    assert!((stored / 12.0 - 1.0).abs() < 0.01, "stored {stored} W, expected 12 W");
+    assert!((stats.escaped_w + stats.absorbed_w - s.lights[0].power_w()).abs() < 1e-9 * s.lights[0].power_w());
+    assert!(photons.iter().all(|p| p.dir.y < -0.999_999));
+}
