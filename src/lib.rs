@@ -16,6 +16,7 @@ pub mod error;
 pub mod geometry;
 pub mod light;
 pub mod material;
+pub mod media;
 pub mod output;
 pub mod photon;
 pub mod photon_map;

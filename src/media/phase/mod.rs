@@ -1,0 +1,1 @@
+//! Phase functions: one file each, dispatched by a closed enum.
