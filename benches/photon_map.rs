@@ -35,7 +35,7 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, SamplingMode};
 use glam::DVec3;
 use kiddo::{Eytzinger, FlatVec, ImmutableKdTree, SquaredEuclidean};
-use morgana::photon_map::{KdTree, Neighbours, PhotonMap, PhotonRecord};
+use morgana::photon_map::{KdTree, Neighbours, PhotonMap, PhotonPath, PhotonRecord};
 use morgana::rng::{Rng, Stream};
 
 const K: usize = 100;
@@ -73,7 +73,14 @@ fn scene_photon(rng: &mut Rng) -> PhotonRecord {
     if normal != DVec3::ZERO {
         dir.z = -dir.z.abs();
     }
-    PhotonRecord { position: room + offset, dir, normal, wavelength_nm: 380.0 + 400.0 * rng.uniform(), power_w: 1e-6 }
+    PhotonRecord {
+        position: room + offset,
+        dir,
+        normal,
+        wavelength_nm: 380.0 + 400.0 * rng.uniform(),
+        power_w: 1e-6,
+        path: PhotonPath::Diffuse,
+    }
 }
 
 fn scene(n: usize, seed: u64) -> Vec<PhotonRecord> {

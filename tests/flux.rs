@@ -5,7 +5,7 @@ mod common;
 use common::scene;
 use glam::DVec3;
 use morgana::photon::{MapKind, shoot};
-use morgana::photon_map::{Estimator, Neighbours, PhotonMap};
+use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap};
 use morgana::scene::Filter;
 use morgana::testing::chi2::gauss_legendre;
 use std::f64::consts::PI;
@@ -42,11 +42,12 @@ fn all_power_arrives(lights: &str, expected_power: f64) -> Vec<morgana::photon_m
     let total: f64 = s.lights.iter().map(|l| l.power_w()).sum();
     assert!((total - expected_power).abs() < 1e-9 * total, "light power {total}, expected {expected_power}");
     let n = 100_000;
-    let (photons, stats) = shoot(&s, MapKind::Global { store_direct: true }, n, 5, &|_| {});
+    let (sink, stats) = shoot(&s, MapKind::Global, n, 5, &|_| {});
+    let photons = sink.surface;
     assert_eq!(photons.len() as u64, n, "each photon stored exactly once");
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
     assert!((stored - total).abs() < 1e-9 * total, "stored {stored} W of {total} W");
-    assert!((stats.absorbed_w - total).abs() < 1e-9 * total);
+    assert!((stats.absorbed_surface_w - total).abs() < 1e-9 * total);
     assert_eq!(stats.escaped_w, 0.0);
     photons
 }
@@ -110,11 +111,11 @@ scale = 0.02
 "#;
     let s = scene(toml);
     // Intensity per nm 0.02 over 100 nm: I = 2 W/sr; the photon map's band value is E per nm.
-    let (records, _) = shoot(&s, MapKind::Global { store_direct: true }, 2_000_000, 11, &|_| {});
+    let records = shoot(&s, MapKind::Global, 2_000_000, 11, &|_| {}).0.surface;
     let map = PhotonMap::build(&records);
     let k = 1000;
     let filter = Filter::Cone { k: 1.1 };
-    let est = Estimator { map: &map, k, max_radius: 1.0, filter, bands: s.bands };
+    let est = Estimator { map: &map, k, max_radius: 1.0, filter, bands: s.bands, paths: Paths::All };
     let mut nb = Neighbours::default();
     for x in [0.0, 0.4, 0.8, 1.2] {
         let e_band = est.irradiance(DVec3::new(x, 0.0, 0.0), DVec3::Y, &mut nb)[0] * 100.0;
@@ -179,9 +180,10 @@ spectrum = "D65"
 irradiance_w_m2 = 3.0
 "#;
     let s = scene(toml);
-    let (photons, stats) = shoot(&s, MapKind::Global { store_direct: true }, 100_000, 8, &|_| {});
+    let (sink, stats) = shoot(&s, MapKind::Global, 100_000, 8, &|_| {});
+    let photons = sink.surface;
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
     assert!((stored / 12.0 - 1.0).abs() < 0.01, "stored {stored} W, expected 12 W");
-    assert!((stats.escaped_w + stats.absorbed_w - s.lights[0].power_w()).abs() < 1e-9 * s.lights[0].power_w());
+    assert!((stats.escaped_w + stats.absorbed_surface_w - s.lights[0].power_w()).abs() < 1e-9 * s.lights[0].power_w());
     assert!(photons.iter().all(|p| p.dir.y < -0.999_999));
 }

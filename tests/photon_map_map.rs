@@ -1,7 +1,7 @@
 //! The photon map: round trip of stored photons, queries against brute force, determinism.
 
 use glam::DVec3;
-use morgana::photon_map::{KdPoint, Neighbours, Photon, PhotonMap, PhotonRecord};
+use morgana::photon_map::{KdPoint, Neighbours, Photon, PhotonMap, PhotonPath, PhotonRecord};
 use morgana::rng::{Rng, Stream};
 
 fn angle_deg(a: DVec3, b: DVec3) -> f64 {
@@ -35,6 +35,7 @@ fn records(n: usize, seed: u64) -> (Vec<PhotonRecord>, DVec3, DVec3) {
                 normal: if surface { DVec3::Z } else { DVec3::ZERO },
                 wavelength_nm: 360.0 + 470.0 * rng.uniform(),
                 power_w: (i + 1) as f64,
+                path: if i % 2 == 0 { PhotonPath::Direct } else { PhotonPath::Diffuse },
             }
         })
         .collect();
@@ -76,6 +77,7 @@ fn origin_is_the_centre_of_the_bounding_box() {
         normal: DVec3::ZERO,
         wavelength_nm: 500.0,
         power_w: 1.0,
+        path: PhotonPath::Diffuse,
     });
     let map = PhotonMap::build(&recs);
     assert_eq!(map.origin(), DVec3::new(1.0, 10.0, -1.0));

@@ -106,6 +106,22 @@ impl Light {
         Emission { origin, dir, wavelength_nm, normal }
     }
 
+    /// A point a photon from this light starts from (for finding the medium it starts in): the
+    /// centre of an area light just off its emitting side, the position of a point-like light,
+    /// and a point beyond the scene for a directional light.
+    pub fn representative_point(&self) -> DVec3 {
+        match self {
+            Light::Area(a) => {
+                let s = a.shape.sample([0.5, 0.5]);
+                let n = if a.side == Side::Back { -s.normal } else { s.normal };
+                s.point + n * (1e-6 * (1.0 + s.point.abs().max_element()))
+            }
+            Light::Point(p) => p.position,
+            Light::Spot(s) => s.position,
+            Light::Directional(d) => d.scene_centre - d.dir * (2.0 * d.scene_radius),
+        }
+    }
+
     /// Samples the light as seen from `p`; `None` when it sends nothing toward `p`.
     pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
         match self {

@@ -1,5 +1,11 @@
 //! Participating media: what fills space between surfaces — absorption, scattering, phase
-//! functions ([`phase`]) and refractive-index fields ([`index`]).
+//! functions ([`phase`]), spatial density ([`density`]), free-flight sampling and transmittance
+//! ([`tracking`]), and refractive-index fields ([`index`]).
 
+pub mod density;
 pub mod index;
+mod medium;
 pub mod phase;
+pub mod tracking;
+
+pub use medium::{Coefficients, Medium};

@@ -11,9 +11,8 @@ mod trace;
 
 pub use emit::LightChooser;
 pub use targeting::CausticTargets;
-pub use trace::{MapKind, PhotonStats};
+pub use trace::{MapKind, PhotonSink, PhotonStats};
 
-use crate::photon_map::PhotonRecord;
 use crate::raypath::Propagator;
 use crate::rng::{Rng, Stream};
 use crate::scene::Scene;
@@ -22,40 +21,38 @@ use rayon::prelude::*;
 /// Photons per batch (one random stream each).
 pub const BATCH: u64 = 4096;
 
-/// Emits `emitted` photons for a map of `kind` and returns the stored photons (in batch order)
-/// and the pass's statistics. `on_batch` is called after each batch with its photon count.
+/// Emits `emitted` photons for a map of `kind` and returns the stored photons (surface and
+/// volume, in batch order) and the pass's statistics. `on_batch` is called after each batch
+/// with its photon count.
 pub fn shoot(
     scene: &Scene,
     kind: MapKind,
     emitted: u64,
     seed: u64,
     on_batch: &(dyn Fn(u64) + Sync),
-) -> (Vec<PhotonRecord>, PhotonStats) {
+) -> (PhotonSink, PhotonStats) {
     let mut stats = PhotonStats { emitted, ..PhotonStats::default() };
-    let Some(chooser) = LightChooser::new(&scene.lights) else {
-        return (Vec::new(), stats);
-    };
+    let Some(chooser) = LightChooser::new(&scene.lights) else { return (PhotonSink::default(), stats) };
     let targets = match kind {
         MapKind::Caustic => match CausticTargets::new(scene) {
             Some(t) => Some(t),
-            None => return (Vec::new(), stats),
+            None => return (PhotonSink::default(), stats),
         },
-        MapKind::Global { .. } => None,
+        MapKind::Global => None,
     };
     let power = chooser.total_power_w() / emitted.max(1) as f64;
     stats.power_per_photon_w = power;
-    let prop = Propagator::new(&scene.shapes, &scene.bvh);
-    let batches = emitted.div_ceil(BATCH);
+    let prop = Propagator::new(scene);
     let stream = match kind {
         MapKind::Caustic => Stream::CausticPhotons,
-        MapKind::Global { .. } => Stream::GlobalPhotons,
+        MapKind::Global => Stream::GlobalPhotons,
     };
-    let results: Vec<(Vec<PhotonRecord>, PhotonStats)> = (0..batches)
+    let results: Vec<(PhotonSink, PhotonStats)> = (0..emitted.div_ceil(BATCH))
         .into_par_iter()
         .map(|b| {
             let mut rng = Rng::for_task(seed, stream, b);
             let n = BATCH.min(emitted - b * BATCH);
-            let mut out = Vec::new();
+            let mut out = PhotonSink::default();
             let mut st = PhotonStats::default();
             for _ in 0..n {
                 let (l, _) = chooser.choose(rng.uniform());
@@ -64,7 +61,8 @@ pub fn shoot(
                     None => (scene.lights[l].emit(&mut rng), 1.0),
                 };
                 if factor > 0.0 {
-                    trace::trace(scene, &prop, &em, power * factor, kind, &mut rng, &mut out, &mut st);
+                    let medium = scene.light_media[l];
+                    trace::trace(scene, &prop, &em, medium, power * factor, kind, &mut rng, &mut out, &mut st);
                 } else {
                     st.missed += 1;
                 }
@@ -73,10 +71,14 @@ pub fn shoot(
             (out, st)
         })
         .collect();
-    let mut photons = Vec::with_capacity(results.iter().map(|r| r.0.len()).sum());
+    let mut sink = PhotonSink {
+        surface: Vec::with_capacity(results.iter().map(|r| r.0.surface.len()).sum()),
+        volume: Vec::with_capacity(results.iter().map(|r| r.0.volume.len()).sum()),
+    };
     for (p, s) in results {
-        photons.extend(p);
+        sink.surface.extend(p.surface);
+        sink.volume.extend(p.volume);
         stats.add(&s);
     }
-    (photons, stats)
+    (sink, stats)
 }

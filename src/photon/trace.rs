@@ -1,121 +1,213 @@
-//! Tracing one photon and the storage rules of each map (Jensen 2001, §5.2).
+//! Tracing one photon and the storage rules of each map (Jensen 2001, §5.2; Jensen &
+//! Christensen 1998, §4.2; Gutierrez et al. 2005, §3).
 //!
-//! Power is carried unchanged; Russian roulette decides survival with the surface's
-//! reflectance at the photon's wavelength (diffuse: ρ(λ); mirror: R(λ); glass: reflection or
-//! refraction chosen by the Fresnel reflectance), so every stored photon of a pass carries the
-//! power it was emitted with.
+//! Power is carried unchanged; Russian roulette decides survival: at a diffuse surface with its
+//! reflectance ρ(λ), at a mirror with R(λ), at glass between reflection and refraction by the
+//! Fresnel reflectance, and in a medium — where the free-flight distance is sampled along each
+//! chord of the path — with the single-scattering albedo σ_s/σ_t (the first roulette; the
+//! inelastic issue adds a second). Every stored photon of a pass carries the power it was
+//! emitted with, tagged with its [`PhotonPath`].
 
 use crate::geometry::spawn_origin;
 use crate::light::Emission;
 use crate::material::Lambertian;
-use crate::photon_map::PhotonRecord;
+use crate::media::tracking;
+use crate::photon_map::{PhotonPath, PhotonRecord};
 use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::Scene;
+use glam::DVec3;
 use serde::Serialize;
 
 /// Which map a pass fills, and so which hits it stores.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MapKind {
-    /// Every diffuse hit, or (with `store_direct` false) only those after a diffuse bounce —
-    /// the indirect part, when direct light and caustics come from elsewhere.
-    Global { store_direct: bool },
-    /// The first diffuse hit after one or more specular bounces (L S+ D); the photon then stops.
+    /// Every diffuse surface hit (surface map) and every interaction in a medium (volume map),
+    /// tagged with the photon's path so estimates can leave out what shadow rays compute.
+    Global,
+    /// The first diffuse hit after one or more specular events and nothing else (L S+ D); the
+    /// photon then stops, as it does when it scatters in a medium.
     Caustic,
 }
 
 /// Bounces after which a photon is dropped (its power is counted as truncated). Roulette ends
 /// almost every path long before; this bounds pathological scenes (a mirror-lined box).
-pub const MAX_PHOTON_BOUNCES: usize = 512;
+pub const MAX_PHOTON_BOUNCES: usize = 4096;
 
-/// What happened to a pass's photons. Powers are in W; emitted = absorbed + escaped + truncated
-/// + missed (targeted caustic photons that found no specular surface).
+/// What happened to a pass's photons. Powers are in W; for the global pass
+/// emitted = absorbed at surfaces + absorbed in media + escaped + truncated.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct PhotonStats {
     pub emitted: u64,
+    /// Photons stored on surfaces.
     pub stored: u64,
+    /// Photons stored in media.
+    pub stored_volume: u64,
     pub power_per_photon_w: f64,
-    pub absorbed_w: f64,
+    pub absorbed_surface_w: f64,
+    pub absorbed_medium_w: f64,
     pub escaped_w: f64,
     pub truncated_w: f64,
-    /// Photons that did not contribute to a caustic map (first hit diffuse, or aimed nowhere).
+    /// Caustic-pass photons that did not make a caustic (first hit diffuse, scattered in a
+    /// medium, or aimed nowhere).
     pub missed: u64,
     pub bounces: u64,
+    pub medium_interactions: u64,
 }
 
 impl PhotonStats {
     pub fn add(&mut self, o: &PhotonStats) {
         self.stored += o.stored;
-        self.absorbed_w += o.absorbed_w;
+        self.stored_volume += o.stored_volume;
+        self.absorbed_surface_w += o.absorbed_surface_w;
+        self.absorbed_medium_w += o.absorbed_medium_w;
         self.escaped_w += o.escaped_w;
         self.truncated_w += o.truncated_w;
         self.missed += o.missed;
         self.bounces += o.bounces;
+        self.medium_interactions += o.medium_interactions;
     }
 }
 
-/// Traces one photon of power `power_w` from `em`, appending stored photons to `out`.
+/// Where a pass puts its photons.
+#[derive(Default)]
+pub struct PhotonSink {
+    pub surface: Vec<PhotonRecord>,
+    pub volume: Vec<PhotonRecord>,
+}
+
+/// One photon in flight.
+struct Flight<'a> {
+    scene: &'a Scene,
+    kind: MapKind,
+    lambda: f64,
+    power_w: f64,
+    path: PhotonPath,
+}
+
+impl Flight<'_> {
+    fn record(&self, position: DVec3, dir: DVec3, normal: DVec3) -> PhotonRecord {
+        PhotonRecord { position, dir, normal, wavelength_nm: self.lambda, power_w: self.power_w, path: self.path }
+    }
+
+    fn after(&mut self, path: PhotonPath) {
+        self.path = match (self.path, path) {
+            (PhotonPath::Diffuse, _) | (_, PhotonPath::Diffuse) => PhotonPath::Diffuse,
+            _ => PhotonPath::Specular,
+        };
+    }
+}
+
+/// Traces one photon of power `power_w` from `em`, starting in `medium`.
 #[allow(clippy::too_many_arguments)]
 pub fn trace(
     scene: &Scene,
     prop: &Propagator,
     em: &Emission,
+    medium: Option<u32>,
     power_w: f64,
     kind: MapKind,
     rng: &mut Rng,
-    out: &mut Vec<PhotonRecord>,
+    out: &mut PhotonSink,
     st: &mut PhotonStats,
 ) {
-    let lambda = em.wavelength_nm;
-    let origin = if em.normal == glam::DVec3::ZERO { em.origin } else { spawn_origin(em.origin, em.normal, em.dir) };
-    let mut state = RayState { position: origin, dir: em.dir, wavelength_nm: Some(lambda) };
-    let (mut diffuse_bounces, mut specular_bounces) = (0usize, 0usize);
+    let mut f = Flight { scene, kind, lambda: em.wavelength_nm, power_w, path: PhotonPath::Direct };
+    let origin = if em.normal == DVec3::ZERO { em.origin } else { spawn_origin(em.origin, em.normal, em.dir) };
+    let mut state = RayState { position: origin, dir: em.dir, wavelength_nm: Some(f.lambda), medium };
+    let store_volume = scene.plan.volume_map.on;
     for _ in 0..MAX_PHOTON_BOUNCES {
-        let (hit, dir) = match prop.next_event(&state) {
+        let event = prop.next_event_with(&state, &mut |c| {
+            let m = scene.medium(c.medium)?;
+            tracking::sample_interaction(m, f.lambda, c.origin, c.dir, c.length, rng)
+        });
+        let next = match event {
             Event::Escape { .. } => {
                 st.escaped_w += power_w;
                 return;
             }
-            Event::Surface { hit, dir, .. } => (hit, dir),
-        };
-        st.bounces += 1;
-        let Some(material) = scene.material_of(hit.prim) else {
-            st.absorbed_w += power_w;
-            return;
-        };
-        let new_dir = if material.is_diffuse() {
-            let store = match kind {
-                MapKind::Global { store_direct } => store_direct || diffuse_bounces > 0,
-                MapKind::Caustic => specular_bounces > 0,
-            };
-            if store {
-                out.push(PhotonRecord { position: hit.point, dir, normal: hit.normal, wavelength_nm: lambda, power_w });
-                st.stored += 1;
-            }
-            if kind == MapKind::Caustic {
-                if !store {
+            Event::Medium { position, dir, medium, .. } => {
+                st.medium_interactions += 1;
+                if f.kind == MapKind::Caustic {
                     st.missed += 1;
+                    return;
                 }
-                return;
+                if store_volume {
+                    out.volume.push(f.record(position, dir, DVec3::ZERO));
+                    st.stored_volume += 1;
+                }
+                let m = &scene.media[medium as usize];
+                if rng.uniform() >= m.albedo(f.lambda) {
+                    st.absorbed_medium_w += power_w;
+                    return;
+                }
+                f.after(PhotonPath::Diffuse);
+                let (wo, _) = m.phase.sample(f.lambda, dir, rng.uniform2());
+                RayState { position, dir: wo, wavelength_nm: Some(f.lambda), medium: Some(medium) }
             }
-            if rng.uniform() >= material.diffuse_reflectance(lambda) {
-                st.absorbed_w += power_w;
-                return;
+            Event::Surface { hit, dir, medium, .. } => {
+                st.bounces += 1;
+                match surface(&mut f, prop, &hit, dir, medium, rng, out, st) {
+                    Some(s) => s,
+                    None => return,
+                }
             }
-            diffuse_bounces += 1;
-            Lambertian::sample(dir, hit.normal, rng.uniform2())
-        } else {
-            let Some(s) = material.sample_specular(dir, hit.normal, lambda, rng.uniform()) else {
-                return;
-            };
-            if rng.uniform() >= s.weight {
-                st.absorbed_w += power_w;
-                return;
-            }
-            specular_bounces += 1;
-            s.dir
         };
-        state = prop.leave(&hit, new_dir, Some(lambda));
+        state = next;
     }
     st.truncated_w += power_w;
+}
+
+/// What a photon does at a surface: the state it leaves in, or `None` when it stops there.
+#[allow(clippy::too_many_arguments)]
+fn surface(
+    f: &mut Flight,
+    prop: &Propagator,
+    hit: &crate::geometry::Hit,
+    dir: DVec3,
+    medium: Option<u32>,
+    rng: &mut Rng,
+    out: &mut PhotonSink,
+    st: &mut PhotonStats,
+) -> Option<RayState> {
+    let scene = f.scene;
+    let lambda = Some(f.lambda);
+    let Some(material) = scene.material_of(hit.prim) else {
+        if scene.prims[hit.prim as usize].light.is_some() {
+            st.absorbed_surface_w += f.power_w;
+            return None;
+        }
+        // An index-matched boundary: the photon passes into the next medium unchanged.
+        let across = scene.medium_across(hit.prim, dir, hit.normal);
+        return Some(prop.leave(hit, dir, lambda, across));
+    };
+    if material.is_diffuse() {
+        let store = match f.kind {
+            MapKind::Global => true,
+            MapKind::Caustic => f.path == PhotonPath::Specular,
+        };
+        if store {
+            out.surface.push(f.record(hit.point, dir, hit.normal));
+            st.stored += 1;
+        }
+        if f.kind == MapKind::Caustic {
+            if !store {
+                st.missed += 1;
+            }
+            return None;
+        }
+        if rng.uniform() >= material.diffuse_reflectance(f.lambda) {
+            st.absorbed_surface_w += f.power_w;
+            return None;
+        }
+        f.after(PhotonPath::Diffuse);
+        return Some(prop.leave(hit, Lambertian::sample(dir, hit.normal, rng.uniform2()), lambda, medium));
+    }
+    let s = material.sample_specular(dir, hit.normal, f.lambda, rng.uniform())?;
+    if rng.uniform() >= s.weight {
+        st.absorbed_surface_w += f.power_w;
+        return None;
+    }
+    f.after(PhotonPath::Specular);
+    let next_medium = if s.transmitted { scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+    Some(prop.leave(hit, s.dir, lambda, next_medium))
 }

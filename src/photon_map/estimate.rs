@@ -1,16 +1,26 @@
-//! Radiance estimates from a surface photon map (Jensen 2001, §7.2; course notes §3.2).
+//! Radiance estimates from photon maps.
 //!
-//! Reflected radiance at x from the k nearest photons within radius r (r = distance to the
-//! farthest one found):
+//! Surfaces (Jensen 2001, §7.2; course notes §3.2): reflected radiance at x from the k nearest
+//! photons within radius r (r = distance to the farthest one found),
 //!
-//! L_r(x, ω, b) ≈ Σ_p f_r(λ_p) w_p ΔΦ_p / (c · π r² · Δλ_b)
+//! L_r(x, b) ≈ Σ_p f_r(λ_p) w_p ΔΦ_p / (c · π r² · Δλ_b),
 //!
 //! summed over photons whose wavelength λ_p falls in band b (so L is per nm), that arrived on
-//! the side of the surface being viewed and lie on a surface of similar orientation. The filter
-//! weight w_p and its normalisation c are those of the chosen [`Filter`]: box (w = 1, c = 1),
-//! cone (w = 1 − d/(k r), c = 1 − 2/(3k)) or Epanechnikov (w = 2(1 − d²/r²), c = 1).
+//! the side of the surface being viewed and lie on a surface of similar orientation; w_p and c
+//! are the [`Filter`]'s weight and normalisation: box (w = 1, c = 1), cone (w = 1 − d/(k r),
+//! c = 1 − 2/(3k)) or Epanechnikov (w = 2(1 − d²/r²), c = 1).
+//!
+//! Media (Jensen & Christensen 1998, Eq. 6 with the albedo factor of §4.3): photons are stored at
+//! every interaction, so their density is σ_t times the fluence, and the radiance scattered
+//! toward ω per unit length is
+//!
+//! σ_s L_i(x, ω, b) ≈ Σ_p α(λ_p) f(λ_p; ω_p·ω) ΔΦ_p / ((4/3)π r³ Δλ_b),
+//!
+//! with α = σ_s/σ_t the single-scattering albedo at the photon's own wavelength and f the phase
+//! function (ω_p the photon's direction of travel, ω the scattered light's).
 
-use super::{Neighbours, PhotonMap, PhotonRecord};
+use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
+use crate::media::Medium;
 use crate::scene::Filter;
 use crate::spectrum::{Bands, MAX_BANDS};
 use glam::DVec3;
@@ -22,6 +32,27 @@ pub type BandValues = [f64; MAX_BANDS];
 /// Photons on surfaces tilted more than this (cosine) from the query normal are ignored.
 const MIN_NORMAL_COS: f64 = 0.5;
 
+/// Which photons an estimate counts, by what they met on the way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Paths {
+    All,
+    /// Leave out direct photons (direct light comes from shadow rays).
+    NotDirect,
+    /// Only photons after a diffuse bounce or a scattering (direct light and caustics come
+    /// from elsewhere).
+    DiffuseOnly,
+}
+
+impl Paths {
+    fn accepts(self, p: PhotonPath) -> bool {
+        match self {
+            Paths::All => true,
+            Paths::NotDirect => p != PhotonPath::Direct,
+            Paths::DiffuseOnly => p == PhotonPath::Diffuse,
+        }
+    }
+}
+
 /// Density estimation on one map with fixed parameters.
 pub struct Estimator<'a> {
     pub map: &'a PhotonMap,
@@ -29,21 +60,22 @@ pub struct Estimator<'a> {
     pub max_radius: f64,
     pub filter: Filter,
     pub bands: Bands,
+    pub paths: Paths,
 }
 
 impl Estimator<'_> {
     /// Irradiance per band (W m⁻² nm⁻¹) on the side of normal `n` at `x`.
     pub fn irradiance(&self, x: DVec3, n: DVec3, nb: &mut Neighbours) -> BandValues {
-        self.estimate(x, n, nb, |_| 1.0)
+        self.surface(x, n, nb, |_| 1.0)
     }
 
     /// Radiance per band (W m⁻² sr⁻¹ nm⁻¹) reflected by a Lambertian surface of reflectance
     /// `rho(λ)` at `x` toward the side of normal `n` (f_r = ρ(λ_p)/π at each photon's λ).
     pub fn lambertian_radiance(&self, x: DVec3, n: DVec3, rho: &dyn Fn(f64) -> f64, nb: &mut Neighbours) -> BandValues {
-        self.estimate(x, n, nb, |p| rho(p.wavelength_nm) / PI)
+        self.surface(x, n, nb, |p| rho(p.wavelength_nm) / PI)
     }
 
-    fn estimate(&self, x: DVec3, n: DVec3, nb: &mut Neighbours, f: impl Fn(&PhotonRecord) -> f64) -> BandValues {
+    fn surface(&self, x: DVec3, n: DVec3, nb: &mut Neighbours, f: impl Fn(&PhotonRecord) -> f64) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         self.map.knn(x, self.k, self.max_radius, nb);
         let r2 = nb.max_dist2() as f64;
@@ -53,17 +85,39 @@ impl Estimator<'_> {
         let r = r2.sqrt();
         for &(i, d2) in &nb.items {
             let p = self.map.record(i);
-            if p.dir.dot(n) >= 0.0 || p.normal.dot(n).abs() < MIN_NORMAL_COS {
+            if !self.paths.accepts(p.path) || p.dir.dot(n) >= 0.0 || p.normal.dot(n).abs() < MIN_NORMAL_COS {
                 continue;
             }
-            let Some(b) = self.bands.index_of(p.wavelength_nm) else {
-                continue;
-            };
+            let Some(b) = self.bands.index_of(p.wavelength_nm) else { continue };
             out[b] += filter_weight(self.filter, (d2 as f64).sqrt(), r) * f(&p) * p.power_w;
         }
         let scale = 1.0 / (filter_norm(self.filter) * PI * r2 * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         out
+    }
+
+    /// Radiance scattered per unit length toward travel direction `wo` at `x` in `medium`, per
+    /// band (W m⁻³ sr⁻¹ nm⁻¹), and the radius of the sphere used (0 if no photon was found).
+    pub fn volume_scattered(&self, x: DVec3, wo: DVec3, medium: &Medium, nb: &mut Neighbours) -> (BandValues, f64) {
+        let mut out = [0.0; MAX_BANDS];
+        self.map.knn(x, self.k, self.max_radius, nb);
+        let r2 = nb.max_dist2() as f64;
+        if nb.is_empty() || r2 <= 0.0 {
+            return (out, 0.0);
+        }
+        for &(i, _) in &nb.items {
+            let p = self.map.record(i);
+            if !self.paths.accepts(p.path) {
+                continue;
+            }
+            let Some(b) = self.bands.index_of(p.wavelength_nm) else { continue };
+            let l = p.wavelength_nm;
+            out[b] += medium.albedo(l) * medium.phase.eval(l, p.dir.dot(wo)) * p.power_w;
+        }
+        let r = r2.sqrt();
+        let scale = 1.0 / (4.0 / 3.0 * PI * r2 * r * self.bands.width_nm());
+        out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
+        (out, r)
     }
 }
 

@@ -19,10 +19,10 @@ mod irradiance;
 mod kdtree;
 mod photon;
 
-pub use estimate::{BandValues, Estimator};
+pub use estimate::{BandValues, Estimator, Paths};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
-pub use photon::{Photon, PhotonRecord, oct_decode, oct_encode};
+pub use photon::{Photon, PhotonPath, PhotonRecord, oct_decode, oct_encode};
 
 use glam::DVec3;
 use rayon::prelude::*;

@@ -30,14 +30,28 @@ pub struct PhotonRecord {
     pub normal: DVec3,
     pub wavelength_nm: f64,
     pub power_w: f64,
+    /// What the photon met between its light and this interaction.
+    pub path: PhotonPath,
+}
+
+/// What a photon met before being stored, in the notation of Heckbert 1990 (L light, S specular,
+/// D diffuse surface or scattering in a medium).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PhotonPath {
+    /// Straight from the light (L X): direct light.
+    Direct,
+    /// Through specular surfaces only (L S+ X): caustics.
+    Specular,
+    /// After a diffuse bounce or a scattering in a medium (L .* D .* X): indirect light.
+    Diffuse,
 }
 
 /// A stored photon, at most 32 bytes (exactly 32, 4-byte aligned).
 ///
 /// The kd-tree keeps its split planes in its own node array (see [`super::KdTree`]), so the
-/// photon needs no split-axis bits; `flags` only marks surface photons (bit 0), which is how a
-/// zero normal (a photon stored in a medium) survives the octahedral encoding. The other 31 bits
-/// are free.
+/// photon needs no split-axis bits; `flags` marks surface photons (bit 0), which is how a zero
+/// normal (a photon stored in a medium) survives the octahedral encoding, and the photon's
+/// [`PhotonPath`] (bits 1–2). The other 29 bits are free.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct Photon {
@@ -55,6 +69,10 @@ pub struct Photon {
 impl Photon {
     /// Set when the photon lies on a surface and carries a normal.
     pub const FLAG_SURFACE: u32 = 1;
+    /// Set for [`PhotonPath::Direct`].
+    pub const FLAG_DIRECT: u32 = 2;
+    /// Set for [`PhotonPath::Specular`].
+    pub const FLAG_SPECULAR: u32 = 4;
 
     /// Encodes `record` relative to `origin`.
     ///
@@ -69,7 +87,12 @@ impl Photon {
             wavelength_nm: record.wavelength_nm as f32,
             dir: oct_encode(record.dir),
             normal: if has_normal { oct_encode(record.normal) } else { [0; 2] },
-            flags: if has_normal { Self::FLAG_SURFACE } else { 0 },
+            flags: if has_normal { Self::FLAG_SURFACE } else { 0 }
+                | match record.path {
+                    PhotonPath::Direct => Self::FLAG_DIRECT,
+                    PhotonPath::Specular => Self::FLAG_SPECULAR,
+                    PhotonPath::Diffuse => 0,
+                },
         }
     }
 
@@ -81,6 +104,7 @@ impl Photon {
             normal: self.normal(),
             wavelength_nm: f64::from(self.wavelength_nm),
             power_w: f64::from(self.power_w),
+            path: self.path(),
         }
     }
 
@@ -119,6 +143,18 @@ impl Photon {
     #[inline]
     pub fn is_surface(&self) -> bool {
         self.flags & Self::FLAG_SURFACE != 0
+    }
+
+    /// What the photon met before being stored.
+    #[inline]
+    pub fn path(&self) -> PhotonPath {
+        if self.flags & Self::FLAG_DIRECT != 0 {
+            PhotonPath::Direct
+        } else if self.flags & Self::FLAG_SPECULAR != 0 {
+            PhotonPath::Specular
+        } else {
+            PhotonPath::Diffuse
+        }
     }
 
     /// Raw flag bits.
@@ -280,6 +316,7 @@ mod tests {
                 normal: if surface { uniform_dir(&mut rng) } else { DVec3::ZERO },
                 wavelength_nm: 380.0 + 400.0 * rng.uniform(),
                 power_w: 1e-6 * rng.uniform(),
+                path: [PhotonPath::Direct, PhotonPath::Specular, PhotonPath::Diffuse][i % 3],
             };
             let p = Photon::encode(&rec, origin);
             let back = p.decode(origin);
@@ -294,6 +331,7 @@ mod tests {
             }
             assert!((back.wavelength_nm - rec.wavelength_nm).abs() <= rec.wavelength_nm * 6e-8);
             assert!((back.power_w - rec.power_w).abs() <= rec.power_w * 6e-8);
+            assert_eq!(back.path, rec.path);
         }
     }
 }

@@ -1,25 +1,32 @@
-//! Eye paths: the second pass of photon mapping (Jensen 2001, ch. 9).
+//! Eye paths: the second pass of photon mapping (Jensen 2001, ch. 9; Jensen & Christensen 1998,
+//! §4.4).
 //!
-//! At a diffuse surface seen from the camera (directly or through mirrors and glass) radiance
-//! is the sum of
-//! - direct light, by shadow rays to each light (`direct = "shadow_rays"`);
+//! Along every chord of a path inside a medium, an adaptive ray marcher accumulates
+//! transmittance and the light scattered toward the eye: from the volume photon map, plus — with
+//! `direct = "shadow_rays"` — single scattering by shadow rays (then the map's direct photons are
+//! left out). At a diffuse surface seen from the camera (directly or through mirrors and glass)
+//! radiance is the sum of
+//! - direct light, by shadow rays to each light, attenuated by the media they cross;
 //! - caustics, by a radiance estimate on the caustic map;
-//! - indirect light, by final gathering: cosine-distributed rays whose diffuse hits read the
-//!   precomputed irradiance of the global map; or by a direct estimate on the global map.
+//! - indirect light, by final gathering — cosine-distributed rays whose diffuse hits read the
+//!   precomputed irradiance of the global map — or by a direct estimate on the global map's
+//!   diffusely scattered photons.
 //!
-//! With `direct = "photon_map"` the global map alone gives all of it. Gather rays that reach an
-//! emitter — directly or through specular surfaces — add nothing: that light is already counted
-//! by the shadow rays and the caustic map. Specular surfaces are followed; an eye path carrying
-//! several wavelengths splits into one path per lane at a dispersive surface (a gather path
-//! instead follows one lane chosen at random, weighted by the lane count).
+//! With `direct = "photon_map"` the photon maps alone give all of it (Lucifer's choice, needed
+//! where shadow rays cannot follow curved paths). Gather rays that reach an emitter — directly
+//! or through specular surfaces — add nothing: that light is counted by the shadow rays and the
+//! caustic map. Specular surfaces are followed; an eye path carrying several wavelengths splits
+//! into one path per lane at a dispersive surface (a gather path instead follows one lane chosen
+//! at random, weighted by the lane count).
 
 use super::lanes::Lanes;
 use super::maps::Maps;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
 use crate::material::{Lambertian, Material};
-use crate::photon_map::{BandValues, Estimator, Neighbours};
-use crate::raypath::{Event, Propagator, RayState};
+use crate::media::{Medium, tracking};
+use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
+use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::{DirectLighting, Scene};
 use crate::spectrum::MAX_BANDS;
@@ -33,6 +40,9 @@ enum Mode {
     Gather,
 }
 
+/// Transmittance below which a marched path is continued by Russian roulette.
+const ROULETTE_TRANSMITTANCE: f64 = 1e-3;
+
 /// Per-thread scratch for photon queries and counters.
 #[derive(Default)]
 pub struct Scratch {
@@ -40,69 +50,120 @@ pub struct Scratch {
     pub rays: RayCounts,
 }
 
+/// Light accumulated along a path up to its next surface: scattered radiance and transmittance.
+struct Along {
+    l: BandValues,
+    tr: BandValues,
+}
+
+/// Where an eye path is: its wavelengths, its depth, whether it is a gather ray.
+#[derive(Clone, Copy)]
+struct At<'l> {
+    lanes: &'l Lanes,
+    depth: usize,
+    mode: Mode,
+}
+
+impl At<'_> {
+    fn wavelength(&self) -> Option<f64> {
+        (self.lanes.len == 1).then_some(self.lanes.nm[0])
+    }
+}
+
 pub struct EyeTracer<'a> {
     scene: &'a Scene,
     prop: Propagator<'a>,
     maps: &'a Maps,
+    /// Global map as camera paths read it at diffuse surfaces (when they do).
     global: Option<Estimator<'a>>,
+    /// Global map with every photon, for gather rays without precomputed irradiance.
+    global_all: Option<Estimator<'a>>,
     caustic: Option<Estimator<'a>>,
+    /// Volume map as camera paths read it (without direct photons under shadow rays).
+    volume: Option<Estimator<'a>>,
+    /// Volume map with every photon, for gather rays.
+    volume_all: Option<Estimator<'a>>,
 }
 
 impl<'a> EyeTracer<'a> {
     pub fn new(scene: &'a Scene, maps: &'a Maps) -> EyeTracer<'a> {
         let s = &scene.integrator;
-        let est = |map, k, max_radius| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands };
+        let est =
+            |map, k, max_radius, paths| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands, paths };
+        let shadow = s.direct == DirectLighting::ShadowRays;
+        let global_paths = if shadow { Paths::DiffuseOnly } else { Paths::All };
+        let volume_paths = if shadow { Paths::NotDirect } else { Paths::All };
         EyeTracer {
             scene,
-            prop: Propagator::new(&scene.shapes, &scene.bvh),
+            prop: Propagator::new(scene),
             maps,
-            global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m)),
-            caustic: maps.caustic.as_ref().map(|m| est(m, s.caustic_k, s.caustic_max_radius_m)),
+            global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, global_paths)),
+            global_all: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, Paths::All)),
+            caustic: maps.caustic.as_ref().map(|m| est(m, s.caustic_k, s.caustic_max_radius_m, Paths::All)),
+            volume: maps.volume.as_ref().map(|m| est(m, s.volume_k, s.volume_max_radius_m, volume_paths)),
+            volume_all: maps.volume.as_ref().map(|m| est(m, s.volume_k, s.volume_max_radius_m, Paths::All)),
         }
     }
 
-    /// Radiance arriving at a camera along `state`, per lane (W m⁻² sr⁻¹ nm⁻¹).
+    /// Radiance arriving at the camera along `state`, per lane (W m⁻² sr⁻¹ nm⁻¹).
     pub fn camera_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
-        self.radiance(state, lanes, 0, Mode::Camera, rng, sc)
+        self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera }, rng, sc)
     }
 
-    fn radiance(
+    fn radiance(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        let mut out = [0.0; MAX_BANDS];
+        if at.depth > self.scene.integrator.max_depth {
+            return out;
+        }
+        match at.mode {
+            Mode::Camera => sc.rays.eye += 1,
+            Mode::Gather => sc.rays.gather += 1,
+        }
+        let mut along = Along { l: [0.0; MAX_BANDS], tr: [1.0; MAX_BANDS] };
+        let event = self.prop.next_event_with(state, &mut |c| {
+            self.march(c, at, &mut along, rng, sc);
+            None
+        });
+        let surface = match event {
+            Event::Surface { hit, dir, medium, .. } => self.surface(&hit, dir, medium, at, rng, sc),
+            _ => [0.0; MAX_BANDS],
+        };
+        for i in 0..at.lanes.len {
+            out[i] = along.l[i] + along.tr[i] * surface[i];
+        }
+        out
+    }
+
+    /// Radiance leaving the surface `hit` back along the path arriving in direction `dir`.
+    fn surface(
         &self,
-        state: &RayState,
-        lanes: &Lanes,
-        depth: usize,
-        mode: Mode,
+        hit: &Hit,
+        dir: DVec3,
+        medium: Option<u32>,
+        at: At,
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        if depth > self.scene.integrator.max_depth {
-            return out;
-        }
-        match mode {
-            Mode::Camera => sc.rays.eye += 1,
-            Mode::Gather => sc.rays.gather += 1,
-        }
-        let Event::Surface { hit, dir, .. } = self.prop.next_event(state) else {
-            return out;
-        };
-        if mode == Mode::Camera
+        if at.mode == Mode::Camera
             && let Some(light) = self.scene.area_light_of(hit.prim)
             && light.emitted_cos(hit.normal, -dir) > 0.0
         {
-            for (o, l) in out.iter_mut().zip(&lanes.nm[..lanes.len]) {
+            for (o, l) in out.iter_mut().zip(&at.lanes.nm[..at.lanes.len]) {
                 *o += light.emission.spectrum.eval(*l);
             }
         }
-        let Some(material) = self.scene.material_of(hit.prim) else {
-            return out;
+        let add = match self.scene.material_of(hit.prim) {
+            None if self.scene.prims[hit.prim as usize].light.is_none() => {
+                // An index-matched boundary: continue into the next medium.
+                let across = self.scene.medium_across(hit.prim, dir, hit.normal);
+                self.radiance(&self.prop.leave(hit, dir, at.wavelength(), across), at, rng, sc)
+            }
+            None => return out,
+            Some(m) if m.is_diffuse() => self.diffuse(hit, dir, m, medium, at, rng, sc),
+            Some(m) => self.specular(hit, dir, m, medium, at, rng, sc),
         };
-        let add = if material.is_diffuse() {
-            self.diffuse(&hit, dir, material, lanes, depth, mode, rng, sc)
-        } else {
-            self.specular(&hit, dir, material, lanes, depth, mode, rng, sc)
-        };
-        for i in 0..lanes.len {
+        for i in 0..at.lanes.len {
             out[i] += add[i];
         }
         out
@@ -114,32 +175,33 @@ impl<'a> EyeTracer<'a> {
         hit: &Hit,
         dir: DVec3,
         m: &Material,
-        lanes: &Lanes,
-        depth: usize,
-        mode: Mode,
+        medium: Option<u32>,
+        at: At,
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        if m.is_dispersive() && lanes.len > 1 && mode == Mode::Gather {
+        let lanes = at.lanes;
+        if m.is_dispersive() && lanes.len > 1 && at.mode == Mode::Gather {
             // A gather path follows one lane chosen uniformly, weighted by the lane count: an
             // unbiased estimate of every lane at the cost of one.
             let j = rng.below(lanes.len as u64) as usize;
-            out[j] = lanes.len as f64 * self.specular(hit, dir, m, &lanes.single(j), depth, mode, rng, sc)[0];
+            let single = lanes.single(j);
+            out[j] = lanes.len as f64 * self.specular(hit, dir, m, medium, At { lanes: &single, ..at }, rng, sc)[0];
             return out;
         }
         if m.is_dispersive() && lanes.len > 1 {
             for (i, o) in out.iter_mut().enumerate().take(lanes.len) {
-                *o = self.specular(hit, dir, m, &lanes.single(i), depth, mode, rng, sc)[0];
+                let single = lanes.single(i);
+                *o = self.specular(hit, dir, m, medium, At { lanes: &single, ..at }, rng, sc)[0];
             }
             return out;
         }
         let u = rng.uniform();
-        let Some(s) = m.sample_specular(dir, hit.normal, lanes.nm[0], u) else {
-            return out;
-        };
-        let next = self.prop.leave(hit, s.dir, (lanes.len == 1).then_some(lanes.nm[0]));
-        let l = self.radiance(&next, lanes, depth + 1, mode, rng, sc);
+        let Some(s) = m.sample_specular(dir, hit.normal, lanes.nm[0], u) else { return out };
+        let next_medium = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+        let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
+        let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
         for i in 0..lanes.len {
             let w = m.sample_specular(dir, hit.normal, lanes.nm[i], u).map_or(0.0, |s| s.weight);
             out[i] = w * l[i];
@@ -153,19 +215,19 @@ impl<'a> EyeTracer<'a> {
         hit: &Hit,
         dir: DVec3,
         m: &Material,
-        lanes: &Lanes,
-        depth: usize,
-        mode: Mode,
+        medium: Option<u32>,
+        at: At,
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
         let n = if dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let rho = |l: f64| m.diffuse_reflectance(l);
+        let lanes = at.lanes;
         let mut out = [0.0; MAX_BANDS];
         let estimate = |e: &Estimator, nb: &mut Neighbours| e.lambertian_radiance(hit.point, n, &rho, nb);
-        if mode == Mode::Gather {
+        if at.mode == Mode::Gather {
             let cached = self.maps.irradiance.as_ref().and_then(|c| c.lookup(hit.point, n, &mut sc.nb));
-            match (cached, &self.global) {
+            match (cached, &self.global_all) {
                 (Some(e), _) => add_by_band(&mut out, &e, lanes, &|i| rho(lanes.nm[i]) / PI),
                 (None, Some(g)) => add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0),
                 (None, None) => {}
@@ -182,12 +244,12 @@ impl<'a> EyeTracer<'a> {
             add_by_band(&mut out, &estimate(c, &mut sc.nb), lanes, &|_| 1.0);
         }
         if self.scene.plan.final_gather.on {
-            let g = self.final_gather(hit, dir, lanes, depth, rng, sc);
+            let g = self.final_gather(hit, dir, medium, at, rng, sc);
             add_by_lane(&mut out, &g, lanes, &|i| rho(lanes.nm[i]));
         } else if let Some(g) = &self.global {
             add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0);
         }
-        let direct = self.direct(hit, n, lanes, rng, sc);
+        let direct = self.direct(hit.point, Some(hit), n, medium, lanes, rng, sc);
         add_by_lane(&mut out, &direct, lanes, &|i| rho(lanes.nm[i]) / PI);
         out
     }
@@ -198,48 +260,166 @@ impl<'a> EyeTracer<'a> {
         &self,
         hit: &Hit,
         dir: DVec3,
-        lanes: &Lanes,
-        depth: usize,
+        medium: Option<u32>,
+        at: At,
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
-        let count = lanes.share_of(self.scene.integrator.gather_rays);
+        let count = at.lanes.share_of(self.scene.integrator.gather_rays);
         let mut sum = [0.0; MAX_BANDS];
+        let gather = At { depth: at.depth + 1, mode: Mode::Gather, ..at };
         for _ in 0..count {
             let d = Lambertian::sample(dir, hit.normal, rng.uniform2());
-            let next = self.prop.leave(hit, d, None);
-            let l = self.radiance(&next, lanes, depth + 1, Mode::Gather, rng, sc);
-            for i in 0..lanes.len {
+            let l = self.radiance(&self.prop.leave(hit, d, at.wavelength(), medium), gather, rng, sc);
+            for i in 0..at.lanes.len {
                 sum[i] += l[i];
             }
         }
-        sum.iter_mut().take(lanes.len).for_each(|v| *v /= count as f64);
+        sum.iter_mut().take(at.lanes.len).for_each(|v| *v /= count as f64);
         sum
     }
 
-    /// Incident irradiance per lane from every light by one shadow ray each:
-    /// E(λ) = Σ_lights S(λ) · weight · cos θ, weight being the light's sampling factor.
-    fn direct(&self, hit: &Hit, n: DVec3, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+    /// Incident irradiance per lane at `p` (on surface `from` with normal `n`, or in a medium
+    /// when `n` is zero — then without the cosine) from every light by one shadow ray each:
+    /// E(λ) = Σ_lights S(λ) · weight · cos θ · T(λ).
+    #[allow(clippy::too_many_arguments)]
+    fn direct(
+        &self,
+        p: DVec3,
+        from: Option<&Hit>,
+        n: DVec3,
+        medium: Option<u32>,
+        lanes: &Lanes,
+        rng: &mut Rng,
+        sc: &mut Scratch,
+    ) -> BandValues {
         let mut e = [0.0; MAX_BANDS];
         for light in &self.scene.lights {
-            let u = rng.uniform2();
-            let Some(inc) = light.incident(hit.point, u) else {
-                continue;
-            };
-            let cos = inc.wi.dot(n);
+            let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
+            let cos = if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
             if cos <= 0.0 {
                 continue;
             }
             sc.rays.shadow += 1;
-            if !self.prop.unoccluded(hit, inc.wi, inc.dist) {
+            let Some(tr) = self.prop.shadow(p, from, inc.wi, inc.dist, medium, &lanes.nm[..lanes.len], rng) else {
                 continue;
-            }
+            };
             let s = &light.spectrum().spectrum;
-            for (e, l) in e.iter_mut().zip(&lanes.nm[..lanes.len]) {
-                *e += s.eval(*l) * inc.weight * cos;
+            for i in 0..lanes.len {
+                e[i] += s.eval(lanes.nm[i]) * inc.weight * cos * tr[i];
             }
         }
         e
+    }
+
+    /// Single scattering toward travel direction `wo` at `x` in medium `id`, per unit length:
+    /// σ_s(λ, x) Σ_lights f(λ; −ω_i·ω_o) S(λ) weight T(λ), by one shadow ray per light.
+    #[allow(clippy::too_many_arguments)]
+    fn single_scattering(
+        &self,
+        x: DVec3,
+        wo: DVec3,
+        id: u32,
+        m: &Medium,
+        lanes: &Lanes,
+        rng: &mut Rng,
+        sc: &mut Scratch,
+    ) -> BandValues {
+        let mut out = [0.0; MAX_BANDS];
+        let d = m.density.at(x);
+        if d <= 0.0 {
+            return out;
+        }
+        for light in &self.scene.lights {
+            let Some(inc) = light.incident(x, rng.uniform2()) else { continue };
+            sc.rays.shadow += 1;
+            let Some(tr) = self.prop.shadow(x, None, inc.wi, inc.dist, Some(id), &lanes.nm[..lanes.len], rng) else {
+                continue;
+            };
+            let s = &light.spectrum().spectrum;
+            let cos = -inc.wi.dot(wo);
+            for i in 0..lanes.len {
+                let l = lanes.nm[i];
+                out[i] += d * m.sigma_s(l) * m.phase.eval(l, cos) * s.eval(l) * inc.weight * tr[i];
+            }
+        }
+        out
+    }
+
+    /// Marches chord `c` (JC98 §4.4): steps of at most `march_step`, shorter where extinction is
+    /// high (a quarter of the local mean free path) or photons are dense (half the radius of the
+    /// last volume estimate); one jittered sample per step; transmittance carried exactly where
+    /// the medium allows, by ratio tracking otherwise; Russian roulette once it is negligible.
+    fn march(&self, c: &Chord, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
+        let Some(id) = c.medium else { return };
+        let m = &self.scene.media[id as usize];
+        let lanes = at.lanes;
+        let est = match at.mode {
+            Mode::Camera => self.volume.as_ref(),
+            Mode::Gather => self.volume_all.as_ref(),
+        };
+        let shadow = at.mode == Mode::Camera && self.scene.integrator.direct == DirectLighting::ShadowRays;
+        let wo = -c.dir;
+        let h_max = self.scene.integrator.march_step_m;
+        let sigma_t_max = lanes.nm[..lanes.len].iter().map(|l| m.sigma_t(*l)).fold(0.0, f64::max);
+        let xi = rng.uniform();
+        let (mut t0, mut t_prev, mut radius) = (0.0f64, 0.0f64, 0.0f64);
+        while t0 < c.length {
+            let local = sigma_t_max * m.density.at(c.origin + t0 * c.dir);
+            let mut h = h_max;
+            if local > 0.0 {
+                h = h.min(0.25 / local);
+            }
+            if radius > 0.0 {
+                h = h.min(0.5 * radius);
+            }
+            let t1 = (t0 + h.max(1e-4 * h_max)).min(c.length);
+            let s = t0 + xi * (t1 - t0);
+            self.attenuate(m, c, t_prev, s, lanes, along, rng);
+            t_prev = s;
+            if !self.roulette(along, lanes, rng) {
+                return;
+            }
+            let x = c.origin + s * c.dir;
+            let mut src = [0.0; MAX_BANDS];
+            if let Some(e) = est {
+                let (v, r) = e.volume_scattered(x, wo, m, &mut sc.nb);
+                radius = r;
+                add_by_band(&mut src, &v, lanes, &|_| 1.0);
+            }
+            if shadow {
+                let ss = self.single_scattering(x, wo, id, m, lanes, rng, sc);
+                add_by_lane(&mut src, &ss, lanes, &|_| 1.0);
+            }
+            for i in 0..lanes.len {
+                along.l[i] += along.tr[i] * src[i] * (t1 - t0);
+            }
+            t0 = t1;
+        }
+        self.attenuate(m, c, t_prev, c.length, lanes, along, rng);
+    }
+
+    /// Multiplies the carried transmittance by that of the chord between `a` and `b`.
+    #[allow(clippy::too_many_arguments)]
+    fn attenuate(&self, m: &Medium, c: &Chord, a: f64, b: f64, lanes: &Lanes, along: &mut Along, rng: &mut Rng) {
+        let o = c.origin + a * c.dir;
+        for i in 0..lanes.len {
+            along.tr[i] *= tracking::transmittance(m, lanes.nm[i], o, c.dir, b - a, rng);
+        }
+    }
+
+    /// Russian roulette on negligible transmittance: continue with probability 1/2 and double
+    /// the weight, or stop (false), which is unbiased.
+    fn roulette(&self, along: &mut Along, lanes: &Lanes, rng: &mut Rng) -> bool {
+        if along.tr[..lanes.len].iter().any(|t| *t >= ROULETTE_TRANSMITTANCE) {
+            return true;
+        }
+        if rng.uniform() < 0.5 {
+            along.tr.iter_mut().for_each(|t| *t = 0.0);
+            return false;
+        }
+        along.tr.iter_mut().for_each(|t| *t *= 2.0);
+        true
     }
 }
 

@@ -100,7 +100,7 @@ fn pixel(scene: &Scene, tracer: &EyeTracer, x: usize, y: usize, sc: &mut Scratch
         let [jx, jy] = rng.uniform2();
         let ray = scene.camera.ray(x as f64 + jx, y as f64 + jy);
         let lanes = Lanes::new(&scene.bands, scene.sampling, rng.uniform());
-        let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None };
+        let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
         let l = tracer.camera_radiance(&state, &lanes, &mut rng, sc);
         for i in 0..lanes.len {
             acc[lanes.band[i] as usize] += weight * l[i];

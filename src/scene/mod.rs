@@ -6,6 +6,7 @@
 mod context;
 mod lights;
 mod materials;
+mod media;
 mod plan;
 pub mod raw;
 mod settings;
@@ -20,9 +21,11 @@ use crate::error::{Error, Location, Result};
 use crate::geometry::{Aabb, Bvh, Shape};
 use crate::light::{AreaLight, Light};
 use crate::material::Material;
+use crate::media::Medium;
 use crate::render::Camera;
 use crate::spectrum::Bands;
 use context::Ctx;
+use glam::DVec3;
 use raw::RawScene;
 use spectrum_spec::SpectrumLibrary;
 use std::path::{Path, PathBuf};
@@ -36,6 +39,12 @@ pub const DEFAULT_SCENE: &str = include_str!("default.toml");
 pub struct Prim {
     pub material: Option<u32>,
     pub light: Option<u32>,
+    /// Medium on the back side of the shape's normal (inside a closed shape). Unless the scene
+    /// says otherwise: vacuum inside glass, the world medium inside anything else; an
+    /// index-matched boundary (no material) must name it.
+    pub interior: Option<u32>,
+    /// Medium on the front side (outside); the world medium unless the scene says otherwise.
+    pub exterior: Option<u32>,
 }
 
 /// A validated scene, ready to render.
@@ -47,6 +56,14 @@ pub struct Scene {
     pub sampling: WavelengthSampling,
     pub material_names: Vec<String>,
     pub materials: Vec<Material>,
+    pub medium_names: Vec<String>,
+    pub media: Vec<Medium>,
+    /// The medium filling space outside every closed shape (`[world] medium`).
+    pub global_medium: Option<u32>,
+    /// The medium the camera sits in.
+    pub camera_medium: Option<u32>,
+    /// The medium each light emits into.
+    pub light_media: Vec<Option<u32>>,
     pub shapes: Vec<Shape>,
     pub prims: Vec<Prim>,
     pub light_names: Vec<String>,
@@ -81,14 +98,39 @@ impl Scene {
         if let Some(s) = seed {
             self.integrator.seed = s;
         }
-        self.plan = decide_plan(
-            &self.materials,
-            &self.material_names,
-            &self.prims,
-            &self.integrator,
-            self.sampling,
-            self.bands.count,
-        );
+        self.plan = decide_plan(self);
+    }
+
+    /// The medium at point `p`: found by a ray from `p`; the side of the first surface it meets
+    /// that `p` is on decides (interior when `p` is behind the surface's normal). Points that
+    /// see no surface are in the world medium.
+    pub fn medium_at(&self, p: DVec3) -> Option<u32> {
+        let dir = DVec3::new(0.285_745, 0.903_105, 0.320_528).normalize();
+        match self.bvh.intersect(&self.shapes, &crate::geometry::Ray::new(p, dir), f64::INFINITY) {
+            None => self.global_medium,
+            Some(hit) => {
+                let prim = &self.prims[hit.prim as usize];
+                if dir.dot(hit.normal) > 0.0 { prim.interior } else { prim.exterior }
+            }
+        }
+    }
+
+    /// Whether a path passes through primitive `prim` when it is not reflected (glass and
+    /// index-matched boundaries) rather than stopping at it.
+    pub fn is_passable(&self, prim: u32) -> bool {
+        matches!(self.material_of(prim), None | Some(Material::Dielectric(_)))
+            && self.prims[prim as usize].light.is_none()
+    }
+
+    /// The medium a path enters when it passes through primitive `prim` travelling along `dir`.
+    pub fn medium_across(&self, prim: u32, dir: DVec3, normal: DVec3) -> Option<u32> {
+        let p = &self.prims[prim as usize];
+        if dir.dot(normal) < 0.0 { p.interior } else { p.exterior }
+    }
+
+    /// The medium with index `m`.
+    pub fn medium(&self, m: Option<u32>) -> Option<&Medium> {
+        m.map(|i| &self.media[i as usize])
     }
 
     /// A short label for messages and reports: the file path or "default scene".
@@ -141,29 +183,10 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let camera = settings::camera(ctx, &raw.camera)?;
     let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name)?;
     let lib = SpectrumLibrary { named: &raw.spectra };
-    let mut material_names: Vec<String> = Vec::new();
-    let mut materials = Vec::new();
-    for (i, rec) in raw.material.iter().enumerate() {
-        let m = materials::material(ctx, &lib, rec, i, &bands)?;
-        if material_names.contains(&m.name) {
-            return Err(ctx.err(&rec.span(), format!("material \"{}\" is defined twice; names must be unique", m.name)));
-        }
-        material_names.push(m.name);
-        materials.push(m.material);
-    }
-    let mut shapes = Vec::new();
-    let mut prims = Vec::new();
-    for (i, rec) in raw.shape.iter().enumerate() {
-        let group = shapes::shape(ctx, rec, i)?;
-        let m = material_index(ctx, &material_names, &group.material, &group.name)?;
-        for s in &group.shapes {
-            s.check().map_err(|e| ctx.err(&rec.span(), format!("{}: {e}", group.name)))?;
-        }
-        for s in group.shapes {
-            shapes.push(s);
-            prims.push(Prim { material: Some(m), light: None });
-        }
-    }
+    let (material_names, materials) = build_materials(ctx, &lib, raw, &bands)?;
+    let (medium_names, media, global_medium) = build_media(ctx, &lib, raw, &bands)?;
+    let names = Names { materials: &material_names, media: &medium_names };
+    let (mut shapes, mut prims) = build_shapes(ctx, raw, &names, &materials, global_medium)?;
     let geometry_bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let mut lights = Vec::new();
     let mut light_names = Vec::new();
@@ -172,10 +195,10 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         if let Light::Area(a) = &l.light {
             let material = match &l.material {
                 None => None,
-                Some(m) => Some(material_index(ctx, &material_names, m, &format!("light \"{}\"", l.name))?),
+                Some(m) => Some(names.index(ctx, Kind::Material, m, &format!("light \"{}\"", l.name))?),
             };
             shapes.push(a.shape.clone());
-            prims.push(Prim { material, light: Some(i as u32) });
+            prims.push(Prim { material, light: Some(i as u32), interior: global_medium, exterior: global_medium });
         }
         light_names.push(l.name);
         lights.push(l.light);
@@ -188,15 +211,19 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     }
     let bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
-    let plan = decide_plan(&materials, &material_names, &prims, &integrator, sampling, bands.count);
     let bvh = Bvh::build(&shapes);
-    Ok(Scene {
+    let mut scene = Scene {
         file: None,
         camera,
         bands,
         sampling,
         material_names,
         materials,
+        medium_names,
+        media,
+        global_medium,
+        camera_medium: None,
+        light_media: Vec::new(),
         shapes,
         prims,
         light_names,
@@ -205,33 +232,158 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         bounds,
         integrator,
         output,
-        plan,
-    })
+        plan: EffectPlan::default(),
+    };
+    scene.camera_medium = scene.medium_at(scene.camera.position);
+    scene.light_media = scene.lights.iter().map(|l| scene.medium_at(l.representative_point())).collect();
+    scene.plan = decide_plan(&scene);
+    Ok(scene)
 }
 
-fn decide_plan(
+fn build_materials(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    raw: &RawScene,
+    bands: &Bands,
+) -> Result<(Vec<String>, Vec<Material>)> {
+    let (mut names, mut materials) = (Vec::new(), Vec::new());
+    for (i, rec) in raw.material.iter().enumerate() {
+        let m = materials::material(ctx, lib, rec, i, bands)?;
+        if names.contains(&m.name) {
+            return Err(ctx.err(&rec.span(), format!("material \"{}\" is defined twice; names must be unique", m.name)));
+        }
+        names.push(m.name);
+        materials.push(m.material);
+    }
+    Ok((names, materials))
+}
+
+/// The media, their names and the medium filling the world (`[world] medium`), if any.
+fn build_media(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    raw: &RawScene,
+    bands: &Bands,
+) -> Result<(Vec<String>, Vec<Medium>, Option<u32>)> {
+    let (mut names, mut list) = (Vec::new(), Vec::new());
+    for (i, rec) in raw.medium.iter().enumerate() {
+        let m = media::medium(ctx, lib, rec, i, bands)?;
+        if names.contains(&m.name) || m.name == VACUUM {
+            return Err(
+                ctx.err(&rec.span(), format!("medium \"{}\": names must be unique and not \"{VACUUM}\"", m.name))
+            );
+        }
+        names.push(m.name.clone());
+        list.push(m);
+    }
+    let names_ref = Names { materials: &[], media: &names };
+    let global = match raw.world.as_ref().and_then(|w| w.get_ref().medium.as_ref()) {
+        None => None,
+        Some(m) => names_ref.medium(ctx, m, "[world] medium")?,
+    };
+    Ok((names, list, global))
+}
+
+/// Shapes and their primitives' materials and media (see [`Prim`] for the defaults).
+fn build_shapes(
+    ctx: &Ctx,
+    raw: &RawScene,
+    names: &Names,
     materials: &[Material],
-    names: &[String],
-    prims: &[Prim],
-    integrator: &IntegratorSettings,
-    sampling: WavelengthSampling,
-    bands: usize,
-) -> EffectPlan {
-    let used: Vec<(&str, &Material)> = (0..materials.len())
-        .filter(|m| prims.iter().any(|p| p.material == Some(*m as u32)))
-        .map(|m| (names[m].as_str(), &materials[m]))
+    global: Option<u32>,
+) -> Result<(Vec<Shape>, Vec<Prim>)> {
+    let (mut shapes, mut prims) = (Vec::new(), Vec::new());
+    for (i, rec) in raw.shape.iter().enumerate() {
+        let group = shapes::shape(ctx, rec, i)?;
+        let material = match &group.material {
+            Some(m) => Some(names.index(ctx, Kind::Material, m, &group.name)?),
+            None => None,
+        };
+        let s = rec.get_ref();
+        let interior = match &s.interior {
+            Some(m) => names.medium(ctx, m, &group.name)?,
+            None => match material.map(|m| &materials[m as usize]) {
+                None => {
+                    return Err(ctx.err(
+                        &rec.span(),
+                        format!("{}: give a material, or an interior medium for an index-matched boundary", group.name),
+                    ));
+                }
+                Some(Material::Dielectric(_)) => None,
+                Some(_) => global,
+            },
+        };
+        let exterior = match &s.exterior {
+            Some(m) => names.medium(ctx, m, &group.name)?,
+            None => global,
+        };
+        for shape in &group.shapes {
+            shape.check().map_err(|e| ctx.err(&rec.span(), format!("{}: {e}", group.name)))?;
+        }
+        for shape in group.shapes {
+            shapes.push(shape);
+            prims.push(Prim { material, light: None, interior, exterior });
+        }
+    }
+    Ok((shapes, prims))
+}
+
+/// The reserved medium name for empty space.
+pub const VACUUM: &str = "vacuum";
+
+#[derive(Clone, Copy)]
+enum Kind {
+    Material,
+    Medium,
+}
+
+/// Name lists for resolving references.
+struct Names<'a> {
+    materials: &'a [String],
+    media: &'a [String],
+}
+
+impl Names<'_> {
+    /// Index of the material or medium a record refers to, or an error at the reference.
+    fn index(&self, ctx: &Ctx, kind: Kind, name: &toml::Spanned<String>, owner: &str) -> Result<u32> {
+        let (list, word) = match kind {
+            Kind::Material => (self.materials, "material"),
+            Kind::Medium => (self.media, "medium"),
+        };
+        list.iter().position(|n| n == name.get_ref()).map(|i| i as u32).ok_or_else(|| {
+            ctx.err(
+                &name.span(),
+                format!("{owner}: no {word} named \"{}\"; defined: {}", name.get_ref(), list_names(list)),
+            )
+        })
+    }
+
+    /// A medium reference: `None` for "vacuum".
+    fn medium(&self, ctx: &Ctx, name: &toml::Spanned<String>, owner: &str) -> Result<Option<u32>> {
+        if name.get_ref() == VACUUM {
+            return Ok(None);
+        }
+        self.index(ctx, Kind::Medium, name, owner).map(Some)
+    }
+}
+
+fn decide_plan(scene: &Scene) -> EffectPlan {
+    let used: Vec<(&str, &Material)> = (0..scene.materials.len())
+        .filter(|m| scene.prims.iter().any(|p| p.material == Some(*m as u32)))
+        .map(|m| (scene.material_names[m].as_str(), &scene.materials[m]))
         .collect();
-    let facts = plan::SceneFacts { used_materials: used, sampling, bands };
-    EffectPlan::decide(&facts, integrator)
+    let used_media: Vec<&Medium> = (0..scene.media.len())
+        .filter(|m| {
+            let m = Some(*m as u32);
+            scene.global_medium == m || scene.prims.iter().any(|p| p.interior == m || p.exterior == m)
+        })
+        .map(|m| &scene.media[m])
+        .collect();
+    let facts =
+        plan::SceneFacts { used_materials: used, used_media, sampling: scene.sampling, bands: scene.bands.count };
+    EffectPlan::decide(&facts, &scene.integrator)
 }
 
-/// Index of the material a record refers to, or an error at the reference.
-fn material_index(ctx: &Ctx, names: &[String], name: &toml::Spanned<String>, owner: &str) -> Result<u32> {
-    names.iter().position(|n| n == name.get_ref()).map(|i| i as u32).ok_or_else(|| {
-        ctx.err(&name.span(), format!("{owner}: no material named \"{}\"; defined: {}", name.get_ref(), list(names)))
-    })
-}
-
-fn list(names: &[String]) -> String {
+fn list_names(names: &[String]) -> String {
     if names.is_empty() { "none".to_string() } else { names.join(", ") }
 }

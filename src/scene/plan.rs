@@ -4,10 +4,11 @@
 
 use super::settings::{DirectLighting, IntegratorSettings, WavelengthSampling};
 use crate::material::Material;
+use crate::media::Medium;
 use serde::Serialize;
 
 /// Whether one piece of machinery runs, and the reason in words a user can act on.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Decision {
     pub on: bool,
     pub why: String,
@@ -22,7 +23,7 @@ impl Decision {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct EffectPlan {
     /// Photons stored on diffuse surfaces for indirect light (and for everything when direct
     /// light comes from the photon map).
@@ -44,6 +45,7 @@ pub struct EffectPlan {
 /// What the scene contains, as far as the plan cares.
 pub struct SceneFacts<'a> {
     pub used_materials: Vec<(&'a str, &'a Material)>,
+    pub used_media: Vec<&'a Medium>,
     pub sampling: WavelengthSampling,
     pub bands: usize,
 }
@@ -98,8 +100,8 @@ impl EffectPlan {
             shadow_rays,
             final_gather,
             dispersion_splitting,
-            participating_media: Decision::off("the scene declares no participating medium"),
-            volume_map: Decision::off("no participating medium to store photons in"),
+            participating_media: media_decision(&facts.used_media),
+            volume_map: volume_map_decision(&facts.used_media, s),
             curved_paths: Decision::off("no refractive-index field: every path is a straight line"),
             inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
         }
@@ -127,5 +129,35 @@ impl std::fmt::Display for EffectPlan {
             writeln!(f, "  {:<22} {:<3}  {}", name, if d.on { "on" } else { "off" }, d.why)?;
         }
         Ok(())
+    }
+}
+
+fn media_decision(media: &[&Medium]) -> Decision {
+    match media {
+        [] => Decision::off("the scene declares no participating medium"),
+        _ => {
+            let names: Vec<String> = media
+                .iter()
+                .map(|m| {
+                    format!("\"{}\" ({})", m.name, if m.is_homogeneous() { "homogeneous" } else { "heterogeneous" })
+                })
+                .collect();
+            Decision::on(format!("light is absorbed and scattered in {}", names.join(", ")))
+        }
+    }
+}
+
+fn volume_map_decision(media: &[&Medium], s: &IntegratorSettings) -> Decision {
+    match (media.first(), s.direct, s.photons) {
+        (None, _, _) => Decision::off("no participating medium to store photons in"),
+        (Some(_), _, 0) => Decision::off("[integrator] photons = 0"),
+        (Some(m), DirectLighting::PhotonMap, _) => Decision::on(format!(
+            "photons interacting in \"{}\" are stored at every interaction, the first included: direct = \"photon_map\" takes direct light in media from the map",
+            m.name
+        )),
+        (Some(m), DirectLighting::ShadowRays, _) => Decision::on(format!(
+            "photons interacting in \"{}\" after a scattering or a surface are stored: single scattering by shadow rays, multiple scattering from the map",
+            m.name
+        )),
     }
 }

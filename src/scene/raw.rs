@@ -25,6 +25,28 @@ pub struct RawScene {
     pub shape: Vec<Spanned<RawShape>>,
     #[serde(default)]
     pub light: Vec<Spanned<RawLight>>,
+    pub world: Option<Spanned<RawWorld>>,
+    #[serde(default)]
+    pub medium: Vec<Spanned<RawMedium>>,
+}
+
+/// `[world]`: what fills space outside every closed shape.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawWorld {
+    pub medium: S<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMedium {
+    pub name: S<String>,
+    pub sigma_a: S<toml::Value>,
+    pub sigma_s: S<toml::Value>,
+    pub sigma_t: S<toml::Value>,
+    pub albedo: S<toml::Value>,
+    pub phase: S<toml::Value>,
+    pub density: S<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -61,6 +83,9 @@ pub struct RawIntegrator {
     pub max_radius: S<f64>,
     pub caustic_k: S<i64>,
     pub caustic_max_radius: S<f64>,
+    pub volume_k: S<i64>,
+    pub volume_max_radius: S<f64>,
+    pub march_step: S<f64>,
     pub direct: S<String>,
     pub final_gather: S<bool>,
     pub gather_rays: S<i64>,
@@ -94,6 +119,8 @@ pub struct RawShape {
     #[serde(rename = "type")]
     pub kind: S<String>,
     pub material: S<String>,
+    pub interior: S<String>,
+    pub exterior: S<String>,
     pub center: S<[f64; 3]>,
     pub radius: S<f64>,
     pub normal: S<[f64; 3]>,

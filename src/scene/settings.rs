@@ -55,6 +55,11 @@ pub struct IntegratorSettings {
     pub max_radius_m: f64,
     pub caustic_k: usize,
     pub caustic_max_radius_m: f64,
+    /// Nearest photons per volume estimate.
+    pub volume_k: usize,
+    pub volume_max_radius_m: f64,
+    /// Largest ray-marching step in media, m (steps shrink where photons are dense).
+    pub march_step_m: f64,
     pub direct: DirectLighting,
     pub final_gather: bool,
     pub gather_rays: usize,
@@ -167,6 +172,9 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         max_radius_m: 0.05 * diag,
         caustic_k: 50,
         caustic_max_radius_m: 0.01 * diag,
+        volume_k: 100,
+        volume_max_radius_m: 0.05 * diag,
+        march_step_m: 0.01 * diag,
         direct: DirectLighting::ShadowRays,
         final_gather: true,
         gather_rays: 64,
@@ -184,6 +192,13 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
     s.caustic_photons = int(&r.caustic_photons, "caustic_photons", 0, 1 << 40, s.caustic_photons as i64)? as u64;
     s.k = int(&r.k, "k", 1, 100_000, s.k as i64)? as usize;
     s.caustic_k = int(&r.caustic_k, "caustic_k", 1, 100_000, s.caustic_k as i64)? as usize;
+    s.volume_k = int(&r.volume_k, "volume_k", 1, 100_000, s.volume_k as i64)? as usize;
+    if let Some(v) = &r.volume_max_radius {
+        s.volume_max_radius_m = ctx.number(v, "volume_max_radius", 0.0, f64::INFINITY, true)?;
+    }
+    if let Some(v) = &r.march_step {
+        s.march_step_m = ctx.number(v, "march_step", 0.0, f64::INFINITY, true)?;
+    }
     s.gather_rays = int(&r.gather_rays, "gather_rays", 1, 1 << 20, s.gather_rays as i64)? as usize;
     s.spp = int(&r.spp, "spp", 1, 1 << 20, s.spp as i64)? as usize;
     s.max_depth = int(&r.max_depth, "max_depth", 1, 1000, s.max_depth as i64)? as usize;

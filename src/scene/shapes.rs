@@ -12,7 +12,8 @@ use toml::Spanned;
 /// The shapes one record produced and the material they use.
 pub struct ShapeGroup {
     pub name: String,
-    pub material: Spanned<String>,
+    /// None for an index-matched boundary (a surface that only separates media).
+    pub material: Option<Spanned<String>>,
     pub shapes: Vec<Shape>,
 }
 
@@ -25,7 +26,7 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
         s.name.as_ref().map_or_else(|| format!("shape #{}", index + 1), |n| format!("shape \"{}\"", n.get_ref()));
     let kind = ctx.choice(ctx.require(&s.kind, "type", &span, &name)?, &format!("{name}: type"), KINDS)?;
     let what = format!("{name} ({kind})");
-    let material = ctx.require(&s.material, "material", &span, &what)?;
+    let material = s.material.clone();
     let present = present_fields!(s; center, radius, normal, origin, u, v, min, max, vertices, file, scale, translate, rotate_y_deg);
     let shapes = match kind {
         "sphere" => {
@@ -77,7 +78,7 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
             mesh(ctx, s, &span, &what)?
         }
     };
-    Ok(ShapeGroup { name, material: material.clone(), shapes })
+    Ok(ShapeGroup { name, material, shapes })
 }
 
 fn quad(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R<Quad> {

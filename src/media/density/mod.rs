@@ -1,0 +1,65 @@
+//! Spatial variation of a medium: a dimensionless density d(x) ≥ 0 that multiplies the
+//! medium's σ_a(λ) and σ_s(λ). One file per kind, dispatched by a closed enum.
+//!
+//! Free-flight sampling and transmittance need majorants: each kind splits a segment into
+//! intervals, each with an upper bound of d on it ("a majorant per region"), see
+//! [`Density::majorant_intervals`].
+
+mod exponential;
+mod fbm;
+mod grid;
+
+pub use exponential::ExponentialHeight;
+pub use fbm::Fbm;
+pub use grid::{GRID_MAGIC, Grid3D};
+
+use glam::DVec3;
+
+#[derive(Clone, Debug)]
+pub enum Density {
+    /// d = 1 everywhere: a homogeneous medium.
+    Uniform,
+    ExponentialHeight(ExponentialHeight),
+    Grid(Grid3D),
+    Fbm(Fbm),
+}
+
+impl Density {
+    /// d at `p`.
+    pub fn at(&self, p: DVec3) -> f64 {
+        match self {
+            Density::Uniform => 1.0,
+            Density::ExponentialHeight(e) => e.at(p),
+            Density::Grid(g) => g.at(p),
+            Density::Fbm(f) => f.at(p),
+        }
+    }
+
+    /// ∫₀ᵗ d(o + s·dir) ds in closed form, where one exists (uniform, exponential).
+    pub fn integral_exact(&self, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
+        match self {
+            Density::Uniform => Some(t),
+            Density::ExponentialHeight(e) => Some(e.integral(o, dir, t)),
+            _ => None,
+        }
+    }
+
+    /// Calls `visit(t0, t1, bound)` for consecutive intervals covering [0, t_max] of the ray
+    /// `o + t·dir`, with `bound` ≥ d everywhere on the interval. `visit` returns false to stop.
+    pub fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
+        match self {
+            Density::Uniform => {
+                visit(0.0, t_max, 1.0);
+            }
+            Density::ExponentialHeight(e) => e.majorant_intervals(o, dir, t_max, visit),
+            Density::Grid(g) => g.majorant_intervals(o, dir, t_max, visit),
+            Density::Fbm(f) => {
+                visit(0.0, t_max, f.bound());
+            }
+        }
+    }
+
+    pub fn is_uniform(&self) -> bool {
+        matches!(self, Density::Uniform)
+    }
+}

@@ -1,0 +1,61 @@
+//! A participating medium: absorption σ_a(λ) and scattering σ_s(λ) per metre at density 1 (given
+//! directly, or as extinction σ_t(λ) and single-scattering albedo ω(λ)), a phase function, and a
+//! density field d(x) that scales both.
+
+use super::density::Density;
+use super::phase::PhaseFunction;
+use crate::spectrum::Spectrum;
+
+/// The medium's coefficients at density 1, as the scene gave them.
+#[derive(Clone, Debug)]
+pub enum Coefficients {
+    /// σ_a(λ) and σ_s(λ), m⁻¹.
+    AbsorptionScattering { sigma_a: Spectrum, sigma_s: Spectrum },
+    /// σ_t(λ) (m⁻¹) and ω(λ) = σ_s/σ_t.
+    ExtinctionAlbedo { sigma_t: Spectrum, albedo: Spectrum },
+}
+
+#[derive(Clone, Debug)]
+pub struct Medium {
+    pub name: String,
+    pub coefficients: Coefficients,
+    pub phase: PhaseFunction,
+    pub density: Density,
+}
+
+impl Medium {
+    /// Extinction σ_t = σ_a + σ_s at density 1, m⁻¹.
+    pub fn sigma_t(&self, wavelength_nm: f64) -> f64 {
+        match &self.coefficients {
+            Coefficients::AbsorptionScattering { sigma_a, sigma_s } => {
+                sigma_a.eval(wavelength_nm) + sigma_s.eval(wavelength_nm)
+            }
+            Coefficients::ExtinctionAlbedo { sigma_t, .. } => sigma_t.eval(wavelength_nm),
+        }
+    }
+
+    /// Scattering σ_s at density 1, m⁻¹.
+    pub fn sigma_s(&self, wavelength_nm: f64) -> f64 {
+        match &self.coefficients {
+            Coefficients::AbsorptionScattering { sigma_s, .. } => sigma_s.eval(wavelength_nm),
+            Coefficients::ExtinctionAlbedo { sigma_t, albedo } => {
+                sigma_t.eval(wavelength_nm) * albedo.eval(wavelength_nm)
+            }
+        }
+    }
+
+    /// Single-scattering albedo σ_s/σ_t (0 where σ_t = 0); independent of density.
+    pub fn albedo(&self, wavelength_nm: f64) -> f64 {
+        match &self.coefficients {
+            Coefficients::ExtinctionAlbedo { albedo, .. } => albedo.eval(wavelength_nm),
+            Coefficients::AbsorptionScattering { .. } => {
+                let t = self.sigma_t(wavelength_nm);
+                if t > 0.0 { self.sigma_s(wavelength_nm) / t } else { 0.0 }
+            }
+        }
+    }
+
+    pub fn is_homogeneous(&self) -> bool {
+        self.density.is_uniform()
+    }
+}

@@ -1,0 +1,186 @@
+//! `[[medium]]` records → [`Medium`]s.
+//!
+//! ```toml
+//! [[medium]]
+//! name = "fog"
+//! sigma_a = 0.1          # m⁻¹ at density 1 (any spectrum), with sigma_s; or sigma_t with albedo
+//! sigma_s = 0.4
+//! phase = "isotropic"    # or a table: { type = "hg", g = 0.8 }, ...
+//! density = { type = "exponential", scale_height_m = 2.0, reference_m = 0.0, up = [0, 1, 0] }
+//!         # or { type = "grid", file = "smoke.mgrid" }
+//!         # or { type = "fbm", base = 0.5, amplitude = 0.5, frequency_per_m = 2.0, octaves = 5, seed = 1 }
+//! ```
+
+use super::context::{Ctx, R};
+use super::raw::RawMedium;
+use super::spectrum_spec::{SpectrumLibrary, Use};
+use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D};
+use crate::media::phase::PhaseFunction;
+use crate::media::{Coefficients, Medium};
+use crate::present_fields;
+use crate::spectrum::Bands;
+use glam::DVec3;
+use std::ops::Range;
+use toml::{Spanned, Value};
+
+pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index: usize, bands: &Bands) -> R<Medium> {
+    let span = rec.span();
+    let m = rec.get_ref();
+    let name = ctx.require(&m.name, "name", &span, &format!("medium #{}", index + 1))?.get_ref().clone();
+    let what = format!("medium \"{name}\"");
+    let range = (bands.min_nm, bands.max_nm);
+    let spec = |v: &Spanned<Value>, field: &str, use_: Use| lib.parse(ctx, v, &format!("{what}: {field}"), use_, range);
+    let coefficients = match (&m.sigma_a, &m.sigma_s, &m.sigma_t, &m.albedo) {
+        (Some(a), Some(s), None, None) => Coefficients::AbsorptionScattering {
+            sigma_a: spec(a, "sigma_a", Use::Emission)?,
+            sigma_s: spec(s, "sigma_s", Use::Emission)?,
+        },
+        (None, None, Some(t), Some(w)) => Coefficients::ExtinctionAlbedo {
+            sigma_t: spec(t, "sigma_t", Use::Emission)?,
+            albedo: spec(w, "albedo", Use::Reflectance)?,
+        },
+        _ => {
+            let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo);
+            let at = present.iter().find_map(|(_, s)| s.clone()).unwrap_or(span.clone());
+            return Err(ctx.err(
+                &at,
+                format!("{what}: give either sigma_a and sigma_s, or sigma_t and albedo (coefficients in m⁻¹)"),
+            ));
+        }
+    };
+    let phase = match &m.phase {
+        None => PhaseFunction::Isotropic,
+        Some(p) => phase(ctx, p, &what)?,
+    };
+    let density = match &m.density {
+        None => Density::Uniform,
+        Some(d) => density(ctx, d, &what)?,
+    };
+    Ok(Medium { name, coefficients, phase, density })
+}
+
+/// A string names a parameter-free phase function; a table has `type` and its parameters.
+fn phase(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<PhaseFunction> {
+    let span = v.span();
+    let (kind, table) = match v.get_ref() {
+        Value::String(s) => (s.as_str(), None),
+        Value::Table(t) => match t.get("type").and_then(Value::as_str) {
+            Some(k) => (k, Some(t)),
+            None => return Err(ctx.err(&span, format!("{what}: phase table needs `type`"))),
+        },
+        _ => return Err(ctx.err(&span, format!("{what}: phase must be a name or a table with `type`"))),
+    };
+    let _ = table;
+    match kind {
+        "isotropic" => Ok(PhaseFunction::Isotropic),
+        other => Err(ctx.err(&span, format!("{what}: phase type \"{other}\" is not known; allowed: isotropic"))),
+    }
+}
+
+/// Reads the keys of a table value, rejecting unknown ones.
+struct Table<'a> {
+    ctx: &'a Ctx<'a>,
+    span: Range<usize>,
+    t: &'a toml::Table,
+    what: String,
+}
+
+impl<'a> Table<'a> {
+    fn new(ctx: &'a Ctx<'a>, v: &'a Spanned<Value>, what: String, allowed: &[&str]) -> R<Table<'a>> {
+        let span = v.span();
+        let Value::Table(t) = v.get_ref() else { return Err(ctx.err(&span, format!("{what}: expected a table"))) };
+        if let Some(k) = t.keys().find(|k| !allowed.contains(&k.as_str())) {
+            return Err(ctx.err(&span, format!("{what}: unknown key `{k}`; allowed: {}", allowed.join(", "))));
+        }
+        Ok(Table { ctx, span, t, what })
+    }
+
+    fn num(&self, key: &str, default: Option<f64>) -> R<f64> {
+        match self.t.get(key) {
+            None => default.ok_or_else(|| self.ctx.err(&self.span, format!("{}: missing `{key}`", self.what))),
+            Some(v) => v
+                .as_float()
+                .or_else(|| v.as_integer().map(|i| i as f64))
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| self.ctx.err(&self.span, format!("{}: `{key}` must be a finite number", self.what))),
+        }
+    }
+
+    fn positive(&self, key: &str, default: Option<f64>) -> R<f64> {
+        let x = self.num(key, default)?;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.ctx.err(&self.span, format!("{}: {key} = {x} must be greater than 0", self.what)))
+        }
+    }
+
+    fn vec3(&self, key: &str, default: DVec3) -> R<DVec3> {
+        let Some(v) = self.t.get(key) else { return Ok(default) };
+        let a: Option<Vec<f64>> = v
+            .as_array()
+            .map(|a| a.iter().filter_map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64))).collect());
+        match a {
+            Some(a) if a.len() == 3 && a.iter().all(|x| x.is_finite()) => Ok(DVec3::new(a[0], a[1], a[2])),
+            _ => Err(self.ctx.err(&self.span, format!("{}: `{key}` must be three finite numbers", self.what))),
+        }
+    }
+}
+
+fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Density> {
+    let span = v.span();
+    let kind = match v.get_ref() {
+        Value::Table(t) => t.get("type").and_then(Value::as_str).unwrap_or(""),
+        _ => "",
+    };
+    let dwhat = format!("{what}: density");
+    match kind {
+        "exponential" => {
+            let t = Table::new(ctx, v, dwhat, &["type", "scale_height_m", "reference_m", "up"])?;
+            let up = t.vec3("up", DVec3::Y)?;
+            if up.length_squared() == 0.0 {
+                return Err(ctx.err(&span, format!("{what}: density up must not be zero")));
+            }
+            Ok(Density::ExponentialHeight(ExponentialHeight {
+                up: up.normalize(),
+                reference_m: t.num("reference_m", Some(0.0))?,
+                scale_height_m: t.positive("scale_height_m", None)?,
+            }))
+        }
+        "grid" => {
+            let t = Table::new(ctx, v, dwhat, &["type", "file"])?;
+            let file =
+                t.t.get("file")
+                    .and_then(Value::as_str)
+                    .ok_or_else(|| ctx.err(&span, format!("{what}: grid density needs `file`")))?;
+            let path = ctx.dir.join(file);
+            Grid3D::read(&path).map(Density::Grid).map_err(|(line, e)| {
+                crate::error::Error::input(
+                    Some(crate::error::Location { file: path.clone(), line, column: None }),
+                    format!("{what}: {e}"),
+                )
+            })
+        }
+        "fbm" => {
+            let t = Table::new(ctx, v, dwhat, &["type", "base", "amplitude", "frequency_per_m", "octaves", "seed"])?;
+            let octaves = t.num("octaves", Some(5.0))?;
+            if !(octaves.fract() == 0.0 && (1.0..=16.0).contains(&octaves)) {
+                return Err(ctx.err(&span, format!("{what}: fbm octaves = {octaves} must be an integer from 1 to 16")));
+            }
+            let seed = t.num("seed", Some(1.0))?;
+            if !(seed.fract() == 0.0 && seed >= 0.0) {
+                return Err(ctx.err(&span, format!("{what}: fbm seed must be a non-negative integer")));
+            }
+            Ok(Density::Fbm(Fbm::new(
+                t.num("base", Some(0.5))?,
+                t.num("amplitude", Some(0.5))?,
+                t.positive("frequency_per_m", None)?,
+                octaves as u32,
+                seed as u64,
+            )))
+        }
+        _ => Err(
+            ctx.err(&span, format!("{what}: density must be a table with type = \"exponential\", \"grid\" or \"fbm\""))
+        ),
+    }
+}
