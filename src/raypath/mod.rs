@@ -112,6 +112,7 @@ impl<'a> Propagator<'a> {
     /// media and index-matched boundaries; `None` if anything else blocks it. `from` is the
     /// surface the segment starts on, if any. Only valid while paths are straight: the effect
     /// plan turns shadow rays off when they curve.
+    #[allow(clippy::too_many_arguments)]
     pub fn shadow(
         &self,
         start: DVec3,

@@ -391,8 +391,8 @@ impl<'a> EyeTracer<'a> {
                 let ss = self.single_scattering(x, wo, id, m, lanes, rng, sc);
                 add_by_lane(&mut src, &ss, lanes, &|_| 1.0);
             }
-            for i in 0..lanes.len {
-                along.l[i] += along.tr[i] * src[i] * (t1 - t0);
+            for ((l, tr), s) in along.l.iter_mut().zip(&along.tr).zip(&src).take(lanes.len) {
+                *l += tr * s * (t1 - t0);
             }
             t0 = t1;
         }

@@ -171,13 +171,13 @@ fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Density> {
             if !(seed.fract() == 0.0 && seed >= 0.0) {
                 return Err(ctx.err(&span, format!("{what}: fbm seed must be a non-negative integer")));
             }
-            Ok(Density::Fbm(Fbm::new(
+            Ok(Density::Fbm(Box::new(Fbm::new(
                 t.num("base", Some(0.5))?,
                 t.num("amplitude", Some(0.5))?,
                 t.positive("frequency_per_m", None)?,
                 octaves as u32,
                 seed as u64,
-            )))
+            ))))
         }
         _ => Err(
             ctx.err(&span, format!("{what}: density must be a table with type = \"exponential\", \"grid\" or \"fbm\""))

@@ -21,7 +21,7 @@ pub enum Density {
     Uniform,
     ExponentialHeight(ExponentialHeight),
     Grid(Grid3D),
-    Fbm(Fbm),
+    Fbm(Box<Fbm>),
 }
 
 impl Density {
