@@ -18,6 +18,11 @@
 //!
 //! with α = σ_s/σ_t the single-scattering albedo at the photon's own wavelength and f the phase
 //! function (ω_p the photon's direction of travel, ω the scattered light's).
+//!
+//! The radius: when k photons are found, the k-th sets r and is left out of the sum — for
+//! photons from a Poisson process, (k − 1)/V(r_k) is unbiased where k/V(r_k) is too high by
+//! k/(k − 1) (Loftsgaarden & Quesenberry 1965; Silverman 1986, §5.2); when fewer are found
+//! within the maximum radius, that radius is r and every photon counts.
 
 use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
 use crate::media::Medium;
@@ -77,13 +82,12 @@ impl Estimator<'_> {
 
     fn surface(&self, x: DVec3, n: DVec3, nb: &mut Neighbours, f: impl Fn(&PhotonRecord) -> f64) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        self.map.knn(x, self.k, self.max_radius, nb);
-        let r2 = nb.max_dist2() as f64;
-        if nb.is_empty() || r2 <= 0.0 {
-            return out;
-        }
+        let Some((r2, skip)) = self.gather(x, nb) else { return out };
         let r = r2.sqrt();
         for &(i, d2) in &nb.items {
+            if Some(i) == skip {
+                continue;
+            }
             let p = self.map.record(i);
             if !self.paths.accepts(p.path) || p.dir.dot(n) >= 0.0 || p.normal.dot(n).abs() < MIN_NORMAL_COS {
                 continue;
@@ -96,16 +100,29 @@ impl Estimator<'_> {
         out
     }
 
+    /// Finds the photons around `x` and returns the squared radius of the estimate and the
+    /// photon that only sets it (the k-th, when k were found), or `None` if there are none.
+    fn gather(&self, x: DVec3, nb: &mut Neighbours) -> Option<(f64, Option<u32>)> {
+        self.map.knn(x, self.k, self.max_radius, nb);
+        if nb.is_empty() {
+            return None;
+        }
+        if nb.len() < self.k || self.k < 2 {
+            return Some((self.max_radius * self.max_radius, None));
+        }
+        let &(far, d2) = nb.items.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
+        (d2 > 0.0).then_some((d2 as f64, Some(far)))
+    }
+
     /// Radiance scattered per unit length toward travel direction `wo` at `x` in `medium`, per
     /// band (W m⁻³ sr⁻¹ nm⁻¹), and the radius of the sphere used (0 if no photon was found).
     pub fn volume_scattered(&self, x: DVec3, wo: DVec3, medium: &Medium, nb: &mut Neighbours) -> (BandValues, f64) {
         let mut out = [0.0; MAX_BANDS];
-        self.map.knn(x, self.k, self.max_radius, nb);
-        let r2 = nb.max_dist2() as f64;
-        if nb.is_empty() || r2 <= 0.0 {
-            return (out, 0.0);
-        }
+        let Some((r2, skip)) = self.gather(x, nb) else { return (out, 0.0) };
         for &(i, _) in &nb.items {
+            if Some(i) == skip {
+                continue;
+            }
             let p = self.map.record(i);
             if !self.paths.accepts(p.path) {
                 continue;

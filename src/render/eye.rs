@@ -40,6 +40,16 @@ enum Mode {
     Gather,
 }
 
+/// A gather ray's chord is marched in this many jittered steps (at least `march_step` each):
+/// its radiance is averaged over many gather rays, so a coarse quadrature suffices.
+const GATHER_STEPS: f64 = 4.0;
+
+/// Relative change of the in-scattered light between march samples above which the step is
+/// halved (JC98 §4.4), below which it is doubled back, and the most halvings.
+const ADAPT_REFINE: f64 = 0.5;
+const ADAPT_RELAX: f64 = 0.1;
+const MAX_REFINE: u32 = 4;
+
 /// Transmittance below which a marched path is continued by Russian roulette.
 const ROULETTE_TRANSMITTANCE: f64 = 1e-3;
 
@@ -346,10 +356,11 @@ impl<'a> EyeTracer<'a> {
         out
     }
 
-    /// Marches chord `c` (JC98 §4.4): steps of at most `march_step`, shorter where extinction is
-    /// high (a quarter of the local mean free path) or photons are dense (half the radius of the
-    /// last volume estimate); one jittered sample per step; transmittance carried exactly where
-    /// the medium allows, by ratio tracking otherwise; Russian roulette once it is negligible.
+    /// Marches chord `c` (JC98 §4.4): one jittered sample per step (the same offset in every
+    /// step, so the first step is jittered and the rest follow); the step halves after a large
+    /// change of the in-scattered light and relaxes back after small ones (see
+    /// [`EyeTracer::step_length`]); transmittance carried exactly where the medium allows, by
+    /// ratio tracking otherwise; Russian roulette once it is negligible.
     fn march(&self, c: &Chord, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
         let Some(id) = c.medium else { return };
         let m = &self.scene.media[id as usize];
@@ -360,20 +371,14 @@ impl<'a> EyeTracer<'a> {
         };
         let shadow = at.mode == Mode::Camera && self.scene.integrator.direct == DirectLighting::ShadowRays;
         let wo = -c.dir;
-        let h_max = self.scene.integrator.march_step_m;
         let sigma_t_max = lanes.nm[..lanes.len].iter().map(|l| m.sigma_t(*l)).fold(0.0, f64::max);
         let xi = rng.uniform();
-        let (mut t0, mut t_prev, mut radius) = (0.0f64, 0.0f64, 0.0f64);
+        let (mut t0, mut t_prev) = (0.0f64, 0.0f64);
+        let mut level = 0u32;
+        let mut last: Option<f64> = None;
         while t0 < c.length {
-            let local = sigma_t_max * m.density.at(c.origin + t0 * c.dir);
-            let mut h = h_max;
-            if local > 0.0 {
-                h = h.min(0.25 / local);
-            }
-            if radius > 0.0 {
-                h = h.min(0.5 * radius);
-            }
-            let t1 = (t0 + h.max(1e-4 * h_max)).min(c.length);
+            let h = self.step_length(m, c, t0, sigma_t_max, level, at.mode);
+            let t1 = (t0 + h).min(c.length);
             let s = t0 + xi * (t1 - t0);
             self.attenuate(m, c, t_prev, s, lanes, along, rng);
             t_prev = s;
@@ -383,8 +388,7 @@ impl<'a> EyeTracer<'a> {
             let x = c.origin + s * c.dir;
             let mut src = [0.0; MAX_BANDS];
             if let Some(e) = est {
-                let (v, r) = e.volume_scattered(x, wo, m, &mut sc.nb);
-                radius = r;
+                let (v, _) = e.volume_scattered(x, wo, m, &mut sc.nb);
                 add_by_band(&mut src, &v, lanes, &|_| 1.0);
             }
             if shadow {
@@ -394,9 +398,35 @@ impl<'a> EyeTracer<'a> {
             for ((l, tr), s) in along.l.iter_mut().zip(&along.tr).zip(&src).take(lanes.len) {
                 *l += tr * s * (t1 - t0);
             }
+            // Adapt to the light: refine after a large change of the source, relax after a small one.
+            let total: f64 = src[..lanes.len].iter().sum();
+            if let Some(prev) = last {
+                let change = (total - prev).abs() / prev.abs().max(total.abs()).max(f64::MIN_POSITIVE);
+                if change > ADAPT_REFINE && level < MAX_REFINE {
+                    level += 1;
+                } else if change < ADAPT_RELAX && level > 0 {
+                    level -= 1;
+                }
+            }
+            last = Some(total);
             t0 = t1;
         }
         self.attenuate(m, c, t_prev, c.length, lanes, along, rng);
+    }
+
+    /// The next step: `march_step` halved `level` times and capped at a quarter of the local
+    /// mean free path — or, for a gather ray, the chord in [`GATHER_STEPS`] steps.
+    fn step_length(&self, m: &Medium, c: &Chord, t0: f64, sigma_t_max: f64, level: u32, mode: Mode) -> f64 {
+        let h_max = self.scene.integrator.march_step_m;
+        if mode == Mode::Gather {
+            return h_max.max(c.length / GATHER_STEPS);
+        }
+        let mut h = h_max / f64::from(1u32 << level);
+        let local = sigma_t_max * m.density.at(c.origin + t0 * c.dir);
+        if local > 0.0 {
+            h = h.min(0.25 / local);
+        }
+        h.max(1e-6 * h_max)
     }
 
     /// Multiplies the carried transmittance by that of the chord between `a` and `b`.
