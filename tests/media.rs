@@ -143,9 +143,9 @@ power_w = 10.0
 /// Single scattering of a point light (intensity I) in a box of homogeneous medium seen by a
 /// camera outside it, by quadrature of the closed-form integrand
 /// L = ∫ e^{−σ_t (t − t_a)} σ_s f(cos θ) I e^{−σ_t s(t)} / |q − x(t)|² dt, with s(t) the length of
-/// the segment from x(t) toward the light that lies inside the box.
-#[test]
-fn single_scattering_in_a_slab_matches_quadrature() {
+/// the segment from x(t) toward the light that lies inside the box and θ the angle between the
+/// light's travel direction and the direction toward the camera.
+fn single_scattering_in_a_slab(phase_toml: &str, phase: &dyn Fn(f64) -> f64) {
     let (sigma_s, sigma_t, intensity) = (0.3, 0.5, 2.0);
     let toml = format!(
         r#"
@@ -170,6 +170,7 @@ spp = 400
 name = "slab"
 sigma_a = {sa}
 sigma_s = {sigma_s}
+phase = {phase_toml}
 
 [[shape]]
 type = "box"
@@ -192,7 +193,7 @@ scale = {scale}
     let r = render_with(&s, 1);
     let rendered = r.image.data[0] as f64 * 100.0;
     let q = DVec3::new(1.5, 0.5, 0.2);
-    // Distance inside the box from x toward the light: the light is outside, beyond x = 1.
+    // Distance inside the box from x toward the light (which lies beyond the face x = 1).
     let inside = |x: DVec3| {
         let d = (q - x).normalize();
         [
@@ -205,13 +206,22 @@ scale = {scale}
     };
     let integrand = |z: f64| {
         let x = DVec3::new(0.0, 0.0, z);
-        let travelled = 0.5 - z;
         let to_light = q - x;
-        (-sigma_t * travelled).exp() * sigma_s / (4.0 * PI) * intensity * (-sigma_t * inside(x)).exp()
+        let cos = (-to_light.normalize()).dot(DVec3::Z);
+        (-sigma_t * (0.5 - z)).exp() * sigma_s * phase(cos) * intensity * (-sigma_t * inside(x)).exp()
             / to_light.length_squared()
     };
     let expected = gauss_legendre(&integrand, -0.5, 0.5, 16);
-    assert!((rendered / expected - 1.0).abs() < 0.01, "rendered {rendered}, quadrature {expected}");
+    assert!((rendered / expected - 1.0).abs() < 0.01, "{phase_toml}: rendered {rendered}, quadrature {expected}");
+}
+
+#[test]
+fn single_scattering_in_a_slab_matches_quadrature() {
+    single_scattering_in_a_slab("\"isotropic\"", &|_| 1.0 / (4.0 * PI));
+    let g: f64 = 0.6;
+    let hg = move |c: f64| (1.0 - g * g) / (4.0 * PI * (1.0 + g * g - 2.0 * g * c).powf(1.5));
+    single_scattering_in_a_slab("{ type = \"hg\", g = 0.6 }", &hg);
+    single_scattering_in_a_slab("\"rayleigh\"", &|c| 3.0 / (16.0 * PI) * (1.0 + c * c));
 }
 
 /// The same fog box rendered with direct light from the photon map (Lucifer) and from shadow

@@ -13,6 +13,8 @@ pub enum Coefficients {
     AbsorptionScattering { sigma_a: Spectrum, sigma_s: Spectrum },
     /// σ_t(λ) (m⁻¹) and ω(λ) = σ_s/σ_t.
     ExtinctionAlbedo { sigma_t: Spectrum, albedo: Spectrum },
+    /// σ_a(λ), with σ_s(λ) the sum over the components of a mixture phase function.
+    AbsorptionMixture { sigma_a: Spectrum },
 }
 
 #[derive(Clone, Debug)]
@@ -31,6 +33,7 @@ impl Medium {
                 sigma_a.eval(wavelength_nm) + sigma_s.eval(wavelength_nm)
             }
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => sigma_t.eval(wavelength_nm),
+            Coefficients::AbsorptionMixture { sigma_a } => sigma_a.eval(wavelength_nm) + self.sigma_s(wavelength_nm),
         }
     }
 
@@ -41,6 +44,10 @@ impl Medium {
             Coefficients::ExtinctionAlbedo { sigma_t, albedo } => {
                 sigma_t.eval(wavelength_nm) * albedo.eval(wavelength_nm)
             }
+            Coefficients::AbsorptionMixture { .. } => match &self.phase {
+                PhaseFunction::Mixture(m) => m.total_sigma_s(wavelength_nm),
+                _ => 0.0,
+            },
         }
     }
 
@@ -48,7 +55,7 @@ impl Medium {
     pub fn albedo(&self, wavelength_nm: f64) -> f64 {
         match &self.coefficients {
             Coefficients::ExtinctionAlbedo { albedo, .. } => albedo.eval(wavelength_nm),
-            Coefficients::AbsorptionScattering { .. } => {
+            Coefficients::AbsorptionScattering { .. } | Coefficients::AbsorptionMixture { .. } => {
                 let t = self.sigma_t(wavelength_nm);
                 if t > 0.0 { self.sigma_s(wavelength_nm) / t } else { 0.0 }
             }

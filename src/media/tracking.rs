@@ -108,7 +108,7 @@ mod tests {
                 sigma_a: Spectrum::Constant(0.3),
                 sigma_s: Spectrum::Constant(0.5),
             },
-            phase: PhaseFunction::Isotropic,
+            phase: PhaseFunction::isotropic(),
             density: Density::ExponentialHeight(ExponentialHeight {
                 up: DVec3::Y,
                 reference_m: 0.0,

@@ -5,7 +5,11 @@
 //! name = "fog"
 //! sigma_a = 0.1          # m⁻¹ at density 1 (any spectrum), with sigma_s; or sigma_t with albedo
 //! sigma_s = 0.4
-//! phase = "isotropic"    # or a table: { type = "hg", g = 0.8 }, ...
+//! phase = "isotropic"    # "rayleigh", "pure_water", "raman", or { type = "hg", g = 0.8 },
+//!                        # { type = "schlick", k = 0.5 }, { type = "two_term_hg", w, g1, g2 },
+//!                        # { type = "tabulated", file = "petzold.csv" }, or
+//!                        # { type = "mixture", components = [{ sigma_s = .., phase = .. }, ..] }
+//!                        # (then give sigma_a only: σ_s is the components' sum)
 //! density = { type = "exponential", scale_height_m = 2.0, reference_m = 0.0, up = [0, 1, 0] }
 //!         # or { type = "grid", file = "smoke.mgrid" }
 //!         # or { type = "fbm", base = 0.5, amplitude = 0.5, frequency_per_m = 2.0, octaves = 5, seed = 1 }
@@ -15,7 +19,7 @@ use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D};
-use crate::media::phase::PhaseFunction;
+use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
 use crate::present_fields;
 use crate::spectrum::Bands;
@@ -30,27 +34,33 @@ pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index:
     let what = format!("medium \"{name}\"");
     let range = (bands.min_nm, bands.max_nm);
     let spec = |v: &Spanned<Value>, field: &str, use_: Use| lib.parse(ctx, v, &format!("{what}: {field}"), use_, range);
+    let phase = match &m.phase {
+        None => PhaseFunction::isotropic(),
+        Some(p) => phase(ctx, lib, p, &what, range)?,
+    };
+    let is_mixture = matches!(phase, PhaseFunction::Mixture(_));
     let coefficients = match (&m.sigma_a, &m.sigma_s, &m.sigma_t, &m.albedo) {
-        (Some(a), Some(s), None, None) => Coefficients::AbsorptionScattering {
+        (Some(a), None, None, None) if is_mixture => {
+            Coefficients::AbsorptionMixture { sigma_a: spec(a, "sigma_a", Use::Emission)? }
+        }
+        (Some(a), Some(s), None, None) if !is_mixture => Coefficients::AbsorptionScattering {
             sigma_a: spec(a, "sigma_a", Use::Emission)?,
             sigma_s: spec(s, "sigma_s", Use::Emission)?,
         },
-        (None, None, Some(t), Some(w)) => Coefficients::ExtinctionAlbedo {
+        (None, None, Some(t), Some(w)) if !is_mixture => Coefficients::ExtinctionAlbedo {
             sigma_t: spec(t, "sigma_t", Use::Emission)?,
             albedo: spec(w, "albedo", Use::Reflectance)?,
         },
         _ => {
             let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo);
             let at = present.iter().find_map(|(_, s)| s.clone()).unwrap_or(span.clone());
-            return Err(ctx.err(
-                &at,
-                format!("{what}: give either sigma_a and sigma_s, or sigma_t and albedo (coefficients in m⁻¹)"),
-            ));
+            let need = if is_mixture {
+                "with a mixture phase function give sigma_a only: σ_s is the sum of the components' sigma_s"
+            } else {
+                "give either sigma_a and sigma_s, or sigma_t and albedo (coefficients in m⁻¹)"
+            };
+            return Err(ctx.err(&at, format!("{what}: {need}")));
         }
-    };
-    let phase = match &m.phase {
-        None => PhaseFunction::Isotropic,
-        Some(p) => phase(ctx, p, &what)?,
     };
     let density = match &m.density {
         None => Density::Uniform,
@@ -59,22 +69,86 @@ pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index:
     Ok(Medium { name, coefficients, phase, density })
 }
 
-/// A string names a parameter-free phase function; a table has `type` and its parameters.
-fn phase(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<PhaseFunction> {
+/// A string names a parameter-free phase function ("isotropic", "rayleigh", "pure_water",
+/// "raman"); a table has `type` — "hg" (g), "schlick" (k, or g), "two_term_hg" (w, g1, g2),
+/// "tabulated" (file: CSV of angle_deg, value), "mixture" (components = [{ sigma_s, phase }]).
+fn phase(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, range: (f64, f64)) -> R<PhaseFunction> {
     let span = v.span();
-    let (kind, table) = match v.get_ref() {
-        Value::String(s) => (s.as_str(), None),
-        Value::Table(t) => match t.get("type").and_then(Value::as_str) {
-            Some(k) => (k, Some(t)),
-            None => return Err(ctx.err(&span, format!("{what}: phase table needs `type`"))),
-        },
-        _ => return Err(ctx.err(&span, format!("{what}: phase must be a name or a table with `type`"))),
+    let named = ["isotropic", "rayleigh", "pure_water", "raman"];
+    let kind = match v.get_ref() {
+        Value::String(s) => {
+            return match s.as_str() {
+                "isotropic" => Ok(PhaseFunction::isotropic()),
+                "rayleigh" => Ok(PhaseFunction::rayleigh()),
+                "pure_water" => Ok(PhaseFunction::pure_water()),
+                "raman" => Ok(PhaseFunction::raman()),
+                other => Err(ctx.err(
+                    &span,
+                    format!(
+                        "{what}: phase \"{other}\" is not known; allowed names: {}, or a table with type",
+                        named.join(", ")
+                    ),
+                )),
+            };
+        }
+        Value::Table(t) => t.get("type").and_then(Value::as_str).unwrap_or(""),
+        _ => "",
     };
-    let _ = table;
+    let pwhat = format!("{what}: phase");
+    let wrap = |r: Result<PhaseFunction, String>| r.map_err(|e| ctx.err(&span, format!("{pwhat}: {e}")));
     match kind {
-        "isotropic" => Ok(PhaseFunction::Isotropic),
-        other => Err(ctx.err(&span, format!("{what}: phase type \"{other}\" is not known; allowed: isotropic"))),
+        "hg" => {
+            let t = Table::new(ctx, v, pwhat.clone(), &["type", "g"])?;
+            wrap(PhaseFunction::henyey_greenstein(t.num("g", None)?))
+        }
+        "schlick" => {
+            let t = Table::new(ctx, v, pwhat.clone(), &["type", "k", "g"])?;
+            match (t.t.contains_key("k"), t.t.contains_key("g")) {
+                (true, false) => wrap(PhaseFunction::schlick(t.num("k", None)?)),
+                (false, true) => wrap(PhaseFunction::schlick_from_g(t.num("g", None)?)),
+                _ => Err(ctx.err(&span, format!("{pwhat}: schlick needs exactly one of k or g"))),
+            }
+        }
+        "two_term_hg" => {
+            let t = Table::new(ctx, v, pwhat.clone(), &["type", "w", "g1", "g2"])?;
+            wrap(PhaseFunction::two_term_hg(t.num("w", None)?, t.num("g1", None)?, t.num("g2", None)?))
+        }
+        "tabulated" => {
+            let t = Table::new(ctx, v, pwhat.clone(), &["type", "file"])?;
+            let file = t.t.get("file").and_then(Value::as_str).ok_or_else(|| ctx.err(&span, format!("{pwhat}: tabulated needs `file`")))?;
+            wrap(PhaseFunction::tabulated_csv(&ctx.dir.join(file)))
+        }
+        "mixture" => mixture(ctx, lib, v, &pwhat, range),
+        _ => Err(ctx.err(
+            &span,
+            format!("{pwhat}: expected a name ({}) or a table with type = \"hg\", \"schlick\", \"two_term_hg\", \"tabulated\" or \"mixture\"", named.join(", ")),
+        )),
     }
+}
+
+/// `{ type = "mixture", components = [{ sigma_s = <spectrum>, phase = <phase> }, ...] }`: the
+/// phase functions weighted by each component's σ_s(λ), which also make up the medium's σ_s.
+fn mixture(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, range: (f64, f64)) -> R<PhaseFunction> {
+    let span = v.span();
+    let t = Table::new(ctx, v, what.to_string(), &["type", "components"])?;
+    let list = t.t.get("components").and_then(Value::as_array).filter(|a| !a.is_empty());
+    let list = list.ok_or_else(|| {
+        ctx.err(&span, format!("{what}: mixture needs `components`, a non-empty array of {{ sigma_s, phase }}"))
+    })?;
+    let mut components = Vec::new();
+    for (i, c) in list.iter().enumerate() {
+        let cwhat = format!("{what} component #{}", i + 1);
+        let c = Spanned::new(span.clone(), c.clone());
+        let ct = Table::new(ctx, &c, cwhat.clone(), &["sigma_s", "phase"])?;
+        let (Some(s), Some(p)) = (ct.t.get("sigma_s"), ct.t.get("phase")) else {
+            return Err(ctx.err(&span, format!("{cwhat}: needs sigma_s and phase")));
+        };
+        let sigma_s =
+            lib.parse(ctx, &Spanned::new(span.clone(), s.clone()), &format!("{cwhat}: sigma_s"), Use::Emission, range)?;
+        let phase = phase(ctx, lib, &Spanned::new(span.clone(), p.clone()), &cwhat, range)?;
+        components.push(MixtureComponent::new(sigma_s, phase));
+    }
+    PhaseFunction::mixture(components).map_err(|e| ctx.err(&span, format!("{what}: {e}")))
 }
 
 /// Reads the keys of a table value, rejecting unknown ones.
