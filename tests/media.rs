@@ -65,27 +65,28 @@ fn image_mean(values: &[f32]) -> f64 {
 #[test]
 fn volumetric_furnace_from_the_photon_maps_alone() {
     let s = scene(&volumetric_furnace(
-        "photons = 200000\nk = 100\nvolume_k = 60\nmax_radius = 0.5\nvolume_max_radius = 0.5\nmarch_step = 0.05\ndirect = \"photon_map\"\nspp = 2\nseed = 3",
+        "photons = 400000\nk = 100\nvolume_k = 60\nmax_radius = 0.5\nvolume_max_radius = 0.5\nmarch_step = 0.05\ndirect = \"photon_map\"\nspp = 1\nseed = 3",
     ));
     assert!(s.plan.volume_map.on && s.camera_medium.is_some());
     let r = render_with(&s, 2);
     let expected = LE / (1.0 - RHO);
     let mean = image_mean(&r.image.data);
-    // The image mean's statistical error is a few tenths of a percent; the volume estimate's
-    // sphere reaching past the wall biases the last ~r of each ray low by a few tenths more.
-    assert!((mean / expected - 1.0).abs() < 0.015, "mean {mean}, expected {expected}");
+    // Photons bounce many times, so the photon pass's noise dominates the image mean: over
+    // seeds 1–6 at 400k photons it scatters with a standard deviation of 0.9% (both direct
+    // modes), around +0.7% from density-estimation bias. 3% is about 3σ beyond that bias.
+    assert!((mean / expected - 1.0).abs() < 0.03, "mean {mean}, expected {expected}");
 }
 
 #[test]
 fn volumetric_furnace_with_shadow_rays_and_final_gathering() {
     let s = scene(&volumetric_furnace(
-        "photons = 200000\nk = 100\nvolume_k = 60\nmax_radius = 0.5\nvolume_max_radius = 0.5\nmarch_step = 0.05\ngather_rays = 8\nspp = 2\nseed = 4",
+        "photons = 400000\nk = 100\nvolume_k = 60\nmax_radius = 0.5\nvolume_max_radius = 0.5\nmarch_step = 0.05\ngather_rays = 8\nspp = 1\nseed = 4",
     ));
     assert!(s.plan.shadow_rays.on && s.plan.final_gather.on);
     let r = render_with(&s, 2);
     let expected = LE / (1.0 - RHO);
     let mean = image_mean(&r.image.data);
-    assert!((mean / expected - 1.0).abs() < 0.015, "mean {mean}, expected {expected}");
+    assert!((mean / expected - 1.0).abs() < 0.03, "mean {mean}, expected {expected}");
 }
 
 #[test]

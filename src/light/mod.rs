@@ -106,6 +106,12 @@ impl Light {
         Emission { origin, dir, wavelength_nm, normal }
     }
 
+    /// True for lights no path can hit (point, spot, directional): they are reached only by
+    /// sampling them.
+    pub fn is_delta(&self) -> bool {
+        !matches!(self, Light::Area(_))
+    }
+
     /// A point a photon from this light starts from (for finding the medium it starts in): the
     /// centre of an area light just off its emitting side, the position of a point-like light,
     /// and a point beyond the scene for a directional light.

@@ -107,6 +107,43 @@ impl<'a> Propagator<'a> {
         RayState { position: hit.spawn_origin(&self.scene.shapes, dir), dir, wavelength_nm, medium }
     }
 
+    /// The first surface other than an index-matched boundary along the straight ray from `start`
+    /// (on surface `from`, if any) toward `dir`, with the transmittance per lane of the media
+    /// crossed on the way; `None` if nothing is hit. Only valid while paths are straight.
+    pub fn first_opaque_hit(
+        &self,
+        start: DVec3,
+        from: Option<&Hit>,
+        dir: DVec3,
+        medium: Option<u32>,
+        wavelengths_nm: &[f64],
+        rng: &mut Rng,
+    ) -> Option<(Hit, [f64; MAX_BANDS])> {
+        let mut tr = [1.0; MAX_BANDS];
+        let mut origin = from.map_or(start, |h| h.spawn_origin(&self.scene.shapes, dir));
+        let mut medium = medium;
+        let mut travelled = 0.0;
+        for _ in 0..64 {
+            let hit = self.scene.bvh.intersect(&self.scene.shapes, &Ray::new(origin, dir), f64::INFINITY);
+            let seg = hit.map_or_else(|| self.world_exit(origin, dir), |h| h.t);
+            if let Some(m) = self.scene.medium(medium) {
+                for (t, l) in tr.iter_mut().zip(wavelengths_nm) {
+                    *t *= tracking::transmittance(m, *l, origin, dir, seg, rng);
+                }
+            }
+            let mut h = hit?;
+            travelled += h.t;
+            let p = &self.scene.prims[h.prim as usize];
+            if p.material.is_some() || p.light.is_some() {
+                h.t = travelled;
+                return Some((h, tr));
+            }
+            medium = self.scene.medium_across(h.prim, dir, h.normal);
+            origin = h.spawn_origin(&self.scene.shapes, dir);
+        }
+        None
+    }
+
     /// Transmittance per lane (`wavelengths_nm`) along the straight segment from a point toward
     /// `wi` for `dist` (less a relative margin, so the target itself does not count), through
     /// media and index-matched boundaries; `None` if anything else blocks it. `from` is the

@@ -323,7 +323,9 @@ impl<'a> EyeTracer<'a> {
     }
 
     /// Single scattering toward travel direction `wo` at `x` in medium `id`, per unit length:
-    /// σ_s(λ, x) Σ_lights f(λ; −ω_i·ω_o) S(λ) weight T(λ), by one shadow ray per light.
+    /// σ_s(λ, x) ∫ f(λ; ω_l·ω_o) L_light(λ) T(λ) dω, estimated by one shadow ray per light and,
+    /// for area lights, one phase-sampled ray, combined by the power heuristic (light sampling
+    /// alone has infinite variance near an emitting surface).
     #[allow(clippy::too_many_arguments)]
     fn single_scattering(
         &self,
@@ -340,17 +342,38 @@ impl<'a> EyeTracer<'a> {
         if d <= 0.0 {
             return out;
         }
+        let nm = &lanes.nm[..lanes.len];
+        let phase = |l: f64, light_travel: DVec3| m.phase.eval(l, light_travel.dot(wo));
         for light in &self.scene.lights {
             let Some(inc) = light.incident(x, rng.uniform2()) else { continue };
             sc.rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(x, None, inc.wi, inc.dist, Some(id), &lanes.nm[..lanes.len], rng) else {
-                continue;
-            };
+            let Some(tr) = self.prop.shadow(x, None, inc.wi, inc.dist, Some(id), nm, rng) else { continue };
             let s = &light.spectrum().spectrum;
-            let cos = -inc.wi.dot(wo);
             for i in 0..lanes.len {
                 let l = lanes.nm[i];
-                out[i] += d * m.sigma_s(l) * m.phase.eval(l, cos) * s.eval(l) * inc.weight * tr[i];
+                let f = phase(l, -inc.wi);
+                let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
+                out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * tr[i];
+            }
+        }
+        if self.scene.lights.iter().any(|l| !l.is_delta()) {
+            // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
+            let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());
+            let to_light = -wi;
+            sc.rays.shadow += 1;
+            if let Some((hit, tr)) = self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng)
+                && let Some(light) = self.scene.area_light_of(hit.prim)
+            {
+                let cos = light.emitted_cos(hit.normal, wi);
+                if cos > 0.0 && pdf > 0.0 {
+                    let p_light = hit.t * hit.t / (cos * light.shape.area());
+                    for i in 0..lanes.len {
+                        let l = lanes.nm[i];
+                        let f = phase(l, wi);
+                        let mis = power_heuristic(pdf, p_light);
+                        out[i] += mis * d * m.sigma_s(l) * f / pdf * light.emission.spectrum.eval(l) * tr[i];
+                    }
+                }
             }
         }
         out
@@ -451,6 +474,11 @@ impl<'a> EyeTracer<'a> {
         along.tr.iter_mut().for_each(|t| *t *= 2.0);
         true
     }
+}
+
+/// The power heuristic a²/(a² + b²) (Veach & Guibas 1995).
+fn power_heuristic(a: f64, b: f64) -> f64 {
+    if a <= 0.0 { 0.0 } else { a * a / (a * a + b * b) }
 }
 
 /// Adds `scale(i) · v[band of lane i]` to each lane of `out` (`v` holds per-band estimates).

@@ -8,6 +8,7 @@ mod camera;
 pub mod eye;
 mod lanes;
 pub mod maps;
+mod path;
 mod progress;
 pub mod stats;
 
@@ -18,7 +19,7 @@ pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 use crate::output::SpectralImage;
 use crate::raypath::RayState;
 use crate::rng::{Rng, Stream};
-use crate::scene::Scene;
+use crate::scene::{Method, Scene};
 use crate::spectrum::colour::BandsToColour;
 use eye::{EyeTracer, Scratch};
 use rayon::prelude::*;
@@ -59,7 +60,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
 fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCounts) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
-    let tracer = EyeTracer::new(scene, maps);
+    let tracer = Tracer::new(scene, maps);
     let pb = progress::bar(quiet, h as u64, "eye pass");
     let rows: Vec<(Vec<f32>, RayCounts)> = (0..h)
         .into_par_iter()
@@ -90,8 +91,23 @@ fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCoun
     (data, rays)
 }
 
+/// The eye-pass algorithm the scene asks for.
+enum Tracer<'a> {
+    PhotonMap(Box<EyeTracer<'a>>),
+    Path(path::PathTracer<'a>),
+}
+
+impl<'a> Tracer<'a> {
+    fn new(scene: &'a Scene, maps: &'a maps::Maps) -> Tracer<'a> {
+        match scene.integrator.method {
+            Method::PhotonMap => Tracer::PhotonMap(Box::new(EyeTracer::new(scene, maps))),
+            Method::Path => Tracer::Path(path::PathTracer::new(scene)),
+        }
+    }
+}
+
 /// The band averages of one pixel: the mean over `spp` jittered samples.
-fn pixel(scene: &Scene, tracer: &EyeTracer, x: usize, y: usize, sc: &mut Scratch) -> [f64; crate::spectrum::MAX_BANDS] {
+fn pixel(scene: &Scene, tracer: &Tracer, x: usize, y: usize, sc: &mut Scratch) -> [f64; crate::spectrum::MAX_BANDS] {
     let s = &scene.integrator;
     let mut rng = Rng::for_task(s.seed, Stream::Eye, (y * scene.camera.width + x) as u64);
     let weight = Lanes::film_weight(&scene.bands, scene.sampling) / s.spp as f64;
@@ -101,7 +117,10 @@ fn pixel(scene: &Scene, tracer: &EyeTracer, x: usize, y: usize, sc: &mut Scratch
         let ray = scene.camera.ray(x as f64 + jx, y as f64 + jy);
         let lanes = Lanes::new(&scene.bands, scene.sampling, rng.uniform());
         let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
-        let l = tracer.camera_radiance(&state, &lanes, &mut rng, sc);
+        let l = match tracer {
+            Tracer::PhotonMap(t) => t.camera_radiance(&state, &lanes, &mut rng, sc),
+            Tracer::Path(t) => t.camera_radiance(&state, &lanes, &mut rng, &mut sc.rays),
+        };
         for i in 0..lanes.len {
             acc[lanes.band[i] as usize] += weight * l[i];
         }

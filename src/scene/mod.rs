@@ -14,7 +14,9 @@ mod shapes;
 mod spectrum_spec;
 
 pub use plan::{Decision, EffectPlan};
-pub use settings::{DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, OutputSettings, WavelengthSampling};
+pub use settings::{
+    DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, Method, OutputSettings, WavelengthSampling,
+};
 pub use spectrum_spec::parse_two_column_csv;
 
 use crate::error::{Error, Location, Result};

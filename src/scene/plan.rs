@@ -2,7 +2,7 @@
 //! why. Integrators read it instead of re-deriving it; `morgana check` prints it and
 //! `report.json` records it. "Simulate only what the scene calls for" starts here.
 
-use super::settings::{DirectLighting, IntegratorSettings, WavelengthSampling};
+use super::settings::{DirectLighting, IntegratorSettings, Method, WavelengthSampling};
 use crate::material::Material;
 use crate::media::Medium;
 use serde::Serialize;
@@ -52,6 +52,9 @@ pub struct SceneFacts<'a> {
 
 impl EffectPlan {
     pub fn decide(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
+        if s.method == Method::Path {
+            return Self::path_tracing(facts);
+        }
         let diffuse = facts.used_materials.iter().find(|(_, m)| m.is_diffuse()).map(|(n, _)| *n);
         let specular = facts.used_materials.iter().find(|(_, m)| m.is_specular()).map(|(n, _)| *n);
         let dispersive = facts.used_materials.iter().find(|(_, m)| m.is_dispersive()).map(|(n, _)| *n);
@@ -102,6 +105,30 @@ impl EffectPlan {
             dispersion_splitting,
             participating_media: media_decision(&facts.used_media),
             volume_map: volume_map_decision(&facts.used_media, s),
+            curved_paths: Decision::off("no refractive-index field: every path is a straight line"),
+            inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
+        }
+    }
+
+    /// The plan of the reference path tracer: no photon maps; direct light by next-event
+    /// estimation.
+    fn path_tracing(facts: &SceneFacts) -> EffectPlan {
+        let off = || Decision::off("method = \"path\": unbiased path tracing uses no photon maps");
+        let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
+        EffectPlan {
+            global_map: off(),
+            caustic_map: off(),
+            shadow_rays: Decision::on(
+                "method = \"path\": next-event estimation at every diffuse surface and medium interaction",
+            ),
+            final_gather: off(),
+            dispersion_splitting: Decision::off(if multi {
+                "method = \"path\": each path follows one randomly chosen wavelength"
+            } else {
+                "a single band: every path carries one wavelength"
+            }),
+            participating_media: media_decision(&facts.used_media),
+            volume_map: off(),
             curved_paths: Decision::off("no refractive-index field: every path is a straight line"),
             inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
         }

@@ -77,6 +77,7 @@ pub struct RawOutput {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawIntegrator {
+    pub method: S<String>,
     pub photons: S<i64>,
     pub caustic_photons: S<i64>,
     pub k: S<i64>,

@@ -33,6 +33,16 @@ pub enum DirectLighting {
     PhotonMap,
 }
 
+/// The light-transport algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Photon mapping (Jensen; Jensen & Christensen; Gutierrez et al.).
+    PhotonMap,
+    /// Unbiased volumetric path tracing: the reference estimator.
+    Path,
+}
+
 /// The kernel of a photon-density estimate.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -47,6 +57,7 @@ pub enum Filter {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct IntegratorSettings {
+    pub method: Method,
     /// Photons emitted for the global map.
     pub photons: u64,
     /// Photons emitted for the caustic map.
@@ -166,6 +177,7 @@ fn exposure(ctx: &Ctx, e: &Spanned<Value>) -> R<Exposure> {
 pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) -> R<IntegratorSettings> {
     let diag = bounds.diagonal().length().max(1e-9);
     let mut s = IntegratorSettings {
+        method: Method::PhotonMap,
         photons: 200_000,
         caustic_photons: 200_000,
         k: 100,
@@ -188,6 +200,12 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
     let int = |v: &Option<Spanned<i64>>, name: &str, lo: i64, hi: i64, d: i64| -> R<i64> {
         v.as_ref().map_or(Ok(d), |v| ctx.integer(v, name, lo, hi))
     };
+    if let Some(m) = &r.method {
+        s.method = match ctx.choice(m, "method", &["photon_map", "path"])? {
+            "path" => Method::Path,
+            _ => Method::PhotonMap,
+        };
+    }
     s.photons = int(&r.photons, "photons", 0, 1 << 40, s.photons as i64)? as u64;
     s.caustic_photons = int(&r.caustic_photons, "caustic_photons", 0, 1 << 40, s.caustic_photons as i64)? as u64;
     s.k = int(&r.k, "k", 1, 100_000, s.k as i64)? as usize;
