@@ -187,3 +187,46 @@ irradiance_w_m2 = 3.0
     assert!((stats.escaped_w + stats.absorbed_surface_w - s.lights[0].power_w()).abs() < 1e-9 * s.lights[0].power_w());
     assert!(photons.iter().all(|p| p.dir.y < -0.999_999));
 }
+
+#[test]
+fn a_directional_light_limited_to_a_target_box_spends_every_photon_on_it() {
+    // The beam limited to the plate's box: every photon hits the plate, and the plate receives
+    // exactly E × its area; shadow rays see the light only inside the beam.
+    let toml = r#"
+[camera]
+position = [0.0, 3.0, 3.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 60.0
+width = 8
+height = 8
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [-5.0, 0.0, -5.0]
+u = [0.0, 0.0, 10.0]
+v = [10.0, 0.0, 0.0]
+material = "black"
+
+[[light]]
+type = "directional"
+direction = [0.0, -1.0, 0.0]
+spectrum = "D65"
+irradiance_w_m2 = 3.0
+target_min = [-1.0, -0.01, -0.5]
+target_max = [1.0, 0.01, 0.5]
+"#;
+    let s = scene(toml);
+    assert!((s.lights[0].power_w() - 6.0).abs() < 1e-9, "beam power {}", s.lights[0].power_w());
+    let (sink, _) = shoot(&s, MapKind::Global, 10_000, 8, &|_| {});
+    assert_eq!(sink.surface.len(), 10_000);
+    assert!(sink.surface.iter().all(|p| p.position.x.abs() <= 1.0 + 1e-9 && p.position.z.abs() <= 0.5 + 1e-9));
+    let stored: f64 = sink.surface.iter().map(|p| p.power_w).sum();
+    assert!((stored - 6.0).abs() < 1e-9);
+    assert!(s.lights[0].incident(glam::DVec3::new(0.5, 0.0, 0.2), [0.5, 0.5]).is_some());
+    assert!(s.lights[0].incident(glam::DVec3::new(2.0, 0.0, 0.2), [0.5, 0.5]).is_none());
+}

@@ -1,12 +1,15 @@
 //! A directional light: parallel rays of spectral irradiance E(λ) (normal to the beam) from
 //! infinitely far away.
 //!
-//! Photons start on a disk perpendicular to the beam that covers the scene's bounding sphere,
-//! so the emitted flux is Φ = π R² ∫E dλ for the bounding radius R; a directional light's power
-//! is only defined relative to the region it lights, and `report.json` states that region.
+//! Photons start on a rectangle perpendicular to the beam, one scene radius upstream of the
+//! scene: by default the square around the scene's bounding sphere, so the emitted flux is
+//! Φ = A_beam ∫E dλ; a directional light's power is only defined relative to the region it
+//! lights, and `report.json` states it. A scene may limit the beam to the rays through a target
+//! box (`target_min`, `target_max` — e.g. a window): the rectangle then covers only the box's
+//! shadow on the emitting plane, photons are not spent on walls no camera sees, and shadow rays
+//! see the light only inside that beam, so both passes simulate the same, limited, light.
 
 use crate::geometry::Frame;
-use crate::sampling::concentric_disk;
 use glam::DVec3;
 
 use super::{Incident, LightSpectrum};
@@ -18,24 +21,67 @@ pub struct DirectionalLight {
     /// Centre and radius of the scene's bounding sphere.
     pub scene_centre: DVec3,
     pub scene_radius: f64,
+    /// The beam's cross-section in the frame about `dir`: (s, t) ranges.
+    pub beam: [[f64; 2]; 2],
     /// Spectral irradiance normal to the beam, W m⁻² nm⁻¹.
     pub emission: LightSpectrum,
 }
 
 impl DirectionalLight {
-    pub fn power_w(&self) -> f64 {
-        std::f64::consts::PI * self.scene_radius * self.scene_radius * self.emission.integral()
+    /// A light covering the scene's bounding sphere, or only the beam through `target`.
+    pub fn new(
+        dir: DVec3,
+        scene_centre: DVec3,
+        scene_radius: f64,
+        target: Option<(DVec3, DVec3)>,
+        emission: LightSpectrum,
+    ) -> DirectionalLight {
+        let frame = Frame::from_normal(dir);
+        let beam = match target {
+            None => [[-scene_radius, scene_radius], [-scene_radius, scene_radius]],
+            Some((lo, hi)) => {
+                let mut b = [[f64::INFINITY, f64::NEG_INFINITY], [f64::INFINITY, f64::NEG_INFINITY]];
+                for i in 0..8 {
+                    let c = DVec3::new(
+                        if i & 1 == 0 { lo.x } else { hi.x },
+                        if i & 2 == 0 { lo.y } else { hi.y },
+                        if i & 4 == 0 { lo.z } else { hi.z },
+                    );
+                    let (s, t) = ((c - scene_centre).dot(frame.s), (c - scene_centre).dot(frame.t));
+                    b = [[b[0][0].min(s), b[0][1].max(s)], [b[1][0].min(t), b[1][1].max(t)]];
+                }
+                b
+            }
+        };
+        DirectionalLight { dir, scene_centre, scene_radius, beam, emission }
     }
 
-    /// A uniform point on the emitting disk, one radius upstream of the scene's centre.
+    /// Area of the beam's cross-section, m².
+    pub fn beam_area(&self) -> f64 {
+        (self.beam[0][1] - self.beam[0][0]) * (self.beam[1][1] - self.beam[1][0])
+    }
+
+    pub fn power_w(&self) -> f64 {
+        self.beam_area() * self.emission.integral()
+    }
+
+    /// A uniform point on the beam's cross-section, upstream of the scene.
     pub fn emit_origin(&self, u: [f64; 2]) -> DVec3 {
-        let [x, y] = concentric_disk(u);
         let frame = Frame::from_normal(self.dir);
-        self.scene_centre - self.dir * (1.001 * self.scene_radius) + self.scene_radius * (x * frame.s + y * frame.t)
+        let s = self.beam[0][0] + u[0] * (self.beam[0][1] - self.beam[0][0]);
+        let t = self.beam[1][0] + u[1] * (self.beam[1][1] - self.beam[1][0]);
+        self.scene_centre - self.dir * (1.001 * self.scene_radius) + s * frame.s + t * frame.t
+    }
+
+    /// Whether the beam passes through `p`.
+    pub fn lights(&self, p: DVec3) -> bool {
+        let frame = Frame::from_normal(self.dir);
+        let (s, t) = ((p - self.scene_centre).dot(frame.s), (p - self.scene_centre).dot(frame.t));
+        (self.beam[0][0]..=self.beam[0][1]).contains(&s) && (self.beam[1][0]..=self.beam[1][1]).contains(&t)
     }
 
     /// Irradiance normal to the beam is E, so weight = 1 toward −dir at infinite distance.
-    pub fn incident(&self) -> Incident {
-        Incident { wi: -self.dir, dist: f64::INFINITY, weight: 1.0 }
+    pub fn incident(&self, p: DVec3) -> Option<Incident> {
+        self.lights(p).then_some(Incident { wi: -self.dir, dist: f64::INFINITY, weight: 1.0 })
     }
 }

@@ -134,7 +134,7 @@ impl Light {
             Light::Area(l) => l.incident(p, u),
             Light::Point(l) => l.incident(p),
             Light::Spot(l) => l.incident(p),
-            Light::Directional(l) => Some(l.incident()),
+            Light::Directional(l) => l.incident(p),
         }
     }
 }

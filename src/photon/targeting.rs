@@ -114,7 +114,7 @@ impl CausticTargets {
         let (c, r) = self.spheres[j];
         let [x, y] = concentric_disk(rng.uniform2());
         let origin = project(c) + r * (x * frame.s + y * frame.t);
-        let inside_light = (origin - plane_centre).length_squared() <= d.scene_radius * d.scene_radius;
+        let inside_light = d.lights(origin);
         let p_mix: f64 = self
             .spheres
             .iter()
@@ -123,7 +123,7 @@ impl CausticTargets {
             })
             .sum::<f64>()
             / self.spheres.len() as f64;
-        let p_light = 1.0 / (std::f64::consts::PI * d.scene_radius * d.scene_radius);
+        let p_light = 1.0 / d.beam_area();
         let factor = if inside_light && p_mix > 0.0 { p_light / p_mix } else { 0.0 };
         (Emission { origin, dir: d.dir, wavelength_nm, normal: d.dir }, factor)
     }

@@ -39,12 +39,12 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
         "spot" => &["power_w", "scale", "position", "direction", "look_at", "cone_deg", "falloff_start_deg"],
-        _ => &["scale", "irradiance_w_m2", "direction"],
+        _ => &["scale", "irradiance_w_m2", "direction", "target_min", "target_max"],
     };
     ctx.only(&present, allowed, &what)?;
     let spec = ctx.require(&l.spectrum, "spectrum", &span, &what)?;
@@ -69,7 +69,21 @@ pub fn light(
                 ));
             }
             let scene_radius = (0.5 * bounds.diagonal().length()).max(1e-6);
-            Light::Directional(DirectionalLight { dir, scene_centre: bounds.centre(), scene_radius, emission })
+            let target = match (&l.target_min, &l.target_max) {
+                (None, None) => None,
+                (Some(a), Some(b)) => {
+                    let (lo, hi) = (ctx.vec3(a, "target_min")?, ctx.vec3(b, "target_max")?);
+                    if !hi.cmpge(lo).all() {
+                        return Err(ctx.err(
+                            &b.span(),
+                            format!("{what}: target_max {hi} must not be below target_min {lo} on any axis"),
+                        ));
+                    }
+                    Some((lo, hi))
+                }
+                _ => return Err(ctx.err(&span, format!("{what}: give both target_min and target_max, or neither"))),
+            };
+            Light::Directional(DirectionalLight::new(dir, bounds.centre(), scene_radius, target, emission))
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;

@@ -161,4 +161,6 @@ pub struct RawLight {
     pub look_at: S<[f64; 3]>,
     pub cone_deg: S<f64>,
     pub falloff_start_deg: S<f64>,
+    pub target_min: S<[f64; 3]>,
+    pub target_max: S<[f64; 3]>,
 }
