@@ -37,6 +37,32 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Write a density grid (.mgrid, documented in src/media/density/grid.rs) of procedural fBm
+    /// turbulence, for `density = { type = "grid", file = ... }`.
+    Grid {
+        /// Output file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Lattice points per axis.
+        #[arg(long, default_value_t = 64)]
+        res: usize,
+        /// Box corner, metres: x,y,z.
+        #[arg(long, value_parser = parse_vec3, default_value = "-1,-1,-1")]
+        min: [f64; 3],
+        /// Opposite box corner, metres: x,y,z.
+        #[arg(long, value_parser = parse_vec3, default_value = "1,1,1")]
+        max: [f64; 3],
+        #[arg(long, default_value_t = 0.5)]
+        base: f64,
+        #[arg(long, default_value_t = 0.5)]
+        amplitude: f64,
+        #[arg(long, default_value_t = 2.0)]
+        frequency_per_m: f64,
+        #[arg(long, default_value_t = 5)]
+        octaves: u32,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
     /// Validate a scene and print what will be simulated and why.
     Check {
         /// Scene file (TOML); the embedded default scene when omitted.
@@ -51,10 +77,27 @@ fn main() {
             run_render(scene.as_deref(), &out, photons, seed, threads, quiet)
         }
         Command::Check { scene } => run_check(scene.as_deref()),
+        Command::Grid { out, res, min, max, base, amplitude, frequency_per_m, octaves, seed } => {
+            let fbm = morgana::media::density::Fbm::new(base, amplitude, frequency_per_m, octaves, seed);
+            morgana::media::density::write_grid_atomically(&out, [res; 3], min.into(), max.into(), |p| fbm.at(p))
+                .map(|()| println!("wrote {}", out.display()))
+        }
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");
         std::process::exit(e.exit_code());
+    }
+}
+
+fn parse_vec3(s: &str) -> std::result::Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| format!("{e}"))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(format!("expected three finite numbers x,y,z, found \"{s}\"")),
     }
 }
 

@@ -63,6 +63,27 @@ impl Grid3D {
         Ok(g)
     }
 
+    /// Samples `f` at every lattice point of an `n`-point grid over [min, max].
+    pub fn from_fn(n: [usize; 3], min: DVec3, max: DVec3, f: impl Fn(DVec3) -> f64) -> Result<Grid3D, String> {
+        if n.iter().any(|&k| k < 2) {
+            return Err(format!("grid size {n:?}: each axis needs at least 2 lattice points"));
+        }
+        let mut values = Vec::with_capacity(n[0] * n[1] * n[2]);
+        for k in 0..n[2] {
+            for j in 0..n[1] {
+                for i in 0..n[0] {
+                    let t = DVec3::new(
+                        i as f64 / (n[0] - 1) as f64,
+                        j as f64 / (n[1] - 1) as f64,
+                        k as f64 / (n[2] - 1) as f64,
+                    );
+                    values.push(f(min + (max - min) * t) as f32);
+                }
+            }
+        }
+        Grid3D::new(n, min, max, values)
+    }
+
     fn value(&self, i: usize, j: usize, k: usize) -> f32 {
         self.values[(k * self.n[1] + j) * self.n[0] + i]
     }

@@ -13,7 +13,28 @@ pub use exponential::ExponentialHeight;
 pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
 
+use crate::error::{Error, Result};
+use crate::output::atomic::Staged;
 use glam::DVec3;
+
+/// Samples `f` on an `n`-point lattice over [min, max] and writes it as an `.mgrid` file,
+/// atomically. Bad sizes or values are input errors.
+pub fn write_grid_atomically(
+    path: &std::path::Path,
+    n: [usize; 3],
+    min: DVec3,
+    max: DVec3,
+    f: impl Fn(DVec3) -> f64,
+) -> Result<()> {
+    if !(2..=1024).contains(&n[0]) {
+        return Err(Error::input(None, format!("--res {}: the grid needs 2 to 1024 points per axis", n[0])));
+    }
+    let grid = Grid3D::from_fn(n, min, max, f).map_err(|e| Error::input(None, e))?;
+    let io = |e: std::io::Error| Error::internal(format!("cannot write {}: {e}", path.display()));
+    let staged = Staged::new(path).map_err(io)?;
+    grid.write(&staged.temp).map_err(io)?;
+    staged.commit().map_err(io)
+}
 
 #[derive(Clone, Debug)]
 pub enum Density {
