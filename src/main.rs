@@ -37,6 +37,8 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Tone-map a spectral (or RGB) EXR into an sRGB PNG as an eye would see it.
+    Tonemap(morgana::tonemap::cli::TonemapArgs),
     /// Validate a scene and print what will be simulated and why.
     Check {
         /// Scene file (TOML); the embedded default scene when omitted.
@@ -51,6 +53,7 @@ fn main() {
             run_render(scene.as_deref(), &out, photons, seed, threads, quiet)
         }
         Command::Check { scene } => run_check(scene.as_deref()),
+        Command::Tonemap(args) => run_tonemap(&args),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");
@@ -63,6 +66,13 @@ fn load(path: Option<&Path>) -> Result<Scene> {
         Some(p) => load_scene_file(p),
         None => default_scene(),
     }
+}
+
+fn run_tonemap(args: &morgana::tonemap::cli::TonemapArgs) -> Result<()> {
+    for line in morgana::tonemap::cli::run(&args.command()?)? {
+        println!("{line}");
+    }
+    Ok(())
 }
 
 fn run_check(path: Option<&Path>) -> Result<()> {

@@ -11,6 +11,7 @@ pub mod raw;
 mod settings;
 mod shapes;
 mod spectrum_spec;
+mod tone;
 
 pub use plan::{Decision, EffectPlan};
 pub use settings::{DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, OutputSettings, WavelengthSampling};
@@ -139,7 +140,7 @@ fn toml_error(ctx: &Ctx, e: &toml::de::Error) -> Error {
 
 fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let camera = settings::camera(ctx, &raw.camera)?;
-    let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name)?;
+    let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name, &camera)?;
     let lib = SpectrumLibrary { named: &raw.spectra };
     let mut material_names: Vec<String> = Vec::new();
     let mut materials = Vec::new();

@@ -3,7 +3,10 @@
 //! The highest spatial frequency the eye resolves at adaptation luminance L_a (cd m⁻²) is
 //! ω(L_a) = 17.25 arctan(1.4 log₁₀ L_a + 0.35) + 25.72 cycles per degree, Ward Larson et al.'s
 //! (1997, Eq. 11) fit to Shlaer's (1937) acuity data, which Ferwerda et al. (1996, §6) also use:
-//! about 50 c/deg in daylight, 11 c/deg at 0.1 cd m⁻², 2 c/deg at 10⁻³·¹ cd m⁻².
+//! about 50 c/deg in daylight, 11 c/deg at 0.1 cd m⁻², 3 c/deg at 10⁻³·¹ cd m⁻², the dimmest
+//! level measured. Below it the fit is held at that value (it would fall to zero near
+//! 10⁻⁹ cd m⁻², far beyond the data), so a black patch in a lit scene is not smeared over the
+//! whole image.
 //!
 //! The image is blurred so that detail beyond ω is lost: each pixel is blurred with a Gaussian
 //! whose modulation transfer exp(−2π²σ²f²) falls to ½ at f = ω, i.e. σ = √(ln 2 / 2) / (π ω)
@@ -24,11 +27,14 @@ use super::blur::{BLUR_LEVELS, blur_level, level_sigma_px};
 use super::foveal::FovealImage;
 use super::scene_image::SceneImage;
 
-/// Resolvable spatial frequency, cycles per degree, at adaptation luminance `la_cd_m2` (at least
-/// 0.01 c/deg: the fit turns negative near 10⁻⁹ cd m⁻²).
+/// The dimmest adaptation luminance of Shlaer's data, log₁₀ cd m⁻².
+pub const DIMMEST_MEASURED_LOG10_CD_M2: f64 = -3.1;
+
+/// Resolvable spatial frequency, cycles per degree, at adaptation luminance `la_cd_m2`.
 pub fn acuity_cycles_per_degree(la_cd_m2: f64) -> f64 {
-    let l = la_cd_m2.max(1e-12).log10();
-    (17.25 * (1.4 * l + 0.35).atan() + 25.72).max(0.01)
+    let l = if la_cd_m2 > 0.0 { la_cd_m2.log10() } else { f64::NEG_INFINITY };
+    let l = l.max(DIMMEST_MEASURED_LOG10_CD_M2);
+    17.25 * (1.4 * l + 0.35).atan() + 25.72
 }
 
 /// The blur σ in degrees for adaptation luminance `la_cd_m2` (see the module documentation).
@@ -93,14 +99,14 @@ mod tests {
             let got = acuity_cycles_per_degree(10f64.powf(l));
             assert!((got - want).abs() < 0.06 * want + 0.8, "1e{l}: {got} vs {want}");
         }
-        assert!(acuity_cycles_per_degree(0.0) >= 0.01);
+        assert_eq!(acuity_cycles_per_degree(0.0), acuity_cycles_per_degree(10f64.powf(-3.1)));
         // σ at 50 c/deg is 0.0037°; at 1 c/deg 0.187°.
         assert!((blur_sigma_deg(10f64.powf(1.2)) - 0.1874 / acuity_cycles_per_degree(10f64.powf(1.2))).abs() < 1e-4);
     }
 
     #[test]
     fn dim_scenes_lose_detail_and_bright_ones_keep_it() {
-        // A 64×64 checkerboard of 1-pixel squares, 0.05°/pixel (10 c/deg).
+        // A 64×64 checkerboard of 1-pixel squares, 0.04°/pixel (12.5 c/deg).
         let checker = |scale: f64| {
             let xyz = (0..64 * 64).map(|i| if (i % 64 + i / 64) % 2 == 0 { [scale; 3] } else { [0.0; 3] }).collect();
             SceneImage::from_xyz(64, 64, xyz).unwrap()
@@ -113,7 +119,7 @@ mod tests {
         for (scale, keeps) in [(1000.0, true), (0.001, false)] {
             let mut img = checker(scale);
             let fov = FovealImage::new(&img, 3.2);
-            apply_acuity(&mut img, &fov, 0.05);
+            apply_acuity(&mut img, &fov, 0.04);
             let c = contrast(&img);
             assert!(if keeps { c > 0.99 } else { c < 0.2 }, "scale {scale}: contrast {c}");
             // Blurring keeps the mean away from the clamped borders.

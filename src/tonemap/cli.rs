@@ -5,6 +5,7 @@
 //! and renamed into place only when all were written. Bad options and unreadable input are
 //! input errors (exit code 2) naming the option or file and what is allowed.
 
+use super::exposure::Exposure;
 use super::exr_read::read_exr;
 use super::png_out::write_rgb8;
 use super::region::Region;
@@ -13,6 +14,93 @@ use super::tonemap;
 use crate::error::{Error, Location, Result};
 use crate::output::atomic::Staged;
 use std::path::{Path, PathBuf};
+
+/// The command line of `morgana tonemap` (parsed by clap in `main`).
+#[derive(clap::Args, Clone, Debug)]
+pub struct TonemapArgs {
+    /// The EXR to read: a spectral EXR written by morgana render, or an RGB EXR.
+    pub input: PathBuf,
+    /// The PNG to write.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// exposure | reinhard | ward-histogram | pattanaik (default: exposure).
+    #[arg(long)]
+    pub operator: Option<String>,
+    /// Exposure operator only: "auto" (99th percentile to white) or stops (EV).
+    #[arg(long, allow_hyphen_values = true)]
+    pub exposure: Option<String>,
+    /// Chromatic adaptation from this scene white to D65: none, d65, a, e, white (brightest 1 %),
+    /// scene-average (grey world) or x,y.
+    #[arg(long)]
+    pub adapt_to: Option<String>,
+    /// Adaptation space: von-kries | bradford | cat16 (default: cat16).
+    #[arg(long)]
+    pub cat: Option<String>,
+    /// Degree of chromatic adaptation, 0 (none) to 1 (complete, default).
+    #[arg(long)]
+    pub adaptation_degree: Option<f64>,
+    /// Pattanaik only: seconds the eye has looked at the image (default: fully adapted).
+    #[arg(long)]
+    pub adaptation_time_s: Option<f64>,
+    /// Pattanaik only, with --adaptation-time-s: luminance the eye was adapted to before, cd/m².
+    #[arg(long)]
+    pub adapt_from_cd_m2: Option<f64>,
+    /// Rod vision: auto (mesopic by luminance) | on (rods only) | off. Default: auto for
+    /// ward-histogram and pattanaik, off for exposure and reinhard.
+    #[arg(long)]
+    pub scotopic: Option<String>,
+    /// Show luminance (cd/m²) in false colour on a log scale with a legend.
+    #[arg(long)]
+    pub false_colour: bool,
+    /// Vertical field of view of the image in degrees (EXRs do not record it; default 40).
+    #[arg(long)]
+    pub fov_deg: Option<f64>,
+    /// Pixel rectangle x0,y0,x1,y1 (x1, y1 exclusive) whose luminance goes to --csv.
+    #[arg(long)]
+    pub region: Option<String>,
+    /// CSV file for --region: x, y, luminance, scotopic luminance, illuminance per pixel.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+}
+
+impl TonemapArgs {
+    /// The command, with `--exposure` checked.
+    pub fn command(&self) -> Result<TonemapCommand> {
+        let exposure = match &self.exposure {
+            None => None,
+            Some(e) => Some(parse_exposure(e).ok_or_else(|| {
+                Error::input(None, format!("--exposure: \"{e}\" is neither \"auto\" nor a number of stops (EV)"))
+            })?),
+        };
+        let options = ToneOptions {
+            operator: self.operator.clone(),
+            exposure,
+            adapt_to: self.adapt_to.clone(),
+            cat: self.cat.clone(),
+            adaptation_degree: self.adaptation_degree,
+            adaptation_time_s: self.adaptation_time_s,
+            adapt_from_cd_m2: self.adapt_from_cd_m2,
+            scotopic: self.scotopic.clone(),
+            false_colour: self.false_colour,
+            fov_deg: self.fov_deg,
+        };
+        Ok(TonemapCommand {
+            input: self.input.clone(),
+            out: self.out.clone(),
+            options,
+            region: self.region.clone(),
+            csv: self.csv.clone(),
+        })
+    }
+}
+
+/// "auto" or a finite number of stops.
+pub fn parse_exposure(s: &str) -> Option<Exposure> {
+    if s.eq_ignore_ascii_case("auto") {
+        return Some(Exposure::Auto);
+    }
+    s.parse::<f64>().ok().filter(|x| x.is_finite()).map(Exposure::Ev)
+}
 
 /// The command's arguments, as given.
 #[derive(Clone, Debug, Default)]

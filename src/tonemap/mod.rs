@@ -99,7 +99,7 @@ pub fn tonemap(input: &SceneImage, settings: &ToneSettings) -> ToneOutput {
     }
     let mut img = input.clone();
     let mut notes = Vec::new();
-    adapt_colour(&mut img, settings, &mut notes);
+    notes.extend(adapt_colour(&mut img, settings));
     simulate_rods(&mut img, settings, &mut notes);
     let luminance = img.luminances();
     let rod: Vec<f64> = img.scotopic.iter().map(|s| s / SCOTOPIC_PER_PHOTOPIC_WHITE).collect();
@@ -108,32 +108,31 @@ pub fn tonemap(input: &SceneImage, settings: &ToneSettings) -> ToneOutput {
     ToneOutput { width: img.width, height: img.height, rgb, notes }
 }
 
-/// Step 2: chromatic adaptation to the display white.
-fn adapt_colour(img: &mut SceneImage, s: &ToneSettings, notes: &mut Vec<String>) {
+/// Step 2: chromatic adaptation of `img` from its scene white to the display white, as
+/// `s.adapt_to`, `s.cat` and `s.adaptation_degree` say; returns a note on what was done.
+pub fn adapt_colour(img: &mut SceneImage, s: &ToneSettings) -> Option<String> {
     if s.adapt_to == white::AdaptTo::None {
-        return;
+        return None;
     }
     let Some(w) = s.adapt_to.white(img) else {
-        notes.push(format!("chromatic adaptation skipped: no scene white from {}", s.adapt_to.describe()));
-        return;
+        return Some(format!("chromatic adaptation skipped: no scene white from {}", s.adapt_to.describe()));
     };
     let target = xy_to_xyz(DISPLAY_WHITE_XY);
     let Some(m) = adaptation_matrix(s.cat, w, target, s.adaptation_degree) else {
-        notes.push(format!("chromatic adaptation skipped: the scene white {w:?} has no usable cone response"));
-        return;
+        return Some(format!("chromatic adaptation skipped: the scene white {w:?} has no usable cone response"));
     };
     for c in img.xyz.iter_mut() {
         *c = mul_vec(&m, *c);
     }
     let xy = xyz_to_xy(w).unwrap_or([0.0; 2]);
-    notes.push(format!(
+    Some(format!(
         "chromatic adaptation: scene white x,y = {:.4},{:.4} ({}) to D65 by {}, degree {}",
         xy[0],
         xy[1],
         s.adapt_to.describe(),
         s.cat.name(),
         s.adaptation_degree
-    ));
+    ))
 }
 
 /// Step 3: acuity loss and, except for Pattanaik, the mesopic colour loss.
