@@ -24,8 +24,10 @@
 //! **One image.** G is the log-average luminance of the image (cones: L, rods: L′/2.26). By
 //! default the eye is fully adapted to it (t = ∞). With `adaptation_time_s = t` and
 //! `adapt_from_cd_m2 = L₀`, the eye was at steady state for L₀ (rods at L₀ too) and has looked at
-//! this image for t seconds: a diver 2 s after leaving the bright surface sees a dark, washed-out
-//! scene; after 10 minutes, the fully adapted one.
+//! this image for t seconds. Neural gain settles within a fraction of a second, pigment over
+//! minutes: 50 ms after stepping from 5000 cd m⁻² into a dusk scene it is nearly black; 1 s after,
+//! the cones have adapted but the rods are still bleached, so the scene is seen by cones alone,
+//! in colour; after about 10 minutes the rods have recovered and colour fades into rod vision.
 //!
 //! **Display.** A scene reference white of 5A and black of 5A/32 are compared with the display's,
 //! adapted to G_d = 25 cd m⁻² (white 125, black 3.9 cd m⁻², cones only): if the scene's response
