@@ -22,6 +22,17 @@ src/spectrum/check.rs), computes the same quantities with colour-science, and co
                 beyond), takes absolute XYZ (K_m = 683.002) and sRGB, and
                 compares with the R, G, B channels morgana wrote
   exr-layout    layout attributes and channel wavelengths               exact / 1e-4 nm
+  cat           24 ColorChecker patches adapted A -> D65, D65 -> A and     ΔE2000 ≤ 0.1
+                blue-green water (x,y = 0.24,0.36) -> D65 by complete
+                von Kries adaptation in the Von Kries (HPE), Bradford and
+                CAT16 spaces (colour.chromatic_adaptation, method "Von
+                Kries"), Lab relative to the target white
+  scotopic      scotopic luminance K'_m Σ L V' (K'_m = 1700.06) of black  relative ≤ 1e-4
+                bodies, D65, A and ColorChecker x D65, against
+                colour.luminous_flux with the CIE 1951 scotopic V'
+  exr-scotopic  the scotopic luminance `morgana tonemap` reads from each   relative ≤ 1e-3
+                spectral EXR pixel, against colour-science's V' integral
+                of the spectrum it rebuilds from the same file
 
 Spectra sent to morgana are colour-science's own, aligned to 360-830 nm at 1 nm with its
 default interpolation and extrapolation, so both sides integrate the same function.
@@ -71,7 +82,14 @@ TOL = {
     "albedo": 1e-3,
     "exr": 1e-3,
     "exr-layout": 1e-4,
+    "cat": 0.1,
+    "scotopic": 1e-4,
+    "exr-scotopic": 1e-3,
 }
+K_M_SCOTOPIC = 1700.06
+V_PRIME = colour.SDS_LEFS["CIE 1951 Scotopic Standard Observer"]
+CAT_METHODS = {"von_kries": "Von Kries", "bradford": "Bradford", "cat16": "CAT16"}
+WATER_XY = (0.24, 0.36)
 TEMPERATURES = [1000, 1500, 2000, 2500, 2856, 3000, 4000, 5000, 6500, 8000, 10000, 15000, 20000]
 ALBEDOS = [
     [0.0, 0.0, 0.0],
@@ -172,7 +190,53 @@ def build_request(tmp: str) -> dict:
         "blackbodies_k": TEMPERATURES,
         "rgb_albedos": ALBEDOS,
         "exr": exr_requests(tmp),
+        "chromatic_adaptation": cat_requests(),
+        "scotopic": [
+            {"name": name, "nm": list(WAVELENGTHS), "values": list(map(float, values))}
+            for name, values in scotopic_spectra().items()
+        ],
     }
+
+
+def cat_cases() -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray]]:
+    """(label, XYZ, XYZ_w, XYZ_wr), all with Y_white = 1."""
+    ill = illuminants()
+    white = {name: relative_xyz(np.ones(len(WAVELENGTHS)), sd) / 100 for name, sd in ill.items()}
+    water = colour.xy_to_XYZ(WATER_XY)
+    cases = []
+    for name, sd in patches().items():
+        refl = aligned(sd)
+        under_a = relative_xyz(refl, ill["A"]) / 100
+        under_d65 = relative_xyz(refl, ill["D65"]) / 100
+        cases.append((f"A->D65/{name}", under_a, white["A"], white["D65"]))
+        cases.append((f"D65->A/{name}", under_d65, white["D65"], white["A"]))
+        cases.append((f"water->D65/{name}", under_d65 * water / white["D65"], water, white["D65"]))
+    return cases
+
+
+def cat_requests() -> list[dict]:
+    return [
+        {"method": method, "xyz": list(map(float, xyz)), "xyz_w": list(map(float, w)), "xyz_wr": list(map(float, wr))}
+        for method in CAT_METHODS
+        for _, xyz, w, wr in cat_cases()
+    ]
+
+
+def scotopic_spectra() -> dict[str, np.ndarray]:
+    """Spectral radiances (W m^-2 sr^-1 nm^-1) at 360-830 nm, 1 nm."""
+    ill = illuminants()
+    out = {f"blackbody {t} K": colour.sd_blackbody(t, SHAPE).values * 1e-9 for t in (2000, 2856, 6500, 20000)}
+    out["D65"] = aligned(ill["D65"]) * 1e-3
+    out["A"] = ill["A"].values * 1e-3
+    for name, sd in patches().items():
+        out[f"D65 x {name}"] = aligned(sd) * aligned(ill["D65"]) * 1e-3
+    return out
+
+
+def scotopic_reference(values_1nm: np.ndarray) -> float:
+    """colour-science's scotopic luminance of a spectrum sampled at 360-830 nm, 1 nm."""
+    sd = colour.SpectralDistribution(values_1nm, WAVELENGTHS)
+    return float(colour.luminous_flux(sd, V_PRIME, K_m=K_M_SCOTOPIC))
 
 
 # --------------------------------------------------------------------------- the comparisons
@@ -197,11 +261,11 @@ class Table:
         return {g for g, r in self.rows.items() if r["failed"] or r["n"] == 0}
 
     def print(self, out=sys.stdout) -> None:
-        print(f"{'group':<11} {'n':>4} {'failed':>6} {'worst':>11} {'tolerance':>9}  worst item", file=out)
+        print(f"{'group':<12} {'n':>4} {'failed':>6} {'worst':>11} {'tolerance':>9}  worst item", file=out)
         for group, r in self.rows.items():
             status = "FAIL" if r["failed"] else "ok"
             print(
-                f"{group:<11} {r['n']:>4} {r['failed']:>6} {r['worst']:>11.3e} {TOL[group]:>9.0e}  "
+                f"{group:<12} {r['n']:>4} {r['failed']:>6} {r['worst']:>11.3e} {TOL[group]:>9.0e}  "
                 f"{r['item']} {r['extra']} [{status}]",
                 file=out,
             )
@@ -268,7 +332,22 @@ def compare(answer: dict, request: dict, table: Table) -> None:
         table.add("albedo", f"{a['rgb']}", float(np.max(np.abs(rgb - np.asarray(a["rgb"])))))
 
     for req, written in zip(request["exr"], answer["exr"], strict=True):
-        compare_exr(req, written["path"], table)
+        compare_exr(req, written, table)
+
+    cases = cat_cases()
+    answers = iter(answer["chromatic_adaptation"])
+    for method, cs_name in CAT_METHODS.items():
+        for label, xyz, w, wr in cases:
+            got = np.asarray(next(answers))
+            ref = colour.chromatic_adaptation(xyz, w, wr, method="Von Kries", transform=cs_name)
+            white_xy = colour.XYZ_to_xy(wr)
+            de = float(
+                colour.delta_E(colour.XYZ_to_Lab(ref, white_xy), colour.XYZ_to_Lab(got, white_xy), method="CIE 2000")
+            )
+            table.add("cat", f"{method} {label}", de)
+
+    for name, values in scotopic_spectra().items():
+        table.add("scotopic", name, rel(answer["scotopic"][name], scotopic_reference(values)))
 
 
 def rebuild(centres: np.ndarray, values: np.ndarray, edges: tuple[float, float]) -> np.ndarray:
@@ -281,7 +360,8 @@ def rebuild(centres: np.ndarray, values: np.ndarray, edges: tuple[float, float])
     return np.where((WAVELENGTHS >= x[0]) & (WAVELENGTHS <= x[-1]), spectrum(WAVELENGTHS), 0.0)
 
 
-def compare_exr(req: dict, path: str, table: Table) -> None:
+def compare_exr(req: dict, written: dict, table: Table) -> None:
+    path = written["path"]
     tag = os.path.basename(path)
     components, spec = colour.io.read_spectral_image_Fichet2021(path, additional_data=True)
     attrs = {a.name: a.value for a in spec.attributes}
@@ -326,6 +406,9 @@ def compare_exr(req: dict, path: str, table: Table) -> None:
         ref = xyz_to_linear_srgb(xyz)
         got = rgb_file[y, x]
         table.add("exr", f"{tag} pixel {p} rgb", rel_or_abs(got, ref), f"{np.round(got, 6)}")
+        spectrum = rebuild(wavelengths, stored, edges)
+        scot_ref = scotopic_reference(spectrum)
+        table.add("exr-scotopic", f"{tag} pixel {p}", rel_or_abs(written["scotopic"][p], scot_ref))
     assert rgb_file.shape[:2] == (h, w)
 
 
@@ -364,7 +447,19 @@ def perturbations() -> dict[str, callable]:
     def albedo(a):
         a["rgb_albedos"][9]["reflectance"] = [v * 1.01 for v in a["rgb_albedos"][9]["reflectance"]]
 
+    def cat(a):
+        a["chromatic_adaptation"][40][0] *= 1.01
+
+    def scotopic(a):
+        a["scotopic"]["A"] *= 1 + 2e-4
+
+    def exr_scotopic(a):
+        a["exr"][2]["scotopic"][3] *= 1.002
+
     return {
+        "cat": cat,
+        "scotopic": scotopic,
+        "exr-scotopic": exr_scotopic,
         "cmf": cmf,
         "illuminant": illuminant,
         "white": white,
@@ -427,7 +522,7 @@ def main() -> int:
             t = Table()
             compare(bad, request, t)
             status = "fails as it should" if group in t.failed_groups() else "DID NOT FAIL"
-            print(f"  {group:<11} {status}")
+            print(f"  {group:<12} {status}")
             if group not in t.failed_groups():
                 insensitive.append(group)
         for group, (channel, factor) in {"exr": ("G", 1.002), "exr-layout": ("S0.550,0nm", 1.0)}.items():
@@ -436,13 +531,13 @@ def main() -> int:
                 req = copy.deepcopy(request)
                 req["exr"][1]["count"] = 8
                 t = Table()
-                compare_exr(req["exr"][1], answer["exr"][1]["path"], t)
+                compare_exr(req["exr"][1], answer["exr"][1], t)
             else:
                 perturb_exr(answer["exr"][0]["path"], channel, factor)
                 t = Table()
-                compare_exr(request["exr"][0], answer["exr"][0]["path"], t)
+                compare_exr(request["exr"][0], answer["exr"][0], t)
             status = "fails as it should" if group in t.failed_groups() else "DID NOT FAIL"
-            print(f"  {group:<11} {status}")
+            print(f"  {group:<12} {status}")
             if group not in t.failed_groups():
                 insensitive.append(group)
         if insensitive:

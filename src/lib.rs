@@ -27,3 +27,4 @@ pub mod sampling;
 pub mod scene;
 pub mod spectrum;
 pub mod testing;
+pub mod tonemap;

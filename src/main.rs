@@ -63,6 +63,8 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// Tone-map a spectral (or RGB) EXR into an sRGB PNG as an eye would see it.
+    Tonemap(morgana::tonemap::cli::TonemapArgs),
     /// Validate a scene and print what will be simulated and why.
     Check {
         /// Scene file (TOML); the embedded default scene when omitted.
@@ -82,6 +84,7 @@ fn main() {
             morgana::media::density::write_grid_atomically(&out, [res; 3], min.into(), max.into(), |p| fbm.at(p))
                 .map(|()| println!("wrote {}", out.display()))
         }
+        Command::Tonemap(args) => run_tonemap(&args),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");
@@ -106,6 +109,13 @@ fn load(path: Option<&Path>) -> Result<Scene> {
         Some(p) => load_scene_file(p),
         None => default_scene(),
     }
+}
+
+fn run_tonemap(args: &morgana::tonemap::cli::TonemapArgs) -> Result<()> {
+    for line in morgana::tonemap::cli::run(&args.command()?)? {
+        println!("{line}");
+    }
+    Ok(())
 }
 
 fn run_check(path: Option<&Path>) -> Result<()> {

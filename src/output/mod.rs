@@ -45,7 +45,14 @@ pub fn write_outputs(
         stage(&mut staged, dir, format!("{}.exr", o.name), &|p| exr::write_spectral_exr(p, &r.image))?;
     }
     if o.png {
-        stage(&mut staged, dir, format!("{}.png", o.name), &|p| png::write_png_preview(p, &r.image, o.exposure))?;
+        stage(&mut staged, dir, format!("{}.png", o.name), &|p| match &o.tone {
+            None => png::write_png_preview(p, &r.image, o.exposure),
+            Some(tone) => crate::tonemap::write_png(p, &r.image, tone).map(|_| ()),
+        })?;
+    }
+    if let Some(region) = &o.region {
+        let image = crate::tonemap::SceneImage::from_spectral(&r.image);
+        stage(&mut staged, dir, format!("{}.region.csv", o.name), &|p| region.write_csv(&image, p))?;
     }
     if o.csv {
         stage(&mut staged, dir, format!("{}.csv", o.name), &|p| write_csv(p, &r.image))?;

@@ -12,6 +12,7 @@ pub mod raw;
 mod settings;
 mod shapes;
 mod spectrum_spec;
+mod tone;
 
 pub use plan::{Decision, EffectPlan};
 pub use settings::{
@@ -183,7 +184,7 @@ fn toml_error(ctx: &Ctx, e: &toml::de::Error) -> Error {
 
 fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let camera = settings::camera(ctx, &raw.camera)?;
-    let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name)?;
+    let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name, &camera)?;
     let lib = SpectrumLibrary { named: &raw.spectra };
     let (material_names, materials) = build_materials(ctx, &lib, raw, &bands)?;
     let (medium_names, media, global_medium) = build_media(ctx, &lib, raw, &bands)?;

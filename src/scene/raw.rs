@@ -72,6 +72,15 @@ pub struct RawOutput {
     pub png: S<bool>,
     pub csv: S<bool>,
     pub exposure: S<toml::Value>,
+    pub tonemap: S<String>,
+    pub adapt_to: S<toml::Value>,
+    pub cat: S<String>,
+    pub adaptation_degree: S<f64>,
+    pub adaptation_time_s: S<f64>,
+    pub adapt_from_cd_m2: S<f64>,
+    pub scotopic: S<String>,
+    pub false_colour: S<bool>,
+    pub region: S<[i64; 4]>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -6,6 +6,8 @@ use crate::geometry::Aabb;
 use crate::output::png::Exposure;
 use crate::render::Camera;
 use crate::spectrum::{Bands, MAX_BANDS};
+use crate::tonemap::ToneSettings;
+use crate::tonemap::region::Region;
 use serde::Serialize;
 use toml::{Spanned, Value};
 
@@ -89,6 +91,12 @@ pub struct OutputSettings {
     pub csv: bool,
     #[serde(skip)]
     pub exposure: Exposure,
+    /// How the PNG is made; `None`: the exposure preview.
+    #[serde(skip)]
+    pub tone: Option<ToneSettings>,
+    /// Pixels whose luminance goes to `NAME.region.csv`.
+    #[serde(skip)]
+    pub region: Option<Region>,
 }
 
 pub fn camera(ctx: &Ctx, c: &Spanned<RawCamera>) -> R<Camera> {
@@ -119,11 +127,19 @@ pub fn output(
     ctx: &Ctx,
     o: Option<&Spanned<RawOutput>>,
     default_name: &str,
+    camera: &Camera,
 ) -> R<(OutputSettings, Bands, WavelengthSampling)> {
     let Some(o) = o else {
         let bands = Bands::new(380.0, 780.0, 16).map_err(crate::error::Error::internal)?;
-        let out =
-            OutputSettings { name: default_name.into(), exr: true, png: true, csv: false, exposure: Exposure::Auto };
+        let out = OutputSettings {
+            name: default_name.into(),
+            exr: true,
+            png: true,
+            csv: false,
+            exposure: Exposure::Auto,
+            tone: None,
+            region: None,
+        };
         return Ok((out, bands, WavelengthSampling::Bands));
     };
     let span = o.span();
@@ -148,8 +164,16 @@ pub fn output(
         Some(e) => exposure(ctx, e)?,
     };
     let flag = |f: &Option<Spanned<bool>>, d: bool| f.as_ref().map_or(d, |v| *v.get_ref());
-    let out =
-        OutputSettings { name, exr: flag(&o.exr, true), png: flag(&o.png, true), csv: flag(&o.csv, false), exposure };
+    let (tone, region) = super::tone::tone(ctx, o, exposure, camera)?;
+    let out = OutputSettings {
+        name,
+        exr: flag(&o.exr, true),
+        png: flag(&o.png, true),
+        csv: flag(&o.csv, false),
+        exposure,
+        tone,
+        region,
+    };
     Ok((out, bands, sampling))
 }
 

@@ -12,7 +12,10 @@
 //!   "blackbodies_k": [1000, 6500],
 //!   "rgb_albedos": [[0.2, 0.5, 0.9]],
 //!   "exr": [{"path": "out.exr", "min_nm": 380, "max_nm": 780, "count": 2,
-//!            "width": 2, "height": 1, "pixels": [[0.1, 0.2], [0.3, 0.4]]}]
+//!            "width": 2, "height": 1, "pixels": [[0.1, 0.2], [0.3, 0.4]]}],
+//!   "chromatic_adaptation": [{"method": "bradford", "xyz": [0.2, 0.1, 0.05],
+//!                             "xyz_w": [1.1, 1.0, 0.36], "xyz_wr": [0.95, 1.0, 1.09]}],
+//!   "scotopic": [{"name": "D65", "nm": [360, 361], "values": [0.05, 0.05]}]
 //! }
 //! ```
 //!
@@ -26,13 +29,23 @@
 //! - `rgb_albedos`: the Jakob–Hanika coefficients and the fitted reflectance at 360..830 nm;
 //! - `exr`: per image, the path written (through [`Staged`],
 //!   [`write_spectral_exr`] and
-//!   [`BandsToColour`]), the channel names and the RGB written.
+//!   [`BandsToColour`]), the channel names and the RGB written, and the scotopic luminance of
+//!   each pixel as `morgana tonemap` reads the file back ([`read_exr`]);
+//! - `chromatic_adaptation`: each XYZ adapted from white `xyz_w` to `xyz_wr` by complete von Kries
+//!   adaptation in the named space (`von_kries`, `bradford`, `cat16`;
+//!   [`adaptation_matrix`]);
+//! - `scotopic`: each spectral radiance's scotopic luminance K′_m Σ L(λ) V′(λ) · 1 nm
+//!   ([`scotopic_luminance`]).
 
 use super::colour::{BandsToColour, absolute_xyz, cmf_sums, relative_xyz, xyz_to_linear_srgb};
 use super::{Bands, RgbSigmoid, Spectrum, Tabulated, named_illuminant};
 use crate::output::SpectralImage;
 use crate::output::atomic::Staged;
 use crate::output::exr::{emissive_channel_name, write_spectral_exr};
+use crate::tonemap::chromatic::{Cat, adaptation_matrix};
+use crate::tonemap::exr_read::read_exr;
+use crate::tonemap::matrix::mul_vec;
+use crate::tonemap::scotopic::scotopic_luminance;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -54,6 +67,19 @@ struct Request {
     rgb_albedos: Vec<[f64; 3]>,
     #[serde(default)]
     exr: Vec<ExrRequest>,
+    #[serde(default)]
+    chromatic_adaptation: Vec<CatRequest>,
+    #[serde(default)]
+    scotopic: Vec<NamedSamples>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CatRequest {
+    method: String,
+    xyz: [f64; 3],
+    xyz_w: [f64; 3],
+    xyz_wr: [f64; 3],
 }
 
 #[derive(Deserialize)]
@@ -93,6 +119,10 @@ struct Response {
     rgb_albedos: Vec<Albedo>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     exr: Vec<ExrResponse>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    chromatic_adaptation: Vec<[f64; 3]>,
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    scotopic: BTreeMap<String, f64>,
 }
 
 #[derive(Serialize)]
@@ -121,6 +151,8 @@ struct ExrResponse {
     path: PathBuf,
     channels: Vec<String>,
     rgb: Vec<[f32; 3]>,
+    /// Scotopic luminance per pixel, read back from the file.
+    scotopic: Vec<f64>,
 }
 
 /// Reads the check's JSON request and answers with morgana's colorimetry as JSON.
@@ -183,6 +215,13 @@ pub fn run(request_json: &str) -> Result<String, String> {
     for exr in &req.exr {
         out.exr.push(write_exr(exr)?);
     }
+    for c in &req.chromatic_adaptation {
+        out.chromatic_adaptation.push(adapt(c)?);
+    }
+    for s in &req.scotopic {
+        let t = Tabulated::new(s.nm.clone(), s.values.clone()).map_err(|e| format!("scotopic '{}': {e}", s.name))?;
+        out.scotopic.insert(s.name.clone(), scotopic_luminance(&Spectrum::Tabulated(t)));
+    }
     serde_json::to_string(&out).map_err(|e| format!("cannot encode the colour-check answer: {e}"))
 }
 
@@ -215,11 +254,22 @@ fn write_exr(req: &ExrRequest) -> Result<ExrResponse, String> {
     let staged = Staged::new(&req.path).map_err(|e| format!("exr: {e}"))?;
     write_spectral_exr(&staged.temp, &image).map_err(|e| format!("exr: {e}"))?;
     staged.commit().map_err(|e| format!("exr: {e}"))?;
+    let back = read_exr(&req.path).map_err(|e| format!("exr: reading {} back: {e}", req.path.display()))?;
     Ok(ExrResponse {
         path: req.path.clone(),
         channels: (0..bands.count).map(|b| emissive_channel_name(bands.centre_nm(b))).collect(),
         rgb,
+        scotopic: back.scotopic,
     })
+}
+
+/// One chromatic-adaptation case.
+fn adapt(c: &CatRequest) -> Result<[f64; 3], String> {
+    let cat = Cat::parse(&c.method)
+        .ok_or_else(|| format!("chromatic adaptation method '{}': allowed are von_kries, bradford, cat16", c.method))?;
+    let m = adaptation_matrix(cat, c.xyz_w, c.xyz_wr, 1.0)
+        .ok_or_else(|| format!("chromatic adaptation: whites {:?} → {:?} are not usable", c.xyz_w, c.xyz_wr))?;
+    Ok(mul_vec(&m, c.xyz))
 }
 
 #[cfg(test)]
@@ -239,6 +289,16 @@ mod tests {
         assert!((grey_y - 50.0).abs() < 1e-9);
         assert_eq!(v["blackbodies"][0]["xyz_normalised"][1].as_f64(), Some(1.0));
         assert!(v.get("exr").is_none());
+        // The white is mapped onto the target white; a flat spectrum's L′ is K′_m Σ V′.
+        let answer = run(r#"{"chromatic_adaptation": [{"method": "von_kries", "xyz": [1.1, 1.0, 0.4],
+            "xyz_w": [1.1, 1.0, 0.4], "xyz_wr": [0.95, 1.0, 1.09]}],
+            "scotopic": [{"name": "flat", "nm": [300, 900], "values": [1, 1]}]}"#)
+        .unwrap();
+        let v: serde_json::Value = serde_json::from_str(&answer).unwrap();
+        let z = v["chromatic_adaptation"][0][2].as_f64().unwrap();
+        assert!((z - 1.09).abs() < 1e-12, "{z}");
+        let flat = v["scotopic"]["flat"].as_f64().unwrap();
+        assert!((flat / (1700.06 * 97.071_316_574) - 1.0).abs() < 1e-9, "{flat}");
     }
 
     #[test]
@@ -251,6 +311,7 @@ mod tests {
         let answer: serde_json::Value = serde_json::from_str(&run(&request.to_string()).unwrap()).unwrap();
         assert!(path.exists());
         assert_eq!(answer["exr"][0]["channels"][0], "S0.475,0nm");
+        assert!(answer["exr"][0]["scotopic"][0].as_f64().unwrap() > 0.0);
         let want = BandsToColour::new(&Bands::new(400.0, 700.0, 2).unwrap()).linear_srgb(&[0.5, 0.25]);
         let got = answer["exr"][0]["rgb"][0][1].as_f64().unwrap();
         assert!((got - want[1]).abs() < 1e-6 * want[1].abs());
@@ -268,5 +329,8 @@ mod tests {
         assert!(e.unwrap_err().contains("at least 2"));
         let e = run(r#"{"rgb_albedos": [[2, 0, 0]]}"#).unwrap_err();
         assert!(e.contains("[0, 1]"), "{e}");
+        let e = run(r#"{"chromatic_adaptation": [{"method": "cat02", "xyz": [1, 1, 1], "xyz_w": [1, 1, 1],
+            "xyz_wr": [1, 1, 1]}]}"#);
+        assert!(e.unwrap_err().contains("cat02"));
     }
 }
