@@ -15,11 +15,13 @@
 pub mod error;
 pub mod geometry;
 pub mod light;
+pub mod luminaire;
 pub mod material;
 pub mod media;
 pub mod output;
 pub mod photon;
 pub mod photon_map;
+pub mod raster;
 pub mod raypath;
 pub mod render;
 pub mod rng;

@@ -42,6 +42,15 @@ enum Command {
         /// Scene file (TOML); the embedded default scene when omitted.
         scene: Option<PathBuf>,
     },
+    /// Read a luminaire photometry file (IES LM-63, EULUMDAT) and print what it says: flux,
+    /// symmetry, peak, beam and field angles; optionally draw its polar curves.
+    Luminaire {
+        /// Photometric file (.ies, .ldt).
+        file: PathBuf,
+        /// Write the C0–C180 and C90–C270 polar intensity curves to this PNG.
+        #[arg(long)]
+        png: Option<PathBuf>,
+    },
 }
 
 fn main() {
@@ -51,6 +60,7 @@ fn main() {
             run_render(scene.as_deref(), &out, photons, seed, threads, quiet)
         }
         Command::Check { scene } => run_check(scene.as_deref()),
+        Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");
