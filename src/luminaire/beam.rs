@@ -79,7 +79,7 @@ mod tests {
     fn an_uplight_beam_is_measured_across_the_zenith() {
         // I = I0 |cos γ| above the horizon only: the beam spans the zenith, 120° wide.
         let g: Vec<f64> = (90..=180).map(f64::from).collect();
-        let cd = g.iter().map(|x| -100.0 * x.to_radians().cos()).collect();
+        let cd = g.iter().map(|x| (-100.0 * x.to_radians().cos()).max(0.0)).collect();
         let web = PhotometricWeb::new(WebAxes::TYPE_C, vec![0.0], true, g, cd).unwrap();
         let beam = spread_angle_deg(&plane_curve(&web, 0.0, 0.05), 0.5).unwrap();
         assert!((beam - 120.0).abs() < 0.02, "{beam}");
