@@ -27,5 +27,6 @@ pub mod render;
 pub mod rng;
 pub mod sampling;
 pub mod scene;
+pub mod sensor;
 pub mod spectrum;
 pub mod testing;

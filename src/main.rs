@@ -69,10 +69,14 @@ fn main() {
 }
 
 fn load(path: Option<&Path>) -> Result<Scene> {
-    match path {
+    let scene = match path {
         Some(p) => load_scene_file(p),
         None => default_scene(),
+    }?;
+    for w in &scene.warnings {
+        eprintln!("morgana: note: {w}");
     }
+    Ok(scene)
 }
 
 fn run_check(path: Option<&Path>) -> Result<()> {

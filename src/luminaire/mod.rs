@@ -38,7 +38,7 @@ pub use opening::{Kind as OpeningKind, Opening};
 pub use parse_error::ParseError;
 pub use photometric::{luminous_fraction_in, per_candela};
 pub use placement::Placement;
-pub use polar_png::write_polar_png;
+pub use polar_png::{nice_ceiling, write_polar_png};
 pub use report::summary;
 pub use sampler::{WebSampler, sample_linear};
 pub use symmetry::Symmetry;

@@ -99,29 +99,35 @@ impl Opening {
 
     /// A point drawn uniformly over the opening's area or volume (module docs), luminaire frame.
     pub fn sample(&self, rng: &mut Rng) -> DVec3 {
+        self.sample_u([rng.uniform(), rng.uniform(), rng.uniform()])
+    }
+
+    /// [`Opening::sample`] from three uniforms in [0, 1) (flat shapes use the first two).
+    pub fn sample_u(&self, u: [f64; 3]) -> DVec3 {
         let half = 0.5 * self.size_m;
         let centred = |u: f64| 2.0 * u - 1.0;
         match self.kind {
             Kind::Point => DVec3::ZERO,
             Kind::Flat { round } => {
-                let [a, b] = if round { concentric_disk(rng.uniform2()) } else { rng.uniform2().map(centred) };
+                let uv = [u[0], u[1]];
+                let [a, b] = if round { concentric_disk(uv) } else { uv.map(centred) };
                 let axes = self.flat_axes();
                 let mut p = DVec3::ZERO;
                 p[axes[0]] = a * half[axes[0]];
                 p[axes[1]] = b * half[axes[1]];
                 p
             }
-            Kind::Box => DVec3::new(centred(rng.uniform()), centred(rng.uniform()), centred(rng.uniform())) * half,
+            Kind::Box => DVec3::new(centred(u[0]), centred(u[1]), centred(u[2])) * half,
             Kind::Cylinder { axis } => {
-                let [a, b] = concentric_disk(rng.uniform2());
+                let [a, b] = concentric_disk([u[0], u[1]]);
                 let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
                 let mut p = DVec3::ZERO;
                 p[i] = a * half[i];
                 p[j] = b * half[j];
-                p[axis] = centred(rng.uniform()) * half[axis];
+                p[axis] = centred(u[2]) * half[axis];
                 p
             }
-            Kind::Ellipsoid => uniform_sphere(rng.uniform2()) * rng.uniform().cbrt() * half,
+            Kind::Ellipsoid => uniform_sphere([u[0], u[1]]) * u[2].cbrt() * half,
         }
     }
 

@@ -66,6 +66,13 @@ impl<'a> EyeTracer<'a> {
         self.radiance(state, lanes, 0, Mode::Camera, rng, sc)
     }
 
+    /// Radiance per lane arriving along `state` as a gather ray reads it (light reflected at
+    /// least once, from the global map's irradiance; emitters add nothing): the indirect part
+    /// that sensors measure.
+    pub fn gather_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        self.radiance(state, lanes, 1, Mode::Gather, rng, sc)
+    }
+
     fn radiance(
         &self,
         state: &RayState,

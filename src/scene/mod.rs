@@ -5,9 +5,11 @@
 
 mod context;
 mod lights;
+mod luminaires;
 mod materials;
 mod plan;
 pub mod raw;
+mod sensors;
 mod settings;
 mod shapes;
 mod spectrum_spec;
@@ -56,6 +58,11 @@ pub struct Scene {
     pub integrator: IntegratorSettings,
     pub output: OutputSettings,
     pub plan: EffectPlan,
+    /// Sensors evaluated after the photon pass (see [`crate::sensor`]).
+    pub sensors: Vec<crate::sensor::NamedSensor>,
+    /// Things the user should know that do not stop the render (e.g. a luminaire file's stated
+    /// flux disagreeing with its table).
+    pub warnings: Vec<String>,
 }
 
 impl Scene {
@@ -167,6 +174,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let geometry_bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let mut lights = Vec::new();
     let mut light_names = Vec::new();
+    let mut warnings = Vec::new();
     for (i, rec) in raw.light.iter().enumerate() {
         let l = lights::light(ctx, &lib, rec, i, &bands, &geometry_bounds)?;
         if let Light::Area(a) = &l.light {
@@ -177,6 +185,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
             shapes.push(a.shape.clone());
             prims.push(Prim { material, light: Some(i as u32) });
         }
+        warnings.extend(l.notes);
         light_names.push(l.name);
         lights.push(l.light);
     }
@@ -188,6 +197,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     }
     let bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
+    let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
     let plan = decide_plan(&materials, &material_names, &prims, &integrator, sampling, bands.count);
     let bvh = Bvh::build(&shapes);
     Ok(Scene {
@@ -206,6 +216,8 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         integrator,
         output,
         plan,
+        sensors,
+        warnings,
     })
 }
 

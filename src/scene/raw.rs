@@ -25,6 +25,8 @@ pub struct RawScene {
     pub shape: Vec<Spanned<RawShape>>,
     #[serde(default)]
     pub light: Vec<Spanned<RawLight>>,
+    #[serde(default)]
+    pub sensor: Vec<Spanned<RawSensor>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -133,4 +135,25 @@ pub struct RawLight {
     pub look_at: S<[f64; 3]>,
     pub cone_deg: S<f64>,
     pub falloff_start_deg: S<f64>,
+    pub file: S<String>,
+    pub cct_k: S<f64>,
+    pub flux_scale: S<f64>,
+    pub c0_toward: S<[f64; 3]>,
+    pub rotation_deg: S<[f64; 3]>,
+    pub emitter: S<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSensor {
+    pub name: S<String>,
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub origin: S<[f64; 3]>,
+    pub u: S<[f64; 3]>,
+    pub v: S<[f64; 3]>,
+    pub normal: S<[f64; 3]>,
+    pub resolution: S<[i64; 2]>,
+    pub samples: S<i64>,
+    pub gather_rays: S<i64>,
 }

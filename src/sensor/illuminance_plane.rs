@@ -1,0 +1,121 @@
+//! Illuminance on a grid of points on a plane (a lighting engineer's calculation surface: the
+//! desk plane, a road, a wall).
+//!
+//! The grid spans origin + s u + t v for s, t ∈ [0, 1] with points at the centres of nx × ny
+//! cells; it measures on the side of the unit normal n (default (u × v)/|u × v|). The plane is
+//! virtual — it blocks no light — and need not lie on a surface. At each point
+//!
+//! E_v = K_m ∫ E_e(λ) ȳ(λ) dλ,  E_e(λ) = E_direct(λ) + E_indirect(λ)
+//!
+//! - E_direct = Σ_lights S(λ) · weight · cos θ, by one shadow ray per light and sample (exact for
+//!   point-like lights; a luminaire emitting from its opening is averaged over its samples);
+//! - E_indirect = π · mean L(λ) over cosine-distributed gather rays, L being what a gather ray of
+//!   the eye pass reads from the global photon map where it meets a diffuse surface (so light
+//!   reflected at least once; caustics through glass reach it along those rays).
+//!
+//! E_e is estimated per band (W m⁻² nm⁻¹, each band's wavelength jittered per sample) and turned
+//! into lux with the same band weights as the image's luminance ([`BandsToColour`]), so only the
+//! scene's wavelength range counts. Columns: `E_lx`, `E_direct_lx`, `E_indirect_lx`.
+
+use super::Reading;
+use crate::geometry::{Frame, Hit};
+use crate::raypath::{Propagator, RayState};
+use crate::render::Lanes;
+use crate::render::eye::{EyeTracer, Scratch};
+use crate::rng::{Rng, Stream};
+use crate::sampling::cosine_hemisphere;
+use crate::scene::{Scene, WavelengthSampling};
+use crate::spectrum::MAX_BANDS;
+use crate::spectrum::colour::BandsToColour;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct IlluminancePlane {
+    pub origin: DVec3,
+    pub u: DVec3,
+    pub v: DVec3,
+    /// Unit normal of the measuring side.
+    pub normal: DVec3,
+    pub nx: usize,
+    pub ny: usize,
+    /// Estimates averaged per point.
+    pub samples: usize,
+    /// Gather rays per sample for indirect light (0: direct light only).
+    pub gather_rays: usize,
+}
+
+type Bandwise = [f64; MAX_BANDS];
+
+impl IlluminancePlane {
+    /// The centre of cell (i, j).
+    pub fn point(&self, i: usize, j: usize) -> DVec3 {
+        self.origin + (i as f64 + 0.5) / self.nx as f64 * self.u + (j as f64 + 0.5) / self.ny as f64 * self.v
+    }
+
+    /// Measures every point; sensor `index` seeds its random streams.
+    pub fn evaluate(&self, scene: &Scene, tracer: &EyeTracer, name: &str, index: u64) -> Reading {
+        let conv = BandsToColour::new(&scene.bands);
+        let nb = scene.bands.count;
+        let n = self.nx * self.ny;
+        let values: Vec<(f64, f64)> = (0..n)
+            .into_par_iter()
+            .map_init(Scratch::default, |sc, k| {
+                let task = (index << 40) | k as u64;
+                let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, task);
+                let (direct, indirect) = self.at(scene, tracer, self.point(k % self.nx, k / self.nx), &mut rng, sc);
+                (conv.xyz(&direct[..nb])[1], conv.xyz(&indirect[..nb])[1])
+            })
+            .collect();
+        let points = (0..n).map(|k| self.point(k % self.nx, k / self.nx)).collect();
+        let direct: Vec<f64> = values.iter().map(|v| v.0).collect();
+        let indirect: Vec<f64> = values.iter().map(|v| v.1).collect();
+        let total = direct.iter().zip(&indirect).map(|(a, b)| a + b).collect();
+        Reading {
+            name: name.to_string(),
+            quantity: "illuminance",
+            unit: "lx",
+            nx: self.nx,
+            ny: self.ny,
+            points,
+            columns: vec![("E_lx".into(), total), ("E_direct_lx".into(), direct), ("E_indirect_lx".into(), indirect)],
+        }
+    }
+
+    /// Direct and indirect spectral irradiance per band at `p`, W m⁻² nm⁻¹.
+    fn at(&self, scene: &Scene, tracer: &EyeTracer, p: DVec3, rng: &mut Rng, sc: &mut Scratch) -> (Bandwise, Bandwise) {
+        let (mut direct, mut indirect) = ([0.0; MAX_BANDS], [0.0; MAX_BANDS]);
+        let prop = Propagator::new(&scene.shapes, &scene.bvh);
+        let here = Hit { t: 0.0, point: p, normal: self.normal, prim: u32::MAX };
+        let frame = Frame::from_normal(self.normal);
+        let w = 1.0 / self.samples as f64;
+        for _ in 0..self.samples {
+            let lanes = Lanes::new(&scene.bands, WavelengthSampling::Bands, rng.uniform());
+            for light in &scene.lights {
+                let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
+                let cos = inc.wi.dot(self.normal);
+                if cos <= 0.0 || !prop.unoccluded(&here, inc.wi, inc.dist) {
+                    continue;
+                }
+                let s = &light.spectrum().spectrum;
+                for (e, l) in direct.iter_mut().zip(&lanes.nm[..lanes.len]) {
+                    *e += w * s.eval(*l) * inc.weight * cos;
+                }
+            }
+            for _ in 0..self.gather_rays {
+                let d = frame.to_world(cosine_hemisphere(rng.uniform2()));
+                let state = RayState {
+                    position: crate::geometry::spawn_origin(p, self.normal, d),
+                    dir: d,
+                    wavelength_nm: None,
+                };
+                let l = tracer.gather_radiance(&state, &lanes, rng, sc);
+                for (e, l) in indirect.iter_mut().zip(&l[..lanes.len]) {
+                    *e += w * PI * l / self.gather_rays as f64;
+                }
+            }
+        }
+        (direct, indirect)
+    }
+}
