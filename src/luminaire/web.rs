@@ -142,6 +142,9 @@ impl PhotometricWeb {
         let cos_gamma = gamma_deg.iter().map(|g| g.to_radians().cos()).collect();
         let mut web = PhotometricWeb { axes, c_deg, periodic, gamma_deg, cos_gamma, cd, pole_note: None };
         web.unify_poles();
+        if !web.flux_lm().is_finite() {
+            return Err("the intensities are too large: their flux overflows".into());
+        }
         Ok(web)
     }
 
@@ -419,6 +422,8 @@ mod tests {
         assert!(bad(vec![0.0], true, vec![0.0, 90.0], 3).is_err());
         let neg = PhotometricWeb::new(WebAxes::TYPE_C, vec![0.0], true, vec![0.0, 90.0], vec![1.0, -1.0]);
         assert!(neg.unwrap_err().contains("≥ 0"));
+        let huge = PhotometricWeb::new(WebAxes::TYPE_C, vec![0.0], true, vec![0.0, 90.0], vec![1e308, 1e308]);
+        assert!(huge.unwrap_err().contains("overflows"));
     }
 
     #[test]

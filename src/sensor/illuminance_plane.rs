@@ -13,9 +13,10 @@
 //!   the eye pass reads from the global photon map where it meets a diffuse surface (so light
 //!   reflected at least once; caustics through glass reach it along those rays).
 //!
-//! E_e is estimated per band (W m⁻² nm⁻¹, each band's wavelength jittered per sample) and turned
-//! into lux with the same band weights as the image's luminance ([`BandsToColour`]), so only the
-//! scene's wavelength range counts. Columns: `E_lx`, `E_direct_lx`, `E_indirect_lx`.
+//! The lux integral runs over the scene's wavelength range only, by stratified sampling: each
+//! sample takes one wavelength per band (jittered within it, as eye paths do), so
+//! E_v ≈ K_m Σ_b E_e(λ_b) ȳ(λ_b) Δλ_b, an unbiased estimate. Columns: `E_lx`, `E_direct_lx`,
+//! `E_indirect_lx`.
 
 use super::Reading;
 use crate::geometry::{Frame, Hit};
@@ -25,8 +26,8 @@ use crate::render::eye::{EyeTracer, Scratch};
 use crate::rng::{Rng, Stream};
 use crate::sampling::cosine_hemisphere;
 use crate::scene::{Scene, WavelengthSampling};
-use crate::spectrum::MAX_BANDS;
-use crate::spectrum::colour::BandsToColour;
+use crate::spectrum::cie::cmf_1931;
+use crate::spectrum::colour::K_M;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -46,8 +47,6 @@ pub struct IlluminancePlane {
     pub gather_rays: usize,
 }
 
-type Bandwise = [f64; MAX_BANDS];
-
 impl IlluminancePlane {
     /// The centre of cell (i, j).
     pub fn point(&self, i: usize, j: usize) -> DVec3 {
@@ -56,16 +55,13 @@ impl IlluminancePlane {
 
     /// Measures every point; sensor `index` seeds its random streams.
     pub fn evaluate(&self, scene: &Scene, tracer: &EyeTracer, name: &str, index: u64) -> Reading {
-        let conv = BandsToColour::new(&scene.bands);
-        let nb = scene.bands.count;
         let n = self.nx * self.ny;
         let values: Vec<(f64, f64)> = (0..n)
             .into_par_iter()
             .map_init(Scratch::default, |sc, k| {
                 let task = (index << 40) | k as u64;
                 let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, task);
-                let (direct, indirect) = self.at(scene, tracer, self.point(k % self.nx, k / self.nx), &mut rng, sc);
-                (conv.xyz(&direct[..nb])[1], conv.xyz(&indirect[..nb])[1])
+                self.at(scene, tracer, self.point(k % self.nx, k / self.nx), &mut rng, sc)
             })
             .collect();
         let points = (0..n).map(|k| self.point(k % self.nx, k / self.nx)).collect();
@@ -83,15 +79,17 @@ impl IlluminancePlane {
         }
     }
 
-    /// Direct and indirect spectral irradiance per band at `p`, W m⁻² nm⁻¹.
-    fn at(&self, scene: &Scene, tracer: &EyeTracer, p: DVec3, rng: &mut Rng, sc: &mut Scratch) -> (Bandwise, Bandwise) {
-        let (mut direct, mut indirect) = ([0.0; MAX_BANDS], [0.0; MAX_BANDS]);
+    /// Direct and indirect illuminance at `p`, lx.
+    fn at(&self, scene: &Scene, tracer: &EyeTracer, p: DVec3, rng: &mut Rng, sc: &mut Scratch) -> (f64, f64) {
+        let (mut direct, mut indirect) = (0.0, 0.0);
         let prop = Propagator::new(&scene.shapes, &scene.bvh);
         let here = Hit { t: 0.0, point: p, normal: self.normal, prim: u32::MAX };
         let frame = Frame::from_normal(self.normal);
-        let w = 1.0 / self.samples as f64;
         for _ in 0..self.samples {
             let lanes = Lanes::new(&scene.bands, WavelengthSampling::Bands, rng.uniform());
+            // K_m ȳ(λ) Δλ per lane, divided among the samples: lux per W m⁻² nm⁻¹.
+            let w = scene.bands.width_nm() * K_M / self.samples as f64;
+            let lux: Vec<f64> = lanes.nm[..lanes.len].iter().map(|l| w * cmf_1931(*l)[1]).collect();
             for light in &scene.lights {
                 let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
                 let cos = inc.wi.dot(self.normal);
@@ -99,8 +97,8 @@ impl IlluminancePlane {
                     continue;
                 }
                 let s = &light.spectrum().spectrum;
-                for (e, l) in direct.iter_mut().zip(&lanes.nm[..lanes.len]) {
-                    *e += w * s.eval(*l) * inc.weight * cos;
+                for (l, y) in lanes.nm[..lanes.len].iter().zip(&lux) {
+                    direct += y * s.eval(*l) * inc.weight * cos;
                 }
             }
             for _ in 0..self.gather_rays {
@@ -111,8 +109,8 @@ impl IlluminancePlane {
                     wavelength_nm: None,
                 };
                 let l = tracer.gather_radiance(&state, &lanes, rng, sc);
-                for (e, l) in indirect.iter_mut().zip(&l[..lanes.len]) {
-                    *e += w * PI * l / self.gather_rays as f64;
+                for (l, y) in l[..lanes.len].iter().zip(&lux) {
+                    indirect += y * PI * l / self.gather_rays as f64;
                 }
             }
         }
