@@ -428,3 +428,40 @@ fn eulumdatrs_absolute_led() {
     assert_eq!(p.opening.kind, morgana::luminaire::OpeningKind::Box);
     check_ies_flux(rel, &p);
 }
+
+/// The CIE LED illuminant tables shipped in `luminaires/spectra/` reproduce the chromaticities
+/// CIE 015:2018 publishes for them (stated in each file's header), by morgana's own colorimetry.
+#[test]
+fn cie_led_illuminant_files_have_their_published_chromaticities() {
+    use morgana::spectrum::{Spectrum, Tabulated};
+    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/luminaires/spectra"));
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let path = e.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let header = text.lines().find(|l| l.contains("chromaticity")).unwrap();
+        let num = |key: &str| -> f64 {
+            let rest = &header[header.find(key).unwrap() + key.len()..];
+            rest.split([',', ' ', ';']).find(|t| !t.is_empty()).unwrap().parse().unwrap()
+        };
+        let (x, y) = (num("x = "), num("y = "));
+        let (nm, values) = morgana::scene::parse_two_column_csv(&text).unwrap();
+        let s = Spectrum::Tabulated(Tabulated::new(nm, values).unwrap());
+        let xyz = morgana::spectrum::colour::absolute_xyz(&s);
+        let sum = xyz.iter().sum::<f64>();
+        let (gx, gy) = (xyz[0] / sum, xyz[1] / sum);
+        assert!((gx - x).abs() < 5e-4 && (gy - y).abs() < 5e-4, "{}: ({gx:.4}, {gy:.4}) vs ({x}, {y})", path.display());
+        n += 1;
+    }
+    assert_eq!(n, 9, "LED-B1…B5, BH1, RGB1, V1, V2");
+}
+
+/// The examples that use luminaires load (their shared files resolve from `examples/`).
+#[test]
+fn luminaire_examples_load() {
+    for name in ["office_luminaires", "road_ies"] {
+        let path = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/examples")).join(format!("{name}.toml"));
+        let s = morgana::scene::load_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(s.sensors.len(), 1, "{name}");
+    }
+}
