@@ -70,6 +70,15 @@ enum Command {
         /// Scene file (TOML); the embedded default scene when omitted.
         scene: Option<PathBuf>,
     },
+    /// Read a luminaire photometry file (IES LM-63, EULUMDAT) and print what it says: flux,
+    /// symmetry, peak, beam and field angles; optionally draw its polar curves.
+    Luminaire {
+        /// Photometric file (.ies, .ldt).
+        file: PathBuf,
+        /// Write the C0–C180 and C90–C270 polar intensity curves to this PNG.
+        #[arg(long)]
+        png: Option<PathBuf>,
+    },
 }
 
 fn main() {
@@ -85,6 +94,7 @@ fn main() {
                 .map(|()| println!("wrote {}", out.display()))
         }
         Command::Tonemap(args) => run_tonemap(&args),
+        Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");
@@ -105,10 +115,14 @@ fn parse_vec3(s: &str) -> std::result::Result<[f64; 3], String> {
 }
 
 fn load(path: Option<&Path>) -> Result<Scene> {
-    match path {
+    let scene = match path {
         Some(p) => load_scene_file(p),
         None => default_scene(),
+    }?;
+    for w in &scene.warnings {
+        eprintln!("morgana: note: {w}");
     }
+    Ok(scene)
 }
 
 fn run_tonemap(args: &morgana::tonemap::cli::TonemapArgs) -> Result<()> {

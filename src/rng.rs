@@ -18,6 +18,7 @@ pub enum Stream {
     Eye = 3,
     Gather = 4,
     VolumePhotons = 5,
+    Sensor = 7,
     Test = 99,
 }
 

@@ -1,7 +1,8 @@
 //! Light sources: one file each, dispatched by a closed enum.
 //!
 //! Every light holds an absolute spectrum — spectral radiance (area), spectral intensity (point,
-//! spot) or spectral irradiance normal to the beam (directional), all per nm — and a sampler
+//! spot) or spectral irradiance normal to the beam (directional), all per nm; a luminaire holds
+//! the spectral intensity of one candela and scales it by its photometric web — and a sampler
 //! that draws photon wavelengths in proportion to its emitted spectral power.
 //!
 //! Two queries serve the two passes: [`Light::emit`] starts a photon (power is assigned by the
@@ -11,11 +12,13 @@
 
 mod area;
 mod directional;
+mod luminaire;
 mod point;
 mod spot;
 
 pub use area::{AreaLight, Side};
 pub use directional::DirectionalLight;
+pub use luminaire::LuminaireLight;
 pub use point::PointLight;
 pub use spot::SpotLight;
 
@@ -51,6 +54,8 @@ pub enum Light {
     Point(PointLight),
     Spot(SpotLight),
     Directional(DirectionalLight),
+    /// Measured photometry (IES LM-63, EULUMDAT); spectrum per candela.
+    Luminaire(LuminaireLight),
 }
 
 /// Where a photon starts: origin, unit direction, wavelength.
@@ -80,6 +85,7 @@ impl Light {
             Light::Point(l) => &l.emission,
             Light::Spot(l) => &l.emission,
             Light::Directional(l) => &l.emission,
+            Light::Luminaire(l) => &l.emission,
         }
     }
 
@@ -90,6 +96,7 @@ impl Light {
             Light::Point(l) => l.power_w(),
             Light::Spot(l) => l.power_w(),
             Light::Directional(l) => l.power_w(),
+            Light::Luminaire(l) => l.power_w(),
         }
     }
 
@@ -102,6 +109,7 @@ impl Light {
             Light::Point(l) => (l.position, l.emit_dir(rng.uniform2()), DVec3::ZERO),
             Light::Spot(l) => (l.position, l.emit_dir(rng.uniform(), rng.uniform2()), DVec3::ZERO),
             Light::Directional(l) => (l.emit_origin(rng.uniform2()), l.dir, l.dir),
+            Light::Luminaire(l) => l.emit(rng),
         };
         Emission { origin, dir, wavelength_nm, normal }
     }
@@ -125,6 +133,7 @@ impl Light {
             Light::Point(p) => p.position,
             Light::Spot(s) => s.position,
             Light::Directional(d) => d.scene_centre - d.dir * (2.0 * d.scene_radius),
+            Light::Luminaire(l) => l.placement.position,
         }
     }
 
@@ -135,6 +144,7 @@ impl Light {
             Light::Point(l) => l.incident(p),
             Light::Spot(l) => l.incident(p),
             Light::Directional(l) => l.incident(p),
+            Light::Luminaire(l) => l.incident(p, u),
         }
     }
 }

@@ -57,6 +57,11 @@ pub fn write_outputs(
     if o.csv {
         stage(&mut staged, dir, format!("{}.csv", o.name), &|p| write_csv(p, &r.image))?;
     }
+    for s in &r.sensors {
+        let stem = format!("{}_{}", o.name, crate::sensor::file_stem(&s.name));
+        stage(&mut staged, dir, format!("{stem}.csv"), &|p| s.write_csv(p))?;
+        stage(&mut staged, dir, format!("{stem}.png"), &|p| s.write_png(p))?;
+    }
     let mut outputs: Vec<PathBuf> = staged.iter().map(|s| s.target.clone()).collect();
     outputs.push(dir.join("report.json"));
     let names = outputs.iter().map(|p| p.display().to_string()).collect();

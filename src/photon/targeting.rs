@@ -151,6 +151,7 @@ fn start<'a>(light: &'a Light, rng: &mut Rng) -> (DVec3, DVec3, Box<dyn Fn(DVec3
         Light::Spot(s) => {
             (s.position, DVec3::ZERO, Box::new(move |w: DVec3| s.falloff(w.dot(s.axis)) / s.falloff_solid_angle()))
         }
+        Light::Luminaire(l) => (l.start(rng), DVec3::ZERO, Box::new(move |w: DVec3| l.pdf_dir(w))),
         Light::Directional(_) => unreachable!("directional lights are aimed by emit_directional"),
     }
 }

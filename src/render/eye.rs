@@ -120,6 +120,13 @@ impl<'a> EyeTracer<'a> {
         self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera }, rng, sc)
     }
 
+    /// Radiance per lane arriving along `state` as a gather ray reads it (light reflected at
+    /// least once, from the global map's irradiance; emitters add nothing): the indirect part
+    /// that sensors measure.
+    pub fn gather_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        self.radiance(state, At { lanes, depth: 1, mode: Mode::Gather }, rng, sc)
+    }
+
     fn radiance(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         if at.depth > self.scene.integrator.max_depth {

@@ -36,6 +36,8 @@ pub struct RenderOptions {
 pub struct Rendered {
     pub image: SpectralImage,
     pub stats: RenderStats,
+    /// What the scene's sensors measured.
+    pub sensors: Vec<crate::sensor::Reading>,
 }
 
 /// Renders `scene` on the current rayon thread pool.
@@ -53,7 +55,12 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
     let t = Instant::now();
     let image = to_image(scene, data);
     stats.phases.add("colour conversion", t);
-    Rendered { image, stats }
+    let t = Instant::now();
+    let sensors = crate::sensor::evaluate_all(scene, &maps);
+    if !sensors.is_empty() {
+        stats.phases.add("sensors", t);
+    }
+    Rendered { image, stats, sensors }
 }
 
 /// Per-pixel band averages (row-major, `bands.count` per pixel) and the rays traced.

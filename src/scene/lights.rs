@@ -21,9 +21,11 @@ pub struct NamedLight {
     pub light: Light,
     /// For an area light: the material its surface reflects with (none: black).
     pub material: Option<Spanned<String>>,
+    /// Warnings for the user (a luminaire file's quirks, lumens outside the wavelength range).
+    pub notes: Vec<String>,
 }
 
-const KINDS: &[&str] = &["area", "point", "spot", "directional"];
+const KINDS: &[&str] = &["area", "point", "spot", "directional", "luminaire"];
 
 pub fn light(
     ctx: &Ctx,
@@ -39,14 +41,19 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
         "spot" => &["power_w", "scale", "position", "direction", "look_at", "cone_deg", "falloff_start_deg"],
+        "luminaire" => super::luminaires::FIELDS,
         _ => &["scale", "irradiance_w_m2", "direction", "target_min", "target_max"],
     };
     ctx.only(&present, allowed, &what)?;
+    if kind == "luminaire" {
+        let (light, notes) = super::luminaires::luminaire(ctx, lib, l, &span, &what, bands)?;
+        return Ok(NamedLight { name, light, material: None, notes });
+    }
     let spec = ctx.require(&l.spectrum, "spectrum", &span, &what)?;
     let shape_spectrum =
         lib.parse(ctx, spec, &format!("{what}: spectrum"), Use::Emission, (bands.min_nm, bands.max_nm))?;
@@ -87,7 +94,7 @@ pub fn light(
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;
-    Ok(NamedLight { name, light, material: l.material.clone() })
+    Ok(NamedLight { name, light, material: l.material.clone(), notes: Vec::new() })
 }
 
 /// Scales the light's spectrum to the absolute level the record asks for: k = scale, or
@@ -132,6 +139,7 @@ fn emission_mut(light: &mut Light) -> &mut LightSpectrum {
         Light::Point(l) => &mut l.emission,
         Light::Spot(l) => &mut l.emission,
         Light::Directional(l) => &mut l.emission,
+        Light::Luminaire(l) => &mut l.emission,
     }
 }
 

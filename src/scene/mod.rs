@@ -5,10 +5,12 @@
 
 mod context;
 mod lights;
+mod luminaires;
 mod materials;
 mod media;
 mod plan;
 pub mod raw;
+mod sensors;
 mod settings;
 mod shapes;
 mod spectrum_spec;
@@ -76,6 +78,11 @@ pub struct Scene {
     pub integrator: IntegratorSettings,
     pub output: OutputSettings,
     pub plan: EffectPlan,
+    /// Sensors evaluated after the photon pass (see [`crate::sensor`]).
+    pub sensors: Vec<crate::sensor::NamedSensor>,
+    /// Things the user should know that do not stop the render (e.g. a luminaire file's stated
+    /// flux disagreeing with its table).
+    pub warnings: Vec<String>,
 }
 
 impl Scene {
@@ -193,6 +200,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let geometry_bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let mut lights = Vec::new();
     let mut light_names = Vec::new();
+    let mut warnings = Vec::new();
     for (i, rec) in raw.light.iter().enumerate() {
         let l = lights::light(ctx, &lib, rec, i, &bands, &geometry_bounds)?;
         if let Light::Area(a) = &l.light {
@@ -203,6 +211,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
             shapes.push(a.shape.clone());
             prims.push(Prim { material, light: Some(i as u32), interior: global_medium, exterior: global_medium });
         }
+        warnings.extend(l.notes);
         light_names.push(l.name);
         lights.push(l.light);
     }
@@ -214,6 +223,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     }
     let bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
+    let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
     let bvh = Bvh::build(&shapes);
     let mut scene = Scene {
         file: None,
@@ -236,6 +246,8 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         integrator,
         output,
         plan: EffectPlan::default(),
+        sensors,
+        warnings,
     };
     scene.camera_medium = scene.medium_at(scene.camera.position);
     scene.light_media = scene.lights.iter().map(|l| scene.medium_at(l.representative_point())).collect();

@@ -28,6 +28,8 @@ pub struct RawScene {
     pub world: Option<Spanned<RawWorld>>,
     #[serde(default)]
     pub medium: Vec<Spanned<RawMedium>>,
+    #[serde(default)]
+    pub sensor: Vec<Spanned<RawSensor>>,
 }
 
 /// `[world]`: what fills space outside every closed shape.
@@ -172,4 +174,25 @@ pub struct RawLight {
     pub falloff_start_deg: S<f64>,
     pub target_min: S<[f64; 3]>,
     pub target_max: S<[f64; 3]>,
+    pub file: S<String>,
+    pub cct_k: S<f64>,
+    pub flux_scale: S<f64>,
+    pub c0_toward: S<[f64; 3]>,
+    pub rotation_deg: S<[f64; 3]>,
+    pub emitter: S<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSensor {
+    pub name: S<String>,
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub origin: S<[f64; 3]>,
+    pub u: S<[f64; 3]>,
+    pub v: S<[f64; 3]>,
+    pub normal: S<[f64; 3]>,
+    pub resolution: S<[i64; 2]>,
+    pub samples: S<i64>,
+    pub gather_rays: S<i64>,
 }

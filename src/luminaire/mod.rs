@@ -1,0 +1,187 @@
+//! Luminaire photometry: readers for the files manufacturers publish, one photometric web model,
+//! and what emission needs from it.
+//!
+//! Every reader turns its format into a [`Photometry`]: header facts (maker, name, lamps, stated
+//! flux, symmetry, opening) and a [`PhotometricWeb`], the intensity I(C, γ) in candela on a full
+//! grid of angles. Readers are listed in [`READERS`], one file each: a new format (CIBSE TM14, once
+//! its layout can be sourced) is one new file and one entry there.
+//!
+//! # Conventions
+//! The luminaire frame has x along the luminaire's length (the C0 direction), y along C90 and z
+//! up, so the nadir (γ = 0) is −z; C turns counterclockwise seen from above. This is the C-γ
+//! system of CIE 121 and LM-63 type C, with C0 along the luminaire's length as both LM-63 and
+//! EULUMDAT define it. How the frame is placed in a scene is [`Placement`].
+//!
+//! # Units
+//! Intensities in cd (EULUMDAT's cd/klm are scaled by the lamp flux of the first lamp set and the
+//! conversion factor; LM-63 values by the candela multiplier and ballast factor), flux in lm,
+//! dimensions in m.
+
+mod beam;
+mod eulumdat;
+mod ies;
+mod opening;
+mod parse_error;
+mod photometric;
+mod placement;
+mod polar_png;
+mod report;
+mod sampler;
+mod symmetry;
+pub mod text;
+mod tilt;
+mod tm14;
+mod web;
+
+pub use beam::{PlaneCurve, plane_curve, spread_angle_deg};
+pub use opening::{Kind as OpeningKind, Opening};
+pub use parse_error::ParseError;
+pub use photometric::{luminous_fraction_in, per_candela};
+pub use placement::Placement;
+pub use polar_png::{nice_ceiling, write_polar_png};
+pub use report::summary;
+pub use sampler::{WebSampler, sample_linear};
+pub use symmetry::Symmetry;
+pub use text::SourceText;
+pub use tilt::Tilt;
+pub use web::{Cell, PhotometricWeb, WebAxes};
+
+use crate::error::{Error, Location, Result};
+use std::path::Path;
+
+/// LM-63 photometric types (LM-63-2002 §3): how the web's angles are laid out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PhotometricType {
+    A,
+    B,
+    C,
+}
+
+/// One lamp set as the file lists it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LampSet {
+    /// Number of lamps (negative in EULUMDAT files that mark absolute photometry).
+    pub count: i64,
+    pub description: String,
+    /// Total rated flux of the set, lm (`None` for absolute photometry).
+    pub flux_lm: Option<f64>,
+    pub colour_temperature: String,
+    pub colour_rendering: String,
+    /// Wattage including ballast, W.
+    pub watts: Option<f64>,
+}
+
+/// A photometric file, read and checked.
+#[derive(Clone, Debug)]
+pub struct Photometry {
+    /// E.g. "IES LM-63-2002", "EULUMDAT".
+    pub format: String,
+    /// How the bytes were decoded (see [`text`]).
+    pub encoding: &'static str,
+    pub manufacturer: String,
+    pub luminaire: String,
+    pub catalogue: String,
+    pub lamps: Vec<LampSet>,
+    /// Rated lamp flux the intensities refer to, lm (`None` for absolute photometry).
+    pub lamp_flux_lm: Option<f64>,
+    /// Luminaire flux the file states (EULUMDAT: LORL × lamp flux), lm.
+    pub stated_flux_lm: Option<f64>,
+    pub absolute: bool,
+    pub photometric_type: PhotometricType,
+    pub symmetry: Symmetry,
+    /// Planes × angles as stored in the file (before symmetry expansion).
+    pub stored_grid: (usize, usize),
+    pub opening: Opening,
+    pub input_watts: Option<f64>,
+    pub tilt: Option<Tilt>,
+    /// Downward flux fraction the file states, %.
+    pub dff_percent: Option<f64>,
+    /// Light output ratio of the luminaire the file states, %.
+    pub lorl_percent: Option<f64>,
+    /// Tilt of the luminaire during measurement (EULUMDAT field 25), degrees.
+    pub measurement_tilt_deg: Option<f64>,
+    pub web: PhotometricWeb,
+    /// Things a reader tolerated (junk after the table, a leading blank line, …).
+    pub notes: Vec<String>,
+}
+
+impl Photometry {
+    /// Φ of the web by its own quadrature, lm.
+    pub fn flux_lm(&self) -> f64 {
+        self.web.flux_lm()
+    }
+
+    /// (web flux − stated flux)/stated flux, when the file states a luminaire flux.
+    pub fn flux_mismatch(&self) -> Option<f64> {
+        self.stated_flux_lm.filter(|s| *s > 0.0).map(|s| self.flux_lm() / s - 1.0)
+    }
+}
+
+/// A file format: how to recognise it and how to read it.
+pub struct Reader {
+    pub name: &'static str,
+    /// Lower-case file extensions, without the dot.
+    pub extensions: &'static [&'static str],
+    /// Whether the decoded text looks like this format (for files with other extensions).
+    pub sniff: fn(&SourceText) -> bool,
+    /// Reads the decoded text of the file at `path` (whose directory resolves files it names).
+    pub read: fn(&SourceText, &Path) -> std::result::Result<Photometry, ParseError>,
+    /// False for a format morgana recognises but cannot read (its `read` explains why).
+    pub implemented: bool,
+}
+
+/// Every format morgana knows.
+pub const READERS: [Reader; 3] = [ies::READER, eulumdat::READER, tm14::READER];
+
+/// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt)").
+pub fn supported_formats() -> String {
+    READERS
+        .iter()
+        .filter(|r| r.implemented)
+        .map(|r| {
+            format!("{} ({})", r.name, r.extensions.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", "))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Reads a photometric file: the reader is chosen by extension, else by content.
+pub fn load_file(path: &Path) -> Result<Photometry> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read luminaire file: {e}")))?;
+    read_bytes(&bytes, path)
+}
+
+/// Reads a photometric file's bytes; `path` names it in errors, chooses the reader by its
+/// extension and resolves files it refers to.
+pub fn read_bytes(bytes: &[u8], path: &Path) -> Result<Photometry> {
+    let src = SourceText::decode(bytes);
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    let reader = READERS
+        .iter()
+        .find(|r| r.extensions.contains(&ext.as_str()))
+        .or_else(|| READERS.iter().find(|r| (r.sniff)(&src)))
+        .ok_or_else(|| {
+            Error::input(
+                Some(Location::file(path)),
+                format!("not a photometric file morgana recognises; supported formats: {}", supported_formats()),
+            )
+        })?;
+    (reader.read)(&src, path).map_err(|e| e.into_error(path))
+}
+
+/// What `morgana luminaire FILE [--png PNG]` does: reads the file, writes the polar diagram
+/// (atomically) when asked, and returns the summary to print.
+pub fn inspect(file: &Path, png: Option<&Path>) -> Result<String> {
+    let p = load_file(file)?;
+    let mut text = summary(&p);
+    if let Some(png) = png {
+        let staged = crate::output::atomic::Staged::new(png)
+            .map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;
+        write_polar_png(&p, &staged.temp)
+            .map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;
+        staged.commit().map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;
+        text.push_str(&format!("wrote {}\n", png.display()));
+    }
+    Ok(text)
+}

@@ -1,0 +1,78 @@
+//! `[[sensor]]` records → [`NamedSensor`]s.
+//!
+//! ```toml
+//! [[sensor]]
+//! name = "desk"                 # names the outputs: <output name>_desk.csv / .png
+//! type = "illuminance_plane"
+//! origin = [0.5, 0.8, -0.5]     # a corner of the grid, m
+//! u = [4.0, 0.0, 0.0]           # edge along the grid's i axis
+//! v = [0.0, 0.0, -3.0]          # edge along j; the default normal (u × v) here is +Y (up)
+//! resolution = [40, 30]         # points along u and v (cell centres)
+//! normal = [0.0, 1.0, 0.0]      # optional: the side measured (any direction)
+//! samples = 4                   # optional: estimates averaged per point
+//! gather_rays = 64              # optional: rays for indirect light per sample; 0 = direct only
+//! ```
+
+use super::context::{Ctx, R};
+use super::raw::RawSensor;
+use super::settings::{DirectLighting, IntegratorSettings};
+use crate::present_fields;
+use crate::sensor::{IlluminancePlane, NamedSensor, Sensor};
+use toml::Spanned;
+
+const KINDS: &[&str] = &["illuminance_plane"];
+const MAX_POINTS: i64 = 4096;
+
+pub fn sensors(ctx: &Ctx, raw: &[Spanned<RawSensor>], integrator: &IntegratorSettings) -> R<Vec<NamedSensor>> {
+    let mut out: Vec<NamedSensor> = Vec::new();
+    for (i, rec) in raw.iter().enumerate() {
+        let s = sensor(ctx, rec, i, integrator)?;
+        if out.iter().any(|o| o.name == s.name) {
+            return Err(ctx.err(&rec.span(), format!("sensor \"{}\" is defined twice; names must be unique", s.name)));
+        }
+        out.push(s);
+    }
+    Ok(out)
+}
+
+fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &IntegratorSettings) -> R<NamedSensor> {
+    let span = rec.span();
+    let s = rec.get_ref();
+    let name = s.name.as_ref().map_or_else(|| format!("sensor{}", index + 1), |n| n.get_ref().clone());
+    let what = format!("sensor \"{name}\"");
+    ctx.choice(ctx.require(&s.kind, "type", &span, &what)?, &format!("{what}: type"), KINDS)?;
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays);
+    ctx.only(&present, &["origin", "u", "v", "normal", "resolution", "samples", "gather_rays"], &what)?;
+    let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, &what)?, "origin")?;
+    let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
+    let v = ctx.vec3(ctx.require(&s.v, "v", &span, &what)?, "v")?;
+    let cross = u.cross(v);
+    if cross.length_squared() == 0.0 {
+        return Err(ctx.err(&span, format!("{what}: u and v are parallel or zero; the grid has no area")));
+    }
+    let normal = match &s.normal {
+        Some(n) => ctx.direction(n, "normal")?,
+        None => cross.normalize(),
+    };
+    let res = ctx.require(&s.resolution, "resolution", &span, &what)?;
+    let [nx, ny] = *res.get_ref();
+    if !(1..=MAX_POINTS).contains(&nx) || !(1..=MAX_POINTS).contains(&ny) {
+        return Err(ctx.err(
+            &res.span(),
+            format!("{what}: resolution = [{nx}, {ny}] is out of range: each must be from 1 to {MAX_POINTS}"),
+        ));
+    }
+    let samples = s.samples.as_ref().map_or(Ok(4), |x| ctx.integer(x, "samples", 1, 4096))? as usize;
+    let gather_rays = s.gather_rays.as_ref().map_or(Ok(64), |x| ctx.integer(x, "gather_rays", 0, 65536))? as usize;
+    let map_holds_direct = integrator.final_gather || integrator.direct == DirectLighting::PhotonMap;
+    if gather_rays > 0 && !map_holds_direct {
+        return Err(ctx.err(
+            &span,
+            format!(
+                "{what}: indirect light needs a global photon map that holds first-bounce photons, but final_gather = false with direct = \"shadow_rays\" stores only later bounces; set final_gather = true or direct = \"photon_map\" in [integrator], or gather_rays = 0 to measure direct light only"
+            ),
+        ));
+    }
+    let plane = IlluminancePlane { origin, u, v, normal, nx: nx as usize, ny: ny as usize, samples, gather_rays };
+    Ok(NamedSensor { name, sensor: Sensor::IlluminancePlane(plane) })
+}
