@@ -8,6 +8,11 @@
 //! box (`target_min`, `target_max` — e.g. a window): the rectangle then covers only the box's
 //! shadow on the emitting plane, photons are not spent on walls no camera sees, and shadow rays
 //! see the light only inside that beam, so both passes simulate the same, limited, light.
+//!
+//! A light of finite angular size (the sun: angular diameter 0.53°) is a uniformly bright disc
+//! of angular radius θ_m: its rays cross the beam plane with the direction density
+//! cos θ/(π sin²θ_m) about the axis ([`crate::sampling::cosine_cone`]), and an eye ray looking
+//! into the disc sees the radiance L(λ) = E(λ)/(π sin²θ_m), since E = ∫_disc L cos θ dω.
 
 use crate::geometry::Frame;
 use glam::DVec3;
@@ -25,6 +30,8 @@ pub struct DirectionalLight {
     pub beam: [[f64; 2]; 2],
     /// Spectral irradiance normal to the beam, W m⁻² nm⁻¹.
     pub emission: LightSpectrum,
+    /// sin θ_m of the disc's angular radius; 0 for a collimated beam.
+    pub sin_max: f64,
 }
 
 impl DirectionalLight {
@@ -53,7 +60,33 @@ impl DirectionalLight {
                 b
             }
         };
-        DirectionalLight { dir, scene_centre, scene_radius, beam, emission }
+        DirectionalLight { dir, scene_centre, scene_radius, beam, emission, sin_max: 0.0 }
+    }
+
+    /// The same light as a uniformly bright disc of angular diameter `diameter_deg`.
+    pub fn with_angular_diameter(mut self, diameter_deg: f64) -> DirectionalLight {
+        self.sin_max = (0.5 * diameter_deg).to_radians().sin();
+        self
+    }
+
+    /// A direction of travel: the axis for a collimated beam, else cosine-distributed within the
+    /// disc's cone about it.
+    pub fn sample_dir(&self, u: [f64; 2]) -> DVec3 {
+        if self.sin_max == 0.0 {
+            return self.dir;
+        }
+        Frame::from_normal(self.dir).to_world(crate::sampling::cosine_cone(u, self.sin_max)).normalize()
+    }
+
+    /// The factor L/E seen by an eye ray travelling along `view_dir`: 1/(π sin²θ_m) inside the
+    /// disc, 0 outside it and for a collimated beam (which no ray can hit).
+    pub fn radiance_factor(&self, view_dir: DVec3) -> f64 {
+        let cos_max = (1.0 - self.sin_max * self.sin_max).sqrt();
+        if self.sin_max > 0.0 && -view_dir.dot(self.dir) >= cos_max {
+            1.0 / (std::f64::consts::PI * self.sin_max * self.sin_max)
+        } else {
+            0.0
+        }
     }
 
     /// Area of the beam's cross-section, m².
@@ -80,8 +113,9 @@ impl DirectionalLight {
         (self.beam[0][0]..=self.beam[0][1]).contains(&s) && (self.beam[1][0]..=self.beam[1][1]).contains(&t)
     }
 
-    /// Irradiance normal to the beam is E, so weight = 1 toward −dir at infinite distance.
-    pub fn incident(&self, p: DVec3) -> Option<Incident> {
-        self.lights(p).then_some(Incident { wi: -self.dir, dist: f64::INFINITY, weight: 1.0 })
+    /// Irradiance normal to the beam is E, so weight = 1 toward −dir (or toward a direction
+    /// sampled in the disc, whose cosine density makes the weight 1 again) at infinite distance.
+    pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
+        self.lights(p).then(|| Incident { wi: -self.sample_dir(u), dist: f64::INFINITY, weight: 1.0 })
     }
 }

@@ -14,12 +14,14 @@ mod area;
 mod directional;
 mod luminaire;
 mod point;
+mod sky;
 mod spot;
 
 pub use area::{AreaLight, Side};
 pub use directional::DirectionalLight;
 pub use luminaire::LuminaireLight;
 pub use point::PointLight;
+pub use sky::SkyLight;
 pub use spot::SpotLight;
 
 use crate::rng::Rng;
@@ -56,6 +58,8 @@ pub enum Light {
     Directional(DirectionalLight),
     /// Measured photometry (IES LM-63, EULUMDAT); spectrum per candela.
     Luminaire(LuminaireLight),
+    /// Uniform radiance from the upper hemisphere at infinity.
+    Sky(SkyLight),
 }
 
 /// Where a photon starts: origin, unit direction, wavelength.
@@ -86,6 +90,7 @@ impl Light {
             Light::Spot(l) => &l.emission,
             Light::Directional(l) => &l.emission,
             Light::Luminaire(l) => &l.emission,
+            Light::Sky(l) => &l.emission,
         }
     }
 
@@ -97,6 +102,7 @@ impl Light {
             Light::Spot(l) => l.power_w(),
             Light::Directional(l) => l.power_w(),
             Light::Luminaire(l) => l.power_w(),
+            Light::Sky(l) => l.power_w(),
         }
     }
 
@@ -108,16 +114,21 @@ impl Light {
             Light::Area(l) => l.emit(rng),
             Light::Point(l) => (l.position, l.emit_dir(rng.uniform2()), DVec3::ZERO),
             Light::Spot(l) => (l.position, l.emit_dir(rng.uniform(), rng.uniform2()), DVec3::ZERO),
-            Light::Directional(l) => (l.emit_origin(rng.uniform2()), l.dir, l.dir),
+            Light::Directional(l) => (l.emit_origin(rng.uniform2()), l.sample_dir(rng.uniform2()), l.dir),
             Light::Luminaire(l) => l.emit(rng),
+            Light::Sky(l) => {
+                let (o, d) = l.emit(rng.uniform2(), rng.uniform2());
+                (o, d, DVec3::ZERO)
+            }
         };
         Emission { origin, dir, wavelength_nm, normal }
     }
 
-    /// True for lights no path can hit (point, spot, directional): they are reached only by
-    /// sampling them.
+    /// True for lights no path is counted as hitting (point, spot, directional — the sun's
+    /// small disc too): they are reached only by sampling them. Area lights and the sky are
+    /// both hit and sampled, and the two strategies are combined by MIS.
     pub fn is_delta(&self) -> bool {
-        !matches!(self, Light::Area(_))
+        !matches!(self, Light::Area(_) | Light::Sky(_))
     }
 
     /// A point a photon from this light starts from (for finding the medium it starts in): the
@@ -134,6 +145,20 @@ impl Light {
             Light::Spot(s) => s.position,
             Light::Directional(d) => d.scene_centre - d.dir * (2.0 * d.scene_radius),
             Light::Luminaire(l) => l.placement.position,
+            Light::Sky(l) => l.target_centre + l.up * l.start_distance,
+        }
+    }
+
+    /// Spectral radiance at `wavelength_nm` seen by a ray that leaves the scene travelling along
+    /// `view_dir` (a light at infinity: the sun's disc); zero for lights a ray cannot escape to.
+    pub fn escape_radiance(&self, view_dir: DVec3, wavelength_nm: f64) -> f64 {
+        match self {
+            Light::Directional(l) => {
+                let k = l.radiance_factor(view_dir);
+                if k > 0.0 { k * l.emission.spectrum.eval(wavelength_nm) } else { 0.0 }
+            }
+            Light::Sky(l) if l.sees(view_dir) => l.emission.spectrum.eval(wavelength_nm),
+            _ => 0.0,
         }
     }
 
@@ -143,8 +168,9 @@ impl Light {
             Light::Area(l) => l.incident(p, u),
             Light::Point(l) => l.incident(p),
             Light::Spot(l) => l.incident(p),
-            Light::Directional(l) => l.incident(p),
+            Light::Directional(l) => l.incident(p, u),
             Light::Luminaire(l) => l.incident(p, u),
+            Light::Sky(l) => l.incident(p, u),
         }
     }
 }

@@ -59,6 +59,13 @@ impl CausticTargets {
         let (wavelength_nm, _) = light.spectrum().sampler.sample(rng.uniform());
         match light {
             Light::Directional(d) => self.emit_directional(d, wavelength_nm, rng),
+            // The sky's photons are not aimed: emitted as the light emits them (weight 1), the
+            // few that reach a specular object first make its caustics, unbiased.
+            Light::Sky(_) => {
+                let mut e = light.emit(rng);
+                e.wavelength_nm = wavelength_nm;
+                (e, 1.0)
+            }
             _ => {
                 let (origin, normal, p_light) = start(light, rng);
                 let j = rng.below(self.spheres.len() as u64) as usize;
@@ -98,8 +105,10 @@ impl CausticTargets {
         sum / self.spheres.len() as f64
     }
 
-    /// Directional light: start points drawn uniformly on the disks the spheres cast on the
-    /// emitting disk (area density 1/(π r²) each), against the light's 1/(π R²).
+    /// Directional light: the direction drawn as the light draws it, then start points drawn
+    /// uniformly on disks covering the shadows the spheres cast along that direction on the
+    /// emitting plane (radius r/cos α for a direction α off the axis; area density 1/(π r'²)
+    /// each), against the light's uniform 1/A_beam.
     fn emit_directional(
         &self,
         d: &crate::light::DirectionalLight,
@@ -108,24 +117,31 @@ impl CausticTargets {
     ) -> (Emission, f64) {
         let frame = Frame::from_normal(d.dir);
         let plane_centre = d.scene_centre - d.dir * (1.001 * d.scene_radius);
-        let project =
-            |c: DVec3| plane_centre + frame.to_world(frame.to_local(c - plane_centre) * DVec3::new(1.0, 1.0, 0.0));
+        let dir = d.sample_dir(rng.uniform2());
+        let cos_a = dir.dot(d.dir);
+        // The point of the emitting plane from which `dir` leads through c.
+        let project = |c: DVec3| c - dir * ((c - plane_centre).dot(d.dir) / cos_a);
         let j = rng.below(self.spheres.len() as u64) as usize;
         let (c, r) = self.spheres[j];
         let [x, y] = concentric_disk(rng.uniform2());
-        let origin = project(c) + r * (x * frame.s + y * frame.t);
+        let origin = project(c) + (r / cos_a) * (x * frame.s + y * frame.t);
         let inside_light = d.lights(origin);
         let p_mix: f64 = self
             .spheres
             .iter()
             .map(|&(c, r)| {
-                if (origin - project(c)).length_squared() <= r * r { 1.0 / (std::f64::consts::PI * r * r) } else { 0.0 }
+                let rr = r / cos_a;
+                if (origin - project(c)).length_squared() <= rr * rr {
+                    1.0 / (std::f64::consts::PI * rr * rr)
+                } else {
+                    0.0
+                }
             })
             .sum::<f64>()
             / self.spheres.len() as f64;
         let p_light = 1.0 / d.beam_area();
         let factor = if inside_light && p_mix > 0.0 { p_light / p_mix } else { 0.0 };
-        (Emission { origin, dir: d.dir, wavelength_nm, normal: d.dir }, factor)
+        (Emission { origin, dir, wavelength_nm, normal: d.dir }, factor)
     }
 }
 
@@ -152,6 +168,6 @@ fn start<'a>(light: &'a Light, rng: &mut Rng) -> (DVec3, DVec3, Box<dyn Fn(DVec3
             (s.position, DVec3::ZERO, Box::new(move |w: DVec3| s.falloff(w.dot(s.axis)) / s.falloff_solid_angle()))
         }
         Light::Luminaire(l) => (l.start(rng), DVec3::ZERO, Box::new(move |w: DVec3| l.pdf_dir(w))),
-        Light::Directional(_) => unreachable!("directional lights are aimed by emit_directional"),
+        Light::Directional(_) | Light::Sky(_) => unreachable!("lights at infinity are emitted by CausticTargets::emit"),
     }
 }

@@ -108,8 +108,9 @@ impl<'a> Propagator<'a> {
     }
 
     /// The first surface other than an index-matched boundary along the straight ray from `start`
-    /// (on surface `from`, if any) toward `dir`, with the transmittance per lane of the media
-    /// crossed on the way; `None` if nothing is hit. Only valid while paths are straight.
+    /// (on surface `from`, if any) toward `dir` — `None` inside when the ray leaves the scene —
+    /// with the transmittance per lane of the media crossed on the way; `None` if the ray
+    /// crosses too many boundaries to follow. Only valid while paths are straight.
     pub fn first_opaque_hit(
         &self,
         start: DVec3,
@@ -118,7 +119,7 @@ impl<'a> Propagator<'a> {
         medium: Option<u32>,
         wavelengths_nm: &[f64],
         rng: &mut Rng,
-    ) -> Option<(Hit, [f64; MAX_BANDS])> {
+    ) -> Option<(Option<Hit>, [f64; MAX_BANDS])> {
         let mut tr = [1.0; MAX_BANDS];
         let mut origin = from.map_or(start, |h| h.spawn_origin(&self.scene.shapes, dir));
         let mut medium = medium;
@@ -131,12 +132,12 @@ impl<'a> Propagator<'a> {
                     *t *= tracking::transmittance(m, *l, origin, dir, seg, rng);
                 }
             }
-            let mut h = hit?;
+            let Some(mut h) = hit else { return Some((None, tr)) };
             travelled += h.t;
             let p = &self.scene.prims[h.prim as usize];
             if p.material.is_some() || p.light.is_some() {
                 h.t = travelled;
-                return Some((h, tr));
+                return Some((Some(h), tr));
             }
             medium = self.scene.medium_across(h.prim, dir, h.normal);
             origin = h.spawn_origin(&self.scene.shapes, dir);

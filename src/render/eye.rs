@@ -23,6 +23,7 @@ use super::lanes::Lanes;
 use super::maps::Maps;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
+use crate::light::Light;
 use crate::material::{Lambertian, Material};
 use crate::media::{Medium, tracking};
 use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
@@ -143,10 +144,23 @@ impl<'a> EyeTracer<'a> {
         });
         let surface = match event {
             Event::Surface { hit, dir, medium, .. } => self.surface(&hit, dir, medium, at, rng, sc),
+            Event::Escape { dir } if at.mode == Mode::Camera => self.escape(dir, at.lanes),
             _ => [0.0; MAX_BANDS],
         };
         for i in 0..at.lanes.len {
             out[i] = along.l[i] + along.tr[i] * surface[i];
+        }
+        out
+    }
+
+    /// Radiance per lane of the lights at infinity (the sun's disc) seen by a camera path that
+    /// leaves the scene along `dir`; gather rays leave it to the shadow rays and photon maps.
+    fn escape(&self, dir: DVec3, lanes: &Lanes) -> BandValues {
+        let mut out = [0.0; MAX_BANDS];
+        for light in &self.scene.lights {
+            for (o, l) in out.iter_mut().zip(&lanes.nm[..lanes.len]) {
+                *o += light.escape_radiance(dir, *l);
+            }
         }
         out
     }
@@ -368,19 +382,36 @@ impl<'a> EyeTracer<'a> {
             let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());
             let to_light = -wi;
             sc.rays.shadow += 1;
-            if let Some((hit, tr)) = self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng)
-                && let Some(light) = self.scene.area_light_of(hit.prim)
-            {
-                let cos = light.emitted_cos(hit.normal, wi);
-                if cos > 0.0 && pdf > 0.0 {
-                    let p_light = hit.t * hit.t / (cos * light.shape.area());
-                    for i in 0..lanes.len {
-                        let l = lanes.nm[i];
-                        let f = phase(l, wi);
-                        let mis = power_heuristic(pdf, p_light);
-                        out[i] += mis * d * m.sigma_s(l) * f / pdf * light.emission.spectrum.eval(l) * tr[i];
+            match self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng) {
+                Some((Some(hit), tr)) => {
+                    if let Some(light) = self.scene.area_light_of(hit.prim) {
+                        let cos = light.emitted_cos(hit.normal, wi);
+                        if cos > 0.0 && pdf > 0.0 {
+                            let p_light = hit.t * hit.t / (cos * light.shape.area());
+                            let mis = power_heuristic(pdf, p_light);
+                            let le = |l: f64| light.emission.spectrum.eval(l);
+                            for i in 0..lanes.len {
+                                let l = lanes.nm[i];
+                                out[i] += mis * d * m.sigma_s(l) * phase(l, wi) / pdf * le(l) * tr[i];
+                            }
+                        }
                     }
                 }
+                Some((None, tr)) if pdf > 0.0 => {
+                    for sky in
+                        self.scene.lights.iter().filter_map(|l| if let Light::Sky(s) = l { Some(s) } else { None })
+                    {
+                        let mis = power_heuristic(pdf, sky.pdf(to_light));
+                        if mis > 0.0 {
+                            for i in 0..lanes.len {
+                                let l = lanes.nm[i];
+                                let le = sky.emission.spectrum.eval(l);
+                                out[i] += mis * d * m.sigma_s(l) * phase(l, wi) / pdf * le * tr[i];
+                            }
+                        }
+                    }
+                }
+                _ => {}
             }
         }
         out

@@ -19,6 +19,7 @@
 use super::lanes::Lanes;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
+use crate::light::Light;
 use crate::material::{Lambertian, Material};
 use crate::media::tracking;
 use crate::raypath::{Event, Propagator, RayState};
@@ -89,7 +90,7 @@ impl<'a> PathTracer<'a> {
                 tracking::sample_interaction(m, lambda, c.origin, c.dir, c.length, rng)
             });
             let next = match event {
-                Event::Escape { .. } => return l,
+                Event::Escape { dir } => return l + w.beta * self.escaped(dir, lambda, w.emission),
                 Event::Medium { position, dir, medium, .. } => {
                     let m = &self.scene.media[medium as usize];
                     w.beta *= m.albedo(lambda);
@@ -172,6 +173,24 @@ impl<'a> PathTracer<'a> {
                 Some(self.prop.leave(hit, s.dir, lambda, next))
             }
         }
+    }
+
+    /// Radiance of the lights at infinity seen along `dir` as the path counts it: fully from
+    /// the camera or after specular events; after a scattering, the sky with the power
+    /// heuristic against its sampling density and the sun's disc not at all (next-event
+    /// estimation samples it as a delta light).
+    fn escaped(&self, dir: DVec3, lambda: f64, emission: Emission) -> f64 {
+        self.scene
+            .lights
+            .iter()
+            .map(|li| match (emission, li) {
+                (Emission::Full, _) => li.escape_radiance(dir, lambda),
+                (Emission::Mis { pdf, .. }, Light::Sky(sky)) => {
+                    power_heuristic(pdf, sky.pdf(dir)) * li.escape_radiance(dir, lambda)
+                }
+                (Emission::Mis { .. }, _) => 0.0,
+            })
+            .sum()
     }
 
     /// Next-event estimation at `p`: Σ_lights S(λ) weight T(λ) times cos θ·(1/π on a surface,

@@ -9,6 +9,6 @@ mod warp;
 
 pub use discrete::Discrete1D;
 pub use warp::{
-    concentric_disk, cosine_hemisphere, cosine_hemisphere_pdf, uniform_cone, uniform_cone_pdf, uniform_sphere,
-    uniform_sphere_pdf, uniform_triangle,
+    concentric_disk, cosine_cone, cosine_cone_pdf, cosine_hemisphere, cosine_hemisphere_pdf, uniform_cone,
+    uniform_cone_pdf, uniform_sphere, uniform_sphere_pdf, uniform_triangle,
 };

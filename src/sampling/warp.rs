@@ -52,6 +52,22 @@ pub fn uniform_cone_pdf(cos_max: f64) -> f64 {
     1.0 / (2.0 * PI * (1.0 - cos_max))
 }
 
+/// Cosine-weighted direction within the cone about +z with sin θ ≤ `sin_max` (a cosine-weighted
+/// hemisphere restricted to the cone, by Malley's method on the disk of radius `sin_max`):
+/// p(ω) = cos θ / (π sin²θ_max). This is the direction density of the light crossing a plane
+/// normal to +z from a uniformly bright disc (the sun) of angular radius θ_max.
+pub fn cosine_cone(u: [f64; 2], sin_max: f64) -> DVec3 {
+    let [x, y] = concentric_disk(u);
+    let (x, y) = (x * sin_max, y * sin_max);
+    DVec3::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt())
+}
+
+/// Density of [`cosine_cone`] for a direction with cosine `cos_theta` about +z.
+pub fn cosine_cone_pdf(cos_theta: f64, sin_max: f64) -> f64 {
+    let cos_max = (1.0 - sin_max * sin_max).max(0.0).sqrt();
+    if cos_theta >= cos_max && sin_max > 0.0 { cos_theta / (PI * sin_max * sin_max) } else { 0.0 }
+}
+
 /// Uniform barycentric coordinates (b0, b1, b2) on a triangle (Heitz 2019, "A Low-Distortion Map
 /// Between Triangle and Square"); the area density is 1/area.
 pub fn uniform_triangle(u: [f64; 2]) -> [f64; 3] {
@@ -85,6 +101,38 @@ mod tests {
             },
         );
         assert!(p > 1e-3, "p = {p}");
+    }
+
+    #[test]
+    fn cosine_cone_chi_square() {
+        // A wide cone, so the sphere's bins resolve it; the density has no scale of its own.
+        let sin_max = 0.6f64;
+        let mut rng = Rng::for_task(16, Stream::Test, 0);
+        let p = chi2_sphere(
+            40,
+            16,
+            200_000,
+            || Some(cosine_cone(rng.uniform2(), sin_max)),
+            |w| cosine_cone_pdf(w.z, sin_max),
+        );
+        assert!(p > 1e-3, "p = {p}");
+    }
+
+    #[test]
+    fn cosine_cone_pdf_integrates_to_one_over_a_narrow_cone() {
+        // ∫ cos θ / (π sin²θm) dω over the cone = 2π ∫ cos θ sin θ dθ / (π sin²θm) = 1, for the
+        // sun's 0.265° radius too: midpoint rule in θ.
+        let sin_max = 0.265f64.to_radians().sin();
+        let theta_max = sin_max.asin();
+        let n = 10_000;
+        let dtheta = theta_max / n as f64;
+        let total: f64 = (0..n)
+            .map(|i| {
+                let t = (i as f64 + 0.5) * dtheta;
+                2.0 * PI * t.sin() * cosine_cone_pdf(t.cos(), sin_max) * dtheta
+            })
+            .sum();
+        assert!((total - 1.0).abs() < 1e-6, "integral {total}");
     }
 
     #[test]

@@ -5,13 +5,23 @@
 //! - `scale`: the spectrum times `scale` is the absolute spectral radiance (area,
 //!   W m⁻² sr⁻¹ nm⁻¹), intensity (point, spot: W sr⁻¹ nm⁻¹) or irradiance normal to the beam
 //!   (directional: W m⁻² nm⁻¹).
-//! - `irradiance_w_m2` (directional only): irradiance normal to the beam within the range.
+//! - `irradiance_w_m2` (directional and sun): irradiance normal to the beam within the range.
+//!
+//! A `sun` is a directional light of angular diameter `angular_diameter_deg` (default 0.53°),
+//! placed by `direction` (of travel) or by `elevation_deg` and `azimuth_deg`: the direction
+//! *toward* the sun is (sin A cos e, sin e, −cos A cos e) in the scene frame (+y up), so azimuth
+//! 0° is straight ahead of a camera looking along −z and 90° is toward +x. A `directional` light
+//! may also be given an `angular_diameter_deg`.
+//!
+//! A `sky` is uniform radiance (`spectrum` × `scale`, W m⁻² sr⁻¹ nm⁻¹) from every direction above
+//! the plane normal to `up` (default +y); its photons are aimed at the bounding sphere of
+//! `target_min`/`target_max` (default: of the whole scene).
 
 use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
-use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SpotLight};
+use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SkyLight, SpotLight};
 use crate::present_fields;
 use crate::spectrum::Bands;
 use toml::Spanned;
@@ -25,7 +35,11 @@ pub struct NamedLight {
     pub notes: Vec<String>,
 }
 
-const KINDS: &[&str] = &["area", "point", "spot", "directional", "luminaire"];
+const KINDS: &[&str] = &["area", "point", "spot", "directional", "sun", "sky", "luminaire"];
+
+/// The sun's mean angular diameter seen from the Earth, degrees (31.6′–32.7′ over the year;
+/// Allen's Astrophysical Quantities, 4th ed., §14.7).
+pub const SUN_ANGULAR_DIAMETER_DEG: f64 = 0.53;
 
 pub fn light(
     ctx: &Ctx,
@@ -41,13 +55,24 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, elevation_deg, azimuth_deg, angular_diameter_deg, up);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
         "spot" => &["power_w", "scale", "position", "direction", "look_at", "cone_deg", "falloff_start_deg"],
         "luminaire" => super::luminaires::FIELDS,
-        _ => &["scale", "irradiance_w_m2", "direction", "target_min", "target_max"],
+        "sun" => &[
+            "scale",
+            "irradiance_w_m2",
+            "direction",
+            "elevation_deg",
+            "azimuth_deg",
+            "angular_diameter_deg",
+            "target_min",
+            "target_max",
+        ],
+        "sky" => &["scale", "up", "target_min", "target_max"],
+        _ => &["scale", "irradiance_w_m2", "direction", "angular_diameter_deg", "target_min", "target_max"],
     };
     ctx.only(&present, allowed, &what)?;
     if kind == "luminaire" {
@@ -67,8 +92,9 @@ pub fn light(
             Light::Point(PointLight { position, emission })
         }
         "spot" => Light::Spot(spot(ctx, l, &span, &what, emission)?),
+        "sky" => Light::Sky(sky(ctx, l, &span, &what, emission, bounds)?),
         _ => {
-            let dir = ctx.direction(ctx.require(&l.direction, "direction", &span, &what)?, "direction")?;
+            let dir = beam_direction(ctx, l, &span, &what, kind == "sun")?;
             if bounds.is_empty() {
                 return Err(ctx.err(
                     &span,
@@ -76,25 +102,83 @@ pub fn light(
                 ));
             }
             let scene_radius = (0.5 * bounds.diagonal().length()).max(1e-6);
-            let target = match (&l.target_min, &l.target_max) {
-                (None, None) => None,
-                (Some(a), Some(b)) => {
-                    let (lo, hi) = (ctx.vec3(a, "target_min")?, ctx.vec3(b, "target_max")?);
-                    if !hi.cmpge(lo).all() {
-                        return Err(ctx.err(
-                            &b.span(),
-                            format!("{what}: target_max {hi} must not be below target_min {lo} on any axis"),
-                        ));
-                    }
-                    Some((lo, hi))
-                }
-                _ => return Err(ctx.err(&span, format!("{what}: give both target_min and target_max, or neither"))),
+            let target = target_box(ctx, l, &span, &what)?;
+            let diameter = match (&l.angular_diameter_deg, kind) {
+                (Some(d), _) => ctx.number(d, "angular_diameter_deg", 0.0, 10.0, false)?,
+                (None, "sun") => SUN_ANGULAR_DIAMETER_DEG,
+                (None, _) => 0.0,
             };
-            Light::Directional(DirectionalLight::new(dir, bounds.centre(), scene_radius, target, emission))
+            let beam = DirectionalLight::new(dir, bounds.centre(), scene_radius, target, emission);
+            Light::Directional(beam.with_angular_diameter(diameter))
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;
     Ok(NamedLight { name, light, material: l.material.clone(), notes: Vec::new() })
+}
+
+/// `target_min`/`target_max`: the box a light at infinity aims its photons at, if given.
+fn target_box(
+    ctx: &Ctx,
+    l: &RawLight,
+    span: &std::ops::Range<usize>,
+    what: &str,
+) -> R<Option<(glam::DVec3, glam::DVec3)>> {
+    match (&l.target_min, &l.target_max) {
+        (None, None) => Ok(None),
+        (Some(a), Some(b)) => {
+            let (lo, hi) = (ctx.vec3(a, "target_min")?, ctx.vec3(b, "target_max")?);
+            if !hi.cmpge(lo).all() {
+                return Err(ctx
+                    .err(&b.span(), format!("{what}: target_max {hi} must not be below target_min {lo} on any axis")));
+            }
+            Ok(Some((lo, hi)))
+        }
+        _ => Err(ctx.err(span, format!("{what}: give both target_min and target_max, or neither"))),
+    }
+}
+
+fn sky(
+    ctx: &Ctx,
+    l: &RawLight,
+    span: &std::ops::Range<usize>,
+    what: &str,
+    emission: LightSpectrum,
+    bounds: &Aabb,
+) -> R<SkyLight> {
+    if bounds.is_empty() {
+        return Err(ctx.err(span, format!("{what}: a sky needs geometry to light; the scene has no shapes")));
+    }
+    let up = match &l.up {
+        Some(u) => ctx.direction(u, "up")?,
+        None => glam::DVec3::Y,
+    };
+    let scene_centre = bounds.centre();
+    let scene_radius = (0.5 * bounds.diagonal().length()).max(1e-6);
+    let (target_centre, target_radius) = match target_box(ctx, l, span, what)? {
+        None => (scene_centre, scene_radius),
+        Some((lo, hi)) => (0.5 * (lo + hi), (0.5 * (hi - lo).length()).max(1e-9)),
+    };
+    let start_distance = 1.001 * ((target_centre - scene_centre).length() + scene_radius);
+    Ok(SkyLight { up, target_centre, target_radius, start_distance, emission })
+}
+
+/// The direction of travel of a directional light or sun: `direction`, or (sun only) the
+/// direction away from the sun at `elevation_deg`, `azimuth_deg` (see the module docs).
+fn beam_direction(ctx: &Ctx, l: &RawLight, span: &std::ops::Range<usize>, what: &str, sun: bool) -> R<glam::DVec3> {
+    match (&l.direction, &l.elevation_deg, &l.azimuth_deg) {
+        (Some(d), None, None) => ctx.direction(d, "direction"),
+        (None, Some(e), Some(a)) if sun => {
+            let e = ctx.number(e, "elevation_deg", -90.0, 90.0, false)?.to_radians();
+            let a = ctx.number(a, "azimuth_deg", -360.0, 360.0, false)?.to_radians();
+            let toward = glam::DVec3::new(a.sin() * e.cos(), e.sin(), -a.cos() * e.cos());
+            Ok(-toward)
+        }
+        _ if sun => {
+            Err(ctx
+                .err(span, format!("{what}: give either direction (of travel) or both elevation_deg and azimuth_deg")))
+        }
+        _ => ctx.direction(ctx.require(&l.direction, "direction", span, what)?, "direction"),
+    }
 }
 
 /// Scales the light's spectrum to the absolute level the record asks for: k = scale, or
@@ -109,8 +193,11 @@ fn set_level(
 ) -> R<()> {
     let given: Vec<&Spanned<f64>> = [&l.power_w, &l.scale, &l.irradiance_w_m2].into_iter().flatten().collect();
     if given.len() != 1 {
-        let options =
-            if matches!(light, Light::Directional(_)) { "irradiance_w_m2 or scale" } else { "power_w or scale" };
+        let options = match light {
+            Light::Directional(_) => "irradiance_w_m2 or scale",
+            Light::Sky(_) => "scale (the sky's radiance is spectrum × scale)",
+            _ => "power_w or scale",
+        };
         return Err(ctx.err(span, format!("{what}: give exactly one of {options} to set the light's level")));
     }
     let v = given[0];
@@ -140,6 +227,7 @@ fn emission_mut(light: &mut Light) -> &mut LightSpectrum {
         Light::Spot(l) => &mut l.emission,
         Light::Directional(l) => &mut l.emission,
         Light::Luminaire(l) => &mut l.emission,
+        Light::Sky(l) => &mut l.emission,
     }
 }
 

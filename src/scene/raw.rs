@@ -180,6 +180,10 @@ pub struct RawLight {
     pub c0_toward: S<[f64; 3]>,
     pub rotation_deg: S<[f64; 3]>,
     pub emitter: S<String>,
+    pub elevation_deg: S<f64>,
+    pub azimuth_deg: S<f64>,
+    pub angular_diameter_deg: S<f64>,
+    pub up: S<[f64; 3]>,
 }
 
 #[derive(Debug, Deserialize)]
