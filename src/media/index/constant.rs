@@ -1,5 +1,6 @@
 //! A homogeneous medium: the same n(λ) everywhere, from a dispersion law.
 
+use crate::atmosphere::AirDispersion;
 use crate::material::Ior;
 
 /// n(λ) independent of position.
@@ -7,18 +8,30 @@ use crate::material::Ior;
 pub enum Constant {
     /// A constant, Cauchy or Sellmeier law (see [`Ior`]).
     Ior(Ior),
+    /// Air of a given density: n = 1 + K(λ)·ρ (Gladstone–Dale, see [`AirDispersion`]).
+    Air { dispersion: AirDispersion, density_kg_m3: f64 },
 }
 
 impl Constant {
     pub fn n(&self, wavelength_nm: f64) -> f64 {
         match self {
             Constant::Ior(ior) => ior.eval(wavelength_nm),
+            Constant::Air { dispersion, density_kg_m3 } => dispersion.n(wavelength_nm, *density_kg_m3),
         }
     }
 
     pub fn is_dispersive(&self) -> bool {
         match self {
             Constant::Ior(ior) => ior.is_dispersive(),
+            Constant::Air { density_kg_m3, .. } => *density_kg_m3 != 0.0,
+        }
+    }
+
+    /// The air law's wavelength range, for air.
+    pub fn check_range(&self, range_nm: (f64, f64)) -> Result<(), String> {
+        match self {
+            Constant::Ior(_) => Ok(()),
+            Constant::Air { dispersion, .. } => dispersion.check_range(range_nm),
         }
     }
 

@@ -114,6 +114,7 @@ impl IndexField {
         wavelength_range_nm: (f64, f64),
         allow_below_one: bool,
     ) -> Result<(), String> {
+        self.check_range(wavelength_range_nm)?;
         let m = self.min_n_bound(domain, wavelength_range_nm);
         let (lo, hi) = wavelength_range_nm;
         if m.is_nan() || m <= 0.0 {
@@ -130,6 +131,17 @@ impl IndexField {
             ));
         }
         Ok(())
+    }
+}
+
+impl IndexField {
+    /// Fields made of air must be asked at wavelengths where the air law is defined.
+    fn check_range(&self, range_nm: (f64, f64)) -> Result<(), String> {
+        match self {
+            IndexField::Constant(c) => c.check_range(range_nm),
+            IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => Ok(()),
+            IndexField::Sum(s) => s.base.check_range(range_nm),
+        }
     }
 }
 
