@@ -7,10 +7,13 @@
 //! the rounding error of n (≈ 1 ulp of 1 per evaluation) adds 8ε/(2h) to the allowance.
 
 use glam::DVec3;
-use morgana::atmosphere::Earth;
+use morgana::atmosphere::{AirDispersion, Earth};
 use morgana::geometry::Aabb;
 use morgana::material::Ior;
-use morgana::media::index::{Bump, Constant, Exponential, GradientRegion, IndexField, Linear, Profile, Sum};
+use morgana::media::index::{
+    Bump, Constant, Exponential, GradientRegion, GridPressure, IndexField, Interpolation, Lattice, Linear, Profile,
+    Sum, TemperatureGrid,
+};
 use morgana::rng::{Rng, Stream};
 
 /// Relative tolerance of the gradient check.
@@ -80,6 +83,20 @@ fn constant_fields_have_zero_gradient_and_dispersion_when_asked() {
 }
 
 #[test]
+fn constant_air_is_uniform_and_dispersive() {
+    let air =
+        IndexField::Constant(Constant::Air { dispersion: AirDispersion::ciddor(450.0).unwrap(), density_kg_m3: 1.225 });
+    let check = Check { name: "constant air", field: &air, step: 1e-3 };
+    for (l, p) in samples(11, 20, |u| spread(u, DVec3::splat(10.0), DVec3::ZERO)) {
+        check.at(l, p);
+    }
+    assert!(air.is_uniform() && air.is_dispersive());
+    let domain = Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) };
+    let e = air.validate(&domain, (100.0, 800.0), false).unwrap_err();
+    assert!(e.contains("200") && e.contains("100"), "{e}");
+}
+
+#[test]
 fn linear_field_gradient_matches_differences() {
     let dir = DVec3::new(0.3, 1.0, -0.2);
     let f = IndexField::Linear(Linear::new(1.0, 0.1, dir).unwrap());
@@ -123,6 +140,108 @@ fn tabulated_profile_gradient_matches_differences_away_from_knots() {
             tested += 1;
         }
         assert!(tested > 300, "{name}: only {tested} points tested");
+    }
+}
+
+/// A warm plume in a 24×16×20 lattice (0.5 m cells) over 280 K ground air.
+fn plume_lattice() -> Lattice {
+    let origin = DVec3::new(-6.0, 0.0, -5.0);
+    Lattice::from_fn([24, 16, 20], origin, DVec3::splat(0.5), |p| {
+        280.0 + 25.0 * (-(p.x * p.x + p.z * p.z) / 8.0 - p.y / 3.0).exp() + 0.5 * (1.3 * p.x + 0.7 * p.z).sin()
+    })
+    .unwrap()
+}
+
+#[test]
+fn temperature_grid_gradient_matches_differences() {
+    let cases = [
+        ("grid, trilinear, 1 atm", Interpolation::Trilinear, GridPressure::Constant { pressure_pa: 101_325.0 }),
+        ("grid, tricubic, 1 atm", Interpolation::Tricubic, GridPressure::Constant { pressure_pa: 101_325.0 }),
+        ("grid, tricubic, USA76 flat", Interpolation::Tricubic, GridPressure::Usa76 { earth: Earth::flat_y() }),
+        ("grid, trilinear, USA76 sphere", Interpolation::Trilinear, GridPressure::Usa76 { earth: Earth::standard() }),
+    ];
+    for (seed, (name, interp, pressure)) in cases.into_iter().enumerate() {
+        let dispersion = AirDispersion::ciddor(450.0).unwrap();
+        let grid = TemperatureGrid::new(plume_lattice(), interp, pressure, dispersion).unwrap();
+        let f = IndexField::TemperatureGrid(Box::new(grid));
+        let check = Check { name, field: &f, step: 1e-5 };
+        let mut tested = 0;
+        for (l, p) in
+            samples(20 + seed as u64, 400, |u| spread(u, DVec3::new(5.5, 3.6, 4.5), DVec3::new(-0.25, 3.75, -0.25)))
+        {
+            // Central differences straddling a cell face see the interpolant's kink (trilinear)
+            // or the jump in its second derivative (Catmull–Rom).
+            let cell = (p - DVec3::new(-6.0, 0.0, -5.0)) / 0.5;
+            let frac = cell - cell.floor();
+            if frac.min_element() < 1e-3 || frac.max_element() > 1.0 - 1e-3 {
+                continue;
+            }
+            check.at(l, p);
+            tested += 1;
+        }
+        assert!(tested > 380, "{name}: {tested}");
+    }
+}
+
+#[test]
+fn temperature_grid_region_and_temperature_checks() {
+    let flat = Lattice::from_fn([6, 6, 6], DVec3::ZERO, DVec3::ONE, |p| {
+        let inside = (p - DVec3::splat(2.5)).length() < 1.5;
+        if inside { 300.0 } else { 290.0 }
+    })
+    .unwrap();
+    let air = AirDispersion::CauchyBornWolf;
+    let g =
+        TemperatureGrid::new(flat.clone(), Interpolation::Tricubic, GridPressure::Constant { pressure_pa: 9e4 }, air)
+            .unwrap();
+    let bounds = flat.bounds();
+    let f = IndexField::TemperatureGrid(Box::new(g));
+    assert_eq!(f.gradient_region(), GradientRegion::Box(bounds));
+    for p in [DVec3::new(-1.0, 2.0, 2.0), DVec3::new(7.0, 3.0, 1.0), DVec3::new(2.0, -3.0, 9.0)] {
+        assert_eq!(f.n_grad(550.0, p).1, DVec3::ZERO, "gradient outside the box at {p}");
+    }
+    // n is continuous across the box faces.
+    let face = DVec3::new(0.0, 2.3, 2.7);
+    let (a, b) = (f.n(550.0, face - 1e-9 * DVec3::X), f.n(550.0, face + 1e-9 * DVec3::X));
+    assert!((a - b).abs() < 1e-15);
+    // At constant pressure n − 1 ∝ 1/T (Stam & Languenou): 290 K air vs 300 K air.
+    let cold = f.n(550.0, DVec3::new(0.0, 0.0, 0.0)) - 1.0;
+    let hot = f.n(550.0, DVec3::splat(2.0)) - 1.0;
+    assert!((hot / cold - 290.0 / 300.0).abs() < 1e-12, "{}", hot / cold);
+    // With hydrostatic pressure the gradient is everywhere.
+    let g = TemperatureGrid::new(
+        flat.clone(),
+        Interpolation::Trilinear,
+        GridPressure::Usa76 { earth: Earth::flat_y() },
+        air,
+    )
+    .unwrap();
+    assert_eq!(IndexField::TemperatureGrid(Box::new(g)).gradient_region(), GradientRegion::Everywhere);
+    // Temperatures that Catmull–Rom could drive to zero are rejected; trilinear is fine.
+    let spiky =
+        Lattice::from_fn([6, 6, 6], DVec3::ZERO, DVec3::ONE, |p| if p.x == 2.0 { 400.0 } else { 20.0 }).unwrap();
+    let p = GridPressure::Constant { pressure_pa: 1e5 };
+    let e = TemperatureGrid::new(spiky.clone(), Interpolation::Tricubic, p, air).unwrap_err();
+    assert!(e.contains("positive"), "{e}");
+    assert!(TemperatureGrid::new(spiky, Interpolation::Trilinear, p, air).is_ok());
+}
+
+#[test]
+fn catmull_rom_stays_above_the_stated_overshoot_bound() {
+    // Random lattices: the interpolant never falls below min − 0.48·min(range, 9·max step), the
+    // bound `TemperatureGrid` relies on.
+    for seed in 0..20 {
+        let mut rng = Rng::for_task(seed, Stream::Test, 999);
+        let vals: Vec<f64> = (0..5 * 5 * 5).map(|_| if rng.uniform() < 0.3 { 10.0 } else { 0.0 }).collect();
+        let l = Lattice::new([5, 5, 5], DVec3::ZERO, DVec3::ONE, vals).unwrap();
+        let (lo, hi) = l.value_range();
+        let bound = lo - 0.48 * (hi - lo).min(9.0 * l.max_step());
+        for i in 0..2000 {
+            let mut r = Rng::for_task(seed, Stream::Test, i);
+            let p = DVec3::new(r.uniform(), r.uniform(), r.uniform()) * 4.0;
+            let v = l.value_grad(p, Interpolation::Tricubic, morgana::media::index::Beyond::Clamp).0;
+            assert!(v >= bound, "{v} < {bound}");
+        }
     }
 }
 

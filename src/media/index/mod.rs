@@ -12,20 +12,25 @@
 mod bump;
 mod constant;
 mod exponential;
+pub mod grid_file;
+mod lattice;
 mod linear;
 mod monotone_cubic;
 mod profile;
 mod region;
 mod sum;
+mod temperature_grid;
 
 pub use bump::Bump;
 pub use constant::Constant;
 pub use exponential::Exponential;
+pub use lattice::{Beyond, Interpolation, Lattice};
 pub use linear::Linear;
 pub use monotone_cubic::MonotoneCubic;
 pub use profile::Profile;
 pub use region::GradientRegion;
 pub use sum::Sum;
+pub use temperature_grid::{GridPressure, TemperatureGrid};
 
 use crate::geometry::Aabb;
 use glam::DVec3;
@@ -41,6 +46,8 @@ pub enum IndexField {
     Exponential(Exponential),
     /// A tabulated n(h).
     Profile(Profile),
+    /// Air with a 3-D temperature lattice.
+    TemperatureGrid(Box<TemperatureGrid>),
     /// A base field plus local bumps.
     Sum(Sum),
 }
@@ -61,6 +68,7 @@ impl IndexField {
             IndexField::Linear(l) => l.n_grad(p),
             IndexField::Exponential(e) => e.n_grad(p),
             IndexField::Profile(f) => f.n_grad(p),
+            IndexField::TemperatureGrid(g) => g.n_grad(wavelength_nm, p),
             IndexField::Sum(s) => s.n_grad(wavelength_nm, p),
         }
     }
@@ -75,6 +83,7 @@ impl IndexField {
         match self {
             IndexField::Constant(c) => c.is_dispersive(),
             IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => false,
+            IndexField::TemperatureGrid(_) => true,
             IndexField::Sum(s) => s.base.is_dispersive(),
         }
     }
@@ -88,6 +97,7 @@ impl IndexField {
             IndexField::Exponential(e) if e.n0 == 1.0 => GradientRegion::Nowhere,
             IndexField::Linear(_) | IndexField::Exponential(_) => GradientRegion::Everywhere,
             IndexField::Profile(f) => height_band(&f.earth, f.height_range()),
+            IndexField::TemperatureGrid(g) => g.gradient_region(),
             IndexField::Sum(s) => s.bumps.iter().fold(s.base.gradient_region(), |r, b| {
                 r.union(GradientRegion::Shell { centre: b.centre, r_min: 0.0, r_max: b.radius_m })
             }),
@@ -102,6 +112,8 @@ impl IndexField {
             IndexField::Linear(l) => l.min_over(domain),
             IndexField::Exponential(e) => e.min_n(),
             IndexField::Profile(f) => f.min_n(),
+            // K(λ) > 0 and ρ > 0 in the air laws' range (checked by `validate`).
+            IndexField::TemperatureGrid(_) => 1.0,
             IndexField::Sum(s) => s.base.min_n_bound(domain, wavelength_range_nm) + s.min_n_added(),
         }
     }
@@ -140,6 +152,7 @@ impl IndexField {
         match self {
             IndexField::Constant(c) => c.check_range(range_nm),
             IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => Ok(()),
+            IndexField::TemperatureGrid(g) => g.dispersion.check_range(range_nm),
             IndexField::Sum(s) => s.base.check_range(range_nm),
         }
     }
