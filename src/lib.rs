@@ -12,6 +12,7 @@
 //! Units are SI (metres, seconds, watts); spectral quantities are per nanometre, and names carry
 //! units where they could be doubted (`wavelength_nm`, `power_w`).
 
+pub mod atmosphere;
 pub mod error;
 pub mod geometry;
 pub mod light;

@@ -13,6 +13,8 @@
 //! Media extend to the *world sphere* (twice the radius of the sphere bounding the scene and the
 //! camera); a path leaving it escapes.
 
+pub mod ode;
+
 use crate::geometry::{Hit, Ray};
 use crate::media::tracking;
 use crate::rng::Rng;

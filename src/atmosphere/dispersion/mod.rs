@@ -1,0 +1,66 @@
+//! The refractive index of air through the Gladstone–Dale relation n − 1 = K(λ)·ρ: refractivity
+//! is proportional to density, with K(λ) = (n_ref(λ) − 1)/ρ_ref fixed by a reference law at a
+//! reference state. Gutierrez et al. 2005 (Eqs. 17–18) use Cauchy's law; Ciddor 1996 is the
+//! modern alternative (it is itself Gladstone–Dale scaling of standard air, Ciddor Eq. 5).
+//!
+//! # References
+//! - J. H. Gladstone & T. P. Dale 1858, "On the influence of temperature on the refraction of
+//!   light", Phil. Trans. R. Soc. 148:887–894.
+
+mod cauchy;
+mod ciddor;
+
+pub use cauchy::CauchyBornWolf;
+pub use ciddor::Ciddor;
+
+/// A law for K(λ) of air.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AirDispersion {
+    /// Cauchy's formula for air at 0 °C, 1 atm (Born & Wolf).
+    CauchyBornWolf,
+    /// Ciddor 1996 standard dry air with a CO₂ mole fraction.
+    Ciddor(Ciddor),
+}
+
+/// Wavelengths (nm) over which the air laws are evaluated; outside, they are extrapolations (and
+/// Ciddor's poles at 65 and 132 nm make them meaningless).
+pub const AIR_LAW_RANGE_NM: (f64, f64) = (200.0, 2000.0);
+
+impl AirDispersion {
+    /// Ciddor's law for `co2_ppm` (0–2000 µmol/mol, the range Ciddor 1996 covers).
+    pub fn ciddor(co2_ppm: f64) -> Result<AirDispersion, String> {
+        Ciddor::new(co2_ppm).map(AirDispersion::Ciddor)
+    }
+
+    /// K(λ) = (n_ref(λ) − 1)/ρ_ref, m³ kg⁻¹.
+    pub fn gladstone_dale_m3_per_kg(&self, wavelength_nm: f64) -> f64 {
+        match self {
+            AirDispersion::CauchyBornWolf => CauchyBornWolf::gladstone_dale_m3_per_kg(wavelength_nm),
+            AirDispersion::Ciddor(c) => c.gladstone_dale_m3_per_kg(wavelength_nm),
+        }
+    }
+
+    /// n = 1 + K(λ)·ρ.
+    pub fn n(&self, wavelength_nm: f64, density_kg_m3: f64) -> f64 {
+        1.0 + self.gladstone_dale_m3_per_kg(wavelength_nm) * density_kg_m3
+    }
+
+    /// The scene's wavelength range must lie where the law is defined.
+    pub fn check_range(&self, (min_nm, max_nm): (f64, f64)) -> Result<(), String> {
+        let (lo, hi) = AIR_LAW_RANGE_NM;
+        if min_nm < lo || max_nm > hi {
+            return Err(format!(
+                "the refractive index of air is defined here for {lo}–{hi} nm; the scene asks for {min_nm}–{max_nm} nm"
+            ));
+        }
+        Ok(())
+    }
+
+    /// The name used in atmosphere files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            AirDispersion::CauchyBornWolf => "cauchy_born_wolf",
+            AirDispersion::Ciddor(_) => "ciddor",
+        }
+    }
+}

@@ -1,0 +1,200 @@
+//! Step-size control for the embedded Dormand–Prince pair: error norm, accept/reject, the next
+//! step size (I or PI control), bounds, and the initial step guess.
+//!
+//! Error norm (Hairer I, eq. II.4.11), over the six components of y = (r, v):
+//!
+//! ```text
+//!     err = sqrt( (1/6) Σᵢ ( eᵢ / (atol + rtol·max(|y0ᵢ|, |y1ᵢ|)) )² ),
+//! ```
+//!
+//! a step is accepted when err ≤ 1. Next step (Hairer I, eq. II.4.13; with PI control,
+//! Gustafsson 1991 in the form of Hairer's DOPRI5 and Hairer & Wanner II, §IV.2):
+//!
+//! ```text
+//!     h_new = h · min(fac_max, max(fac_min, safety · err^(−α) · err_prev^β)),
+//!     α = 1/5 − 0.75 β,  β = 0.04 (PI) or 0 (plain I control, α = 1/5),
+//! ```
+//!
+//! with err_prev the error of the last accepted step (at least 10⁻⁴). After a rejection the
+//! retry uses h·max(fac_min, safety·err^(−α)) and the step after it may not grow. Steps are kept
+//! in [h_min, h_max].
+//!
+//! # References
+//! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
+//!   Springer 1993, §II.4 ("Automatic step size control", "Starting step size").
+//! - E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, 2nd ed., Springer
+//!   1996, §IV.2 (PI step-size control); K. Gustafsson, "Control theoretic techniques for
+//!   stepsize selection in explicit Runge–Kutta methods", ACM TOMS 17 (1991) 533–554.
+
+use super::error::OdeError;
+use super::system::{IndexSample, RayY, eval};
+
+/// Hairer's defaults (DOPRI5).
+pub const SAFETY: f64 = 0.9;
+pub const FAC_MIN: f64 = 0.2;
+pub const FAC_MAX: f64 = 10.0;
+pub const PI_BETA: f64 = 0.04;
+
+/// The outcome of one error test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Decision {
+    Accept { h_next: f64 },
+    Reject { h_retry: f64 },
+}
+
+/// The controller state between steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Controller {
+    pub rtol: f64,
+    pub atol: f64,
+    pub h_min: f64,
+    pub h_max: f64,
+    pub beta: f64,
+    alpha: f64,
+    err_prev: f64,
+    rejected_last: bool,
+}
+
+impl Controller {
+    /// A controller with PI control when `pi` (β = 0.04) and plain I control otherwise.
+    pub fn new(rtol: f64, atol: f64, pi: bool, h_min: f64, h_max: f64) -> Controller {
+        let beta = if pi { PI_BETA } else { 0.0 };
+        Controller { rtol, atol, h_min, h_max, beta, alpha: 0.2 - 0.75 * beta, err_prev: 1e-4, rejected_last: false }
+    }
+
+    /// Forgets the history (the previous error and a pending rejection).
+    pub fn reset(&mut self) {
+        self.err_prev = 1e-4;
+        self.rejected_last = false;
+    }
+
+    /// The scaled RMS norm of the error estimate `e` of a step from `y0` to `y1`.
+    #[inline]
+    pub fn error_norm(&self, e: &RayY, y0: &RayY, y1: &RayY) -> f64 {
+        let (e, a, b) = (e.to_array(), y0.to_array(), y1.to_array());
+        let mut sum = 0.0;
+        for i in 0..6 {
+            let sc = self.atol + self.rtol * a[i].abs().max(b[i].abs());
+            let q = e[i] / sc;
+            sum += q * q;
+        }
+        (sum / 6.0).sqrt()
+    }
+
+    /// Accepts or rejects a step of size `h` with error norm `err` and proposes the next size.
+    /// A non-finite `err` is a rejection with the largest decrease.
+    pub fn decide(&mut self, h: f64, err: f64) -> Decision {
+        if !err.is_finite() {
+            self.rejected_last = true;
+            return Decision::Reject { h_retry: h * FAC_MIN };
+        }
+        let fac_err = err.powf(self.alpha);
+        if err <= 1.0 {
+            let q = fac_err / self.err_prev.powf(self.beta) / SAFETY;
+            let mut h_next = h / q.clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            if self.rejected_last {
+                h_next = h_next.min(h);
+            }
+            self.err_prev = err.max(1e-4);
+            self.rejected_last = false;
+            Decision::Accept { h_next: h_next.min(self.h_max) }
+        } else {
+            self.rejected_last = true;
+            Decision::Reject { h_retry: h * FAC_MIN.max(SAFETY / fac_err) }
+        }
+    }
+
+    /// Hairer's starting step size (Hairer I, §II.4, steps a–f) for a method of order 5,
+    /// from y0 and f0 = f(y0); one extra field sample (counted in `evals`).
+    pub fn initial_step<F: IndexSample>(&self, field: &F, y0: &RayY, f0: &RayY, evals: &mut u64) -> f64 {
+        let zero = RayY::default();
+        let norm = |x: &RayY| self.error_norm(x, y0, &zero);
+        let (d0, d1) = (norm(y0), norm(f0));
+        let h0 = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 } else { 0.01 * d0 / d1 }.min(self.h_max);
+        *evals += 1;
+        let Ok((f1, _)) = eval(field, &(*y0 + *f0 * h0)) else {
+            return h0.max(self.h_min);
+        };
+        let d2 = norm(&(f1 - *f0)) / h0;
+        let d = d1.max(d2);
+        let h1 = if d <= 1e-15 { (h0 * 1e-3).max(1e-6) } else { (0.01 / d).powf(0.2) };
+        (100.0 * h0).min(h1).min(self.h_max).max(self.h_min)
+    }
+
+    /// Checks the settings, naming the one out of range.
+    pub fn validate(&self) -> Result<(), OdeError> {
+        let bad = |m: String| Err(OdeError::InvalidSettings(m));
+        if !(self.rtol > 0.0 && self.rtol.is_finite()) {
+            return bad(format!("rtol = {}; expected a finite number > 0 (e.g. 1e-9)", self.rtol));
+        }
+        if !(self.atol >= 0.0 && self.atol.is_finite()) {
+            return bad(format!("atol = {}; expected a finite number >= 0", self.atol));
+        }
+        if !(self.h_min >= 0.0 && self.h_min.is_finite()) {
+            return bad(format!("h_min = {} m; expected a finite number >= 0", self.h_min));
+        }
+        if self.h_max.is_nan() || self.h_max <= self.h_min {
+            return bad(format!("h_max = {} m; expected a number > h_min = {} m", self.h_max, self.h_min));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn norm_is_the_scaled_rms() {
+        let c = Controller::new(1e-3, 1e-6, false, 0.0, f64::INFINITY);
+        let y0 = RayY { r: DVec3::new(1000.0, 0.0, 0.0), v: DVec3::new(1.0, 0.0, 0.0) };
+        let e = RayY { r: DVec3::new(1.000001, 0.0, 0.0), v: DVec3::ZERO };
+        // sc_x = 1e-6 + 1e-3·1000 = 1.000001, so the x term is 1 and the RMS is 1/√6.
+        assert!((c.error_norm(&e, &y0, &y0) - 1.0 / 6f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn accept_grow_and_reject_shrink() {
+        let mut c = Controller::new(1e-6, 1e-9, false, 0.0, f64::INFINITY);
+        // err = 1/32: I control gives 0.9·32^(1/5) = 1.8.
+        assert!(matches!(c.decide(1.0, 1.0 / 32.0), Decision::Accept { h_next } if (h_next - 1.8).abs() < 1e-14));
+        assert_eq!(c.decide(1.0, 0.0), Decision::Accept { h_next: FAC_MAX });
+        match c.decide(1.0, 32.0) {
+            Decision::Reject { h_retry } => assert!((h_retry - 0.45).abs() < 1e-15),
+            d => panic!("{d:?}"),
+        }
+        // After a rejection the accepted step does not grow.
+        assert_eq!(c.decide(0.45, 1e-3), Decision::Accept { h_next: 0.45 });
+        assert!(matches!(c.decide(1.0, f64::NAN), Decision::Reject { h_retry } if h_retry == FAC_MIN));
+        assert!(matches!(c.decide(1.0, 1e300), Decision::Reject { h_retry } if h_retry == FAC_MIN));
+    }
+
+    #[test]
+    fn h_max_caps_and_pi_remembers() {
+        let mut c = Controller::new(1e-6, 1e-9, true, 0.0, 2.0);
+        assert_eq!(c.decide(1.0, 0.0), Decision::Accept { h_next: 2.0 });
+        let mut i = Controller::new(1e-6, 1e-9, false, 0.0, 100.0);
+        let mut p = Controller::new(1e-6, 1e-9, true, 0.0, 100.0);
+        i.decide(1.0, 0.5);
+        p.decide(1.0, 0.5);
+        let (Decision::Accept { h_next: hi }, Decision::Accept { h_next: hp }) =
+            (i.decide(1.0, 0.5), p.decide(1.0, 0.5))
+        else {
+            panic!("both accept")
+        };
+        // PI: 0.9·0.5^(−0.17)·0.5^(0.04) vs I: 0.9·0.5^(−0.2).
+        assert!((hi - 0.9 * 0.5f64.powf(-0.2)).abs() < 1e-14);
+        assert!((hp - 0.9 * 0.5f64.powf(-0.17) * 0.5f64.powf(0.04)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn settings_are_checked() {
+        assert!(Controller::new(0.0, 1e-9, true, 0.0, 1.0).validate().is_err());
+        assert!(Controller::new(1e-6, -1.0, true, 0.0, 1.0).validate().is_err());
+        assert!(Controller::new(1e-6, 1e-9, true, 1.0, 1.0).validate().is_err());
+        assert!(Controller::new(1e-6, 1e-9, true, 0.0, f64::INFINITY).validate().is_ok());
+        let e = Controller::new(f64::NAN, 1e-9, true, 0.0, 1.0).validate().unwrap_err();
+        assert!(e.to_string().contains("rtol = NaN"), "{e}");
+    }
+}

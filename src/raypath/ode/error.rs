@@ -1,0 +1,75 @@
+//! What can go wrong while integrating a ray, each with a message that says what was found and
+//! what was expected.
+
+use glam::DVec3;
+use std::fmt;
+
+/// A failure of the ray integrator. Nothing here is ever silently turned into NaN.
+#[derive(Clone, Debug, PartialEq)]
+pub enum OdeError {
+    /// The field gave n ≤ 0, a non-finite n or a non-finite ∇n at a point the step needed.
+    BadIndex { at: DVec3, n: f64, grad_n: DVec3 },
+    /// A state with non-finite components (or a zero direction) was handed in.
+    BadState { r: DVec3, v: DVec3 },
+    /// Integrator settings out of range; the message names the parameter.
+    InvalidSettings(String),
+    /// A step limit that is negative or NaN.
+    InvalidStepLimit { h_limit: f64 },
+    /// The controller asked for a step below h_min (or below what s can resolve).
+    StepSizeUnderflow { s: f64, h: f64, h_min: f64 },
+    /// Too many consecutive rejections inside one step.
+    TooManyRejections { s: f64, rejections: u32 },
+    /// The integrator reached its budget of steps (accepted + rejected).
+    MaxSteps { s: f64, max_steps: u64 },
+}
+
+impl fmt::Display for OdeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            OdeError::BadIndex { at, n, grad_n } => write!(
+                f,
+                "refractive-index field at ({}, {}, {}) m gives n = {n}, grad n = ({}, {}, {}) m^-1; \
+                 expected a finite n > 0 and a finite gradient",
+                at.x, at.y, at.z, grad_n.x, grad_n.y, grad_n.z
+            ),
+            OdeError::BadState { r, v } => write!(
+                f,
+                "ray state r = ({}, {}, {}) m, v = ({}, {}, {}) is not usable; expected finite \
+                 components and a nonzero direction",
+                r.x, r.y, r.z, v.x, v.y, v.z
+            ),
+            OdeError::InvalidSettings(m) => write!(f, "ray integrator settings: {m}"),
+            OdeError::InvalidStepLimit { h_limit } => {
+                write!(f, "step limit h_limit = {h_limit} m; expected a number >= 0")
+            }
+            OdeError::StepSizeUnderflow { s, h, h_min } => write!(
+                f,
+                "ray integrator step size underflow at s = {s} m: the error control asks for \
+                 h = {h:e} m, below h_min = {h_min:e} m (the field varies too fast for the tolerance)"
+            ),
+            OdeError::TooManyRejections { s, rejections } => write!(
+                f,
+                "ray integrator rejected {rejections} consecutive steps at s = {s} m without \
+                 meeting the tolerance"
+            ),
+            OdeError::MaxSteps { s, max_steps } => write!(
+                f,
+                "ray integrator reached its budget of {max_steps} steps at s = {s} m; raise \
+                 max_steps or loosen the tolerance"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for OdeError {}
+
+impl From<OdeError> for crate::error::Error {
+    /// Bad fields and settings come from the user's scene (exit code 2); the others are the
+    /// integrator failing (exit code 1).
+    fn from(e: OdeError) -> Self {
+        match e {
+            OdeError::BadIndex { .. } | OdeError::InvalidSettings(_) => crate::error::Error::input(None, e.to_string()),
+            _ => crate::error::Error::internal(e.to_string()),
+        }
+    }
+}
