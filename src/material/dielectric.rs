@@ -3,8 +3,8 @@
 use super::{Ior, SpecularSample, fresnel_dielectric, reflect, refract};
 use glam::DVec3;
 
-/// Smooth boundary between the outside (index 1, the front side of the normal) and a body of
-/// index n(λ) (the back side).
+/// Smooth boundary between the outside (the front side of the normal: index 1, or the local n of
+/// the medium there) and a body of index n(λ) (the back side).
 #[derive(Clone, Debug)]
 pub struct Dielectric {
     pub ior: Ior,
@@ -15,7 +15,29 @@ impl Dielectric {
     /// so power is carried unchanged (weight 1): the analog choice for photons and an
     /// unbiased one for eye paths.
     pub fn sample(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, u: f64) -> SpecularSample {
+        self.sample_in(dir, n, wavelength_nm, u, 1.0)
+    }
+
+    /// [`Dielectric::sample`] with a medium of index `n_outside` on the front side.
+    pub fn sample_in(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, u: f64, n_outside: f64) -> SpecularSample {
+        let n_body = self.ior.eval(wavelength_nm) / n_outside;
+        fresnel_sample(dir, n, n_body, u)
+    }
+
+    /// Fresnel reflectance for a path arriving along `dir` at normal `n`.
+    pub fn reflectance(&self, dir: DVec3, n: DVec3, wavelength_nm: f64) -> f64 {
         let n_body = self.ior.eval(wavelength_nm);
+        let eta = if dir.dot(n) < 0.0 { n_body } else { 1.0 / n_body };
+        fresnel_dielectric(dir.dot(n).abs(), eta)
+    }
+}
+
+/// Reflection with probability F or refraction, at a boundary whose back side has index
+/// `n_back` relative to the front side (weight 1): the analog choice for photons, unbiased for
+/// eye paths. Total internal reflection reflects.
+pub fn fresnel_sample(dir: DVec3, n: DVec3, n_back: f64, u: f64) -> SpecularSample {
+    {
+        let n_body = n_back;
         let entering = dir.dot(n) < 0.0;
         let eta = if entering { n_body } else { 1.0 / n_body };
         let cos_i = dir.dot(n).abs();
@@ -27,13 +49,6 @@ impl Dielectric {
             Some(t) => SpecularSample { dir: t, weight: 1.0, transmitted: true },
             None => SpecularSample { dir: reflect(dir, n), weight: 1.0, transmitted: false },
         }
-    }
-
-    /// Fresnel reflectance for a path arriving along `dir` at normal `n`.
-    pub fn reflectance(&self, dir: DVec3, n: DVec3, wavelength_nm: f64) -> f64 {
-        let n_body = self.ior.eval(wavelength_nm);
-        let eta = if dir.dot(n) < 0.0 { n_body } else { 1.0 / n_body };
-        fresnel_dielectric(dir.dot(n).abs(), eta)
     }
 }
 

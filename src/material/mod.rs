@@ -10,7 +10,7 @@ mod ior;
 mod lambertian;
 mod mirror;
 
-pub use dielectric::Dielectric;
+pub use dielectric::{Dielectric, fresnel_sample};
 pub use fresnel::{fresnel_dielectric, reflect, refract};
 pub use ior::{GLASS_NAMES, Ior, named_glass};
 pub use lambertian::Lambertian;
@@ -60,10 +60,23 @@ impl Material {
     /// `wavelength_nm`, using `u` to choose between reflection and refraction; `None` for
     /// diffuse materials.
     pub fn sample_specular(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, u: f64) -> Option<SpecularSample> {
+        self.sample_specular_in(dir, n, wavelength_nm, u, 1.0)
+    }
+
+    /// [`Material::sample_specular`] with a medium of index `n_outside` on the front side of the
+    /// normal (the local n of the exterior medium: air is 1.0003, not 1).
+    pub fn sample_specular_in(
+        &self,
+        dir: DVec3,
+        n: DVec3,
+        wavelength_nm: f64,
+        u: f64,
+        n_outside: f64,
+    ) -> Option<SpecularSample> {
         match self {
             Material::Lambertian(_) => None,
             Material::Mirror(m) => Some(m.sample(dir, n, wavelength_nm)),
-            Material::Dielectric(d) => Some(d.sample(dir, n, wavelength_nm, u)),
+            Material::Dielectric(d) => Some(d.sample_in(dir, n, wavelength_nm, u, n_outside)),
         }
     }
 

@@ -1,6 +1,7 @@
 //! A participating medium: absorption σ_a(λ) and scattering σ_s(λ) per metre at density 1 (given
 //! directly, or as extinction σ_t(λ) and single-scattering albedo ω(λ)), a phase function, and a
-//! density field d(x) that scales both.
+//! density field d(x) that scales both; and, optionally, a refractive-index field n(λ, x)
+//! ([`super::index`]) along which light curves.
 
 use super::density::Density;
 use super::phase::PhaseFunction;
@@ -23,6 +24,8 @@ pub struct Medium {
     pub coefficients: Coefficients,
     pub phase: PhaseFunction,
     pub density: Density,
+    /// The medium's refractive index; `None`: n = 1 and straight paths.
+    pub index: Option<super::index::IndexField>,
 }
 
 impl Medium {
@@ -64,5 +67,22 @@ impl Medium {
 
     pub fn is_homogeneous(&self) -> bool {
         self.density.is_uniform()
+    }
+
+    /// True when the medium neither absorbs nor scatters at any wavelength (σ_t ≡ 0 as given):
+    /// clear air that only bends light.
+    pub fn is_clear(&self) -> bool {
+        use crate::spectrum::Spectrum;
+        let zero = |s: &Spectrum| matches!(s, Spectrum::Constant(v) if *v == 0.0);
+        match &self.coefficients {
+            Coefficients::AbsorptionScattering { sigma_a, sigma_s } => zero(sigma_a) && zero(sigma_s),
+            Coefficients::ExtinctionAlbedo { sigma_t, .. } => zero(sigma_t),
+            Coefficients::AbsorptionMixture { .. } => false,
+        }
+    }
+
+    /// True when light curves in this medium (its index field has a gradient somewhere).
+    pub fn bends_light(&self) -> bool {
+        self.index.as_ref().is_some_and(|f| !f.is_uniform())
     }
 }

@@ -80,5 +80,6 @@ pub fn shoot(
         sink.volume.extend(p.volume);
         stats.add(&s);
     }
+    stats.curved = prop.work.totals();
     (sink, stats)
 }

@@ -53,6 +53,8 @@ pub struct PhotonStats {
     pub missed: u64,
     pub bounces: u64,
     pub medium_interactions: u64,
+    /// Integrator work along curved paths (zero where every path is straight).
+    pub curved: crate::raypath::CurvedWorkTotals,
 }
 
 impl PhotonStats {
@@ -125,6 +127,10 @@ pub fn trace(
                 st.escaped_w += power_w;
                 return;
             }
+            Event::Lost { .. } => {
+                st.truncated_w += power_w;
+                return;
+            }
             Event::Medium { position, dir, medium, .. } => {
                 st.medium_interactions += 1;
                 if f.kind == MapKind::Caustic {
@@ -176,9 +182,9 @@ fn surface(
             st.absorbed_surface_w += f.power_w;
             return None;
         }
-        // An index-matched boundary: the photon passes into the next medium unchanged.
-        let across = scene.medium_across(hit.prim, dir, hit.normal);
-        return Some(prop.leave(hit, dir, lambda, across));
+        // A boundary between two media: straight on, or refracted where their n differ.
+        let (d, across) = prop.cross(hit, dir, medium, f.lambda, rng.uniform());
+        return Some(prop.leave(hit, d, lambda, across));
     };
     if material.is_diffuse() {
         let store = match f.kind {
@@ -202,7 +208,8 @@ fn surface(
         f.after(PhotonPath::Diffuse);
         return Some(prop.leave(hit, Lambertian::sample(dir, hit.normal, rng.uniform2()), lambda, medium));
     }
-    let s = material.sample_specular(dir, hit.normal, f.lambda, rng.uniform())?;
+    let n_out = prop.n_outside(hit.prim, f.lambda, hit.point);
+    let s = material.sample_specular_in(dir, hit.normal, f.lambda, rng.uniform(), n_out)?;
     if rng.uniform() >= s.weight {
         st.absorbed_surface_w += f.power_w;
         return None;

@@ -5,17 +5,30 @@
 //! interaction in a medium, or escape — handing every straight chord of the path to a visitor on
 //! the way. The visitor is how media act: a photon's free-flight sampler stops the path at an
 //! interaction; an eye ray's marcher accumulates transmittance and in-scattered light. No tracer
-//! may assume a path is `o + t·d`: today every path is one straight chord per event; the
-//! curved-paths issue plugs Dormand–Prince arcs in here, handing their chords to the same
-//! visitors and intersecting them with the same segment queries
-//! ([`crate::geometry::Bvh::intersect`]).
+//! assumes a path is `o + t·d`:
+//! - in a medium whose refractive index is constant (or has none) the path is one straight
+//!   chord per event and no ODE runs;
+//! - in a medium with a refractive-index field ([`crate::media::index`]) the path follows
+//!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`ode`]:
+//!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
+//!   arc tolerance ([`arc`]), and the same visitors and segment queries
+//!   ([`crate::geometry::Bvh::intersect`]) see those chords. Outside the field's
+//!   [`crate::media::index::GradientRegion`] the path is straight again, seamlessly (n is
+//!   continuous there).
 //!
-//! Media extend to the *world sphere* (twice the radius of the sphere bounding the scene and the
-//! camera); a path leaving it escapes.
+//! Free-flight distances and marching are measured along the path (the sum of chord lengths,
+//! within the arc tolerance of the arc length). Media extend to the *world sphere* (twice the
+//! radius of the sphere bounding the scene and the camera); a path leaving it escapes.
 
+mod arc;
+pub mod curved;
 pub mod ode;
+mod work;
+
+pub use work::{CurvedWork, CurvedWorkTotals};
 
 use crate::geometry::{Hit, Ray};
+use crate::media::index::{GradientRegion, IndexField};
 use crate::media::tracking;
 use crate::rng::Rng;
 use crate::scene::Scene;
@@ -52,6 +65,9 @@ pub enum Event {
     Medium { position: DVec3, dir: DVec3, path_length: f64, medium: u32 },
     /// Nothing more is hit; `dir` is the final direction of travel.
     Escape { dir: DVec3 },
+    /// The path could not be followed (the integrator failed: a field gave a non-finite value);
+    /// counted in [`CurvedWorkTotals::lost`] and ended.
+    Lost { position: DVec3 },
 }
 
 /// Moves light through a scene.
@@ -59,6 +75,10 @@ pub struct Propagator<'a> {
     scene: &'a Scene,
     world_centre: DVec3,
     world_radius: f64,
+    /// Per medium: where its index field bends light, if it does and the plan follows it.
+    regions: Vec<Option<GradientRegion>>,
+    /// Integrator work along curved paths.
+    pub work: CurvedWork,
 }
 
 impl<'a> Propagator<'a> {
@@ -66,7 +86,32 @@ impl<'a> Propagator<'a> {
         let b = scene.bounds.include(scene.camera.position);
         let centre = b.centre();
         let radius = 2.0 * (0.5 * b.diagonal().length()).max(1e-3);
-        Propagator { scene, world_centre: centre, world_radius: radius }
+        let curved = scene.plan.curved_paths.on;
+        let regions = scene
+            .media
+            .iter()
+            .map(|m| m.index.as_ref().filter(|f| curved && !f.is_uniform()).map(|f| f.gradient_region()))
+            .collect();
+        Propagator { scene, world_centre: centre, world_radius: radius, regions, work: CurvedWork::default() }
+    }
+
+    /// The index field of `medium` and where it bends light, when paths in it curve.
+    fn curved_field(&self, medium: Option<u32>) -> Option<(&IndexField, &GradientRegion)> {
+        let m = medium? as usize;
+        let region = self.regions[m].as_ref()?;
+        Some((self.scene.media[m].index.as_ref()?, region))
+    }
+
+    /// Whether a path in `medium` bends differently at each wavelength, so that an eye path
+    /// carrying several must split into one path per wavelength before entering it.
+    pub fn splits_wavelengths(&self, medium: Option<u32>) -> bool {
+        self.curved_field(medium).is_some_and(|(f, _)| f.is_dispersive())
+    }
+
+    /// The refractive index of `medium` at `p` and `wavelength_nm`: its field's n, or 1 for
+    /// vacuum and media without a field.
+    pub fn n_at(&self, medium: Option<u32>, wavelength_nm: f64, p: DVec3) -> f64 {
+        self.scene.medium(medium).and_then(|m| m.index.as_ref()).map_or(1.0, |f| f.n(wavelength_nm, p))
     }
 
     /// The next event from `state`, not stopping in media.
@@ -77,6 +122,9 @@ impl<'a> Propagator<'a> {
     /// The next event from `state`; each chord of the path inside a medium is handed to `visit`,
     /// which returns the distance along the chord at which the path stops, if it does.
     pub fn next_event_with(&self, state: &RayState, visit: &mut dyn FnMut(&Chord) -> Option<f64>) -> Event {
+        if let Some((field, region)) = self.curved_field(state.medium) {
+            return curved::next_event(self, state, field, region, visit);
+        }
         let ray = Ray::new(state.position, state.dir);
         let hit = self.scene.bvh.intersect(&self.scene.shapes, &ray, f64::INFINITY);
         if let Some(m) = state.medium {
@@ -92,6 +140,11 @@ impl<'a> Propagator<'a> {
         }
     }
 
+    /// Whether `p` lies outside the world sphere.
+    fn outside_world(&self, p: DVec3) -> bool {
+        (p - self.world_centre).length_squared() > self.world_radius * self.world_radius
+    }
+
     /// Distance from `p` along `dir` to the world sphere (0 if `p` is outside it).
     fn world_exit(&self, p: DVec3, dir: DVec3) -> f64 {
         let oc = p - self.world_centre;
@@ -101,6 +154,51 @@ impl<'a> Propagator<'a> {
             return 0.0;
         }
         -b + (b * b - c).max(0.0).sqrt()
+    }
+
+    /// The refractive index on the front side of primitive `prim` (its exterior medium) at `p`:
+    /// what a dielectric material's index is relative to.
+    pub fn n_outside(&self, prim: u32, wavelength_nm: f64, p: DVec3) -> f64 {
+        self.n_at(self.scene.prims[prim as usize].exterior, wavelength_nm, p)
+    }
+
+    /// Whether crossing the index-matched boundary `prim` at `p` refracts (the media on its two
+    /// sides differ in n there at `wavelength_nm`).
+    pub fn boundary_refracts(&self, prim: u32, wavelength_nm: f64, p: DVec3) -> bool {
+        let pr = &self.scene.prims[prim as usize];
+        let (front, back) = (self.n_at(pr.exterior, wavelength_nm, p), self.n_at(pr.interior, wavelength_nm, p));
+        (front - back).abs() > 1e-12 * front
+    }
+
+    /// Whether that refraction depends on wavelength (a path carrying several must split).
+    pub fn boundary_is_dispersive(&self, prim: u32) -> bool {
+        let pr = &self.scene.prims[prim as usize];
+        let dispersive =
+            |m: Option<u32>| self.scene.medium(m).and_then(|m| m.index.as_ref()).is_some_and(|f| f.is_dispersive());
+        dispersive(pr.exterior) || dispersive(pr.interior)
+    }
+
+    /// A path crossing the boundary `hit` without a material (between two media): straight on
+    /// when n is the same on both sides; else reflected with the Fresnel probability (staying
+    /// in `medium`) or refracted by Snell's law with the local n of both sides. Returns the new
+    /// direction and medium (weight 1).
+    pub fn cross(
+        &self,
+        hit: &Hit,
+        dir: DVec3,
+        medium: Option<u32>,
+        wavelength_nm: f64,
+        u: f64,
+    ) -> (DVec3, Option<u32>) {
+        let across = self.scene.medium_across(hit.prim, dir, hit.normal);
+        if !self.boundary_refracts(hit.prim, wavelength_nm, hit.point) {
+            return (dir, across);
+        }
+        let pr = &self.scene.prims[hit.prim as usize];
+        let front = self.n_at(pr.exterior, wavelength_nm, hit.point);
+        let back = self.n_at(pr.interior, wavelength_nm, hit.point);
+        let s = crate::material::fresnel_sample(dir, hit.normal, back / front, u);
+        (s.dir, if s.transmitted { across } else { medium })
     }
 
     /// The state leaving surface `hit` in direction `dir`, in `medium`, offset so it does not

@@ -116,6 +116,11 @@ impl<'a> EyeTracer<'a> {
         }
     }
 
+    /// Integrator work along this tracer's curved paths so far.
+    pub fn curved_work(&self) -> crate::raypath::CurvedWorkTotals {
+        self.prop.work.totals()
+    }
+
     /// Radiance arriving at the camera along `state`, per lane (W m⁻² sr⁻¹ nm⁻¹).
     pub fn camera_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
         self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera }, rng, sc)
@@ -133,6 +138,9 @@ impl<'a> EyeTracer<'a> {
         if at.depth > self.scene.integrator.max_depth {
             return out;
         }
+        if at.lanes.len > 1 && self.prop.splits_wavelengths(state.medium) {
+            return self.split(state, at, rng, sc);
+        }
         match at.mode {
             Mode::Camera => sc.rays.eye += 1,
             Mode::Gather => sc.rays.gather += 1,
@@ -149,6 +157,27 @@ impl<'a> EyeTracer<'a> {
         };
         for i in 0..at.lanes.len {
             out[i] = along.l[i] + along.tr[i] * surface[i];
+        }
+        out
+    }
+
+    /// Radiance per lane along `state` in a medium that bends each wavelength differently: one
+    /// path per lane (a gather path follows one lane chosen uniformly, weighted by the count).
+    fn split(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        let mut out = [0.0; MAX_BANDS];
+        let lanes = at.lanes;
+        let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {
+            let single = lanes.single(i);
+            let s = RayState { wavelength_nm: Some(lanes.nm[i]), ..*state };
+            self.radiance(&s, At { lanes: &single, ..at }, rng, sc)[0]
+        };
+        if at.mode == Mode::Gather {
+            let j = rng.below(lanes.len as u64) as usize;
+            out[j] = lanes.len as f64 * one(j, rng, sc);
+            return out;
+        }
+        for (i, o) in out.iter_mut().enumerate().take(lanes.len) {
+            *o = one(i, rng, sc);
         }
         out
     }
@@ -185,11 +214,7 @@ impl<'a> EyeTracer<'a> {
             }
         }
         let add = match self.scene.material_of(hit.prim) {
-            None if self.scene.prims[hit.prim as usize].light.is_none() => {
-                // An index-matched boundary: continue into the next medium.
-                let across = self.scene.medium_across(hit.prim, dir, hit.normal);
-                self.radiance(&self.prop.leave(hit, dir, at.wavelength(), across), at, rng, sc)
-            }
+            None if self.scene.prims[hit.prim as usize].light.is_none() => self.boundary(hit, dir, medium, at, rng, sc),
             None => return out,
             Some(m) if m.is_diffuse() => self.diffuse(hit, dir, m, medium, at, rng, sc),
             Some(m) => self.specular(hit, dir, m, medium, at, rng, sc),
@@ -198,6 +223,39 @@ impl<'a> EyeTracer<'a> {
             out[i] += add[i];
         }
         out
+    }
+
+    /// A boundary between two media: straight on where their n agree, else Fresnel reflection
+    /// or refraction with the local n of both sides (per lane where that depends on wavelength).
+    fn boundary(
+        &self,
+        hit: &Hit,
+        dir: DVec3,
+        medium: Option<u32>,
+        at: At,
+        rng: &mut Rng,
+        sc: &mut Scratch,
+    ) -> BandValues {
+        let lanes = at.lanes;
+        let refracts = self.prop.boundary_refracts(hit.prim, lanes.nm[0], hit.point);
+        if refracts && lanes.len > 1 && self.prop.boundary_is_dispersive(hit.prim) {
+            let mut out = [0.0; MAX_BANDS];
+            let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {
+                let single = lanes.single(i);
+                self.boundary(hit, dir, medium, At { lanes: &single, ..at }, rng, sc)[0]
+            };
+            if at.mode == Mode::Gather {
+                let j = rng.below(lanes.len as u64) as usize;
+                out[j] = lanes.len as f64 * one(j, rng, sc);
+            } else {
+                for (i, o) in out.iter_mut().enumerate().take(lanes.len) {
+                    *o = one(i, rng, sc);
+                }
+            }
+            return out;
+        }
+        let (d, across) = self.prop.cross(hit, dir, medium, lanes.nm[0], rng.uniform());
+        self.radiance(&self.prop.leave(hit, d, at.wavelength(), across), at, rng, sc)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -229,12 +287,13 @@ impl<'a> EyeTracer<'a> {
             return out;
         }
         let u = rng.uniform();
-        let Some(s) = m.sample_specular(dir, hit.normal, lanes.nm[0], u) else { return out };
+        let n_out = |l: f64| self.prop.n_outside(hit.prim, l, hit.point);
+        let Some(s) = m.sample_specular_in(dir, hit.normal, lanes.nm[0], u, n_out(lanes.nm[0])) else { return out };
         let next_medium = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
         let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
         let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
         for i in 0..lanes.len {
-            let w = m.sample_specular(dir, hit.normal, lanes.nm[i], u).map_or(0.0, |s| s.weight);
+            let w = m.sample_specular_in(dir, hit.normal, lanes.nm[i], u, n_out(lanes.nm[i])).map_or(0.0, |s| s.weight);
             out[i] = w * l[i];
         }
         out

@@ -49,8 +49,9 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
     let t = Instant::now();
-    let (data, rays) = eye_pass(scene, &maps, opts.quiet);
+    let (data, rays, curved) = eye_pass(scene, &maps, opts.quiet);
     stats.rays = rays;
+    stats.eye_curved = curved;
     stats.phases.add("eye pass", t);
     let t = Instant::now();
     let image = to_image(scene, data);
@@ -63,8 +64,9 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
     Rendered { image, stats, sensors }
 }
 
-/// Per-pixel band averages (row-major, `bands.count` per pixel) and the rays traced.
-fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCounts) {
+/// Per-pixel band averages (row-major, `bands.count` per pixel), the rays traced and the
+/// integrator work along curved eye paths.
+fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCounts, crate::raypath::CurvedWorkTotals) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
     let tracer = Tracer::new(scene, maps);
@@ -95,7 +97,11 @@ fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCoun
         data.extend(row);
         rays.add(&r);
     }
-    (data, rays)
+    let curved = match &tracer {
+        Tracer::PhotonMap(t) => t.curved_work(),
+        Tracer::Path(t) => t.curved_work(),
+    };
+    (data, rays, curved)
 }
 
 /// The eye-pass algorithm the scene asks for.

@@ -64,6 +64,11 @@ impl<'a> PathTracer<'a> {
         PathTracer { scene, prop: Propagator::new(scene) }
     }
 
+    /// Integrator work along this tracer's curved paths so far.
+    pub fn curved_work(&self) -> crate::raypath::CurvedWorkTotals {
+        self.prop.work.totals()
+    }
+
     /// Radiance per lane arriving along `state`: one lane, chosen by `rng`, gets the estimate
     /// times the lane count; the others zero.
     pub fn camera_radiance(
@@ -91,6 +96,7 @@ impl<'a> PathTracer<'a> {
             });
             let next = match event {
                 Event::Escape { dir } => return l + w.beta * self.escaped(dir, lambda, w.emission),
+                Event::Lost { .. } => return l,
                 Event::Medium { position, dir, medium, .. } => {
                     let m = &self.scene.media[medium as usize];
                     w.beta *= m.albedo(lambda);
@@ -149,8 +155,8 @@ impl<'a> PathTracer<'a> {
         }
         let material = match self.scene.material_of(hit.prim) {
             None if self.scene.prims[hit.prim as usize].light.is_none() => {
-                let across = self.scene.medium_across(hit.prim, dir, hit.normal);
-                return Some(self.prop.leave(hit, dir, lambda, across));
+                let (d, across) = self.prop.cross(hit, dir, medium, w.lambda, rng.uniform());
+                return Some(self.prop.leave(hit, d, lambda, across));
             }
             None => return None,
             Some(m) => m,
@@ -166,7 +172,8 @@ impl<'a> PathTracer<'a> {
                 Some(self.prop.leave(hit, wo, lambda, medium))
             }
             _ => {
-                let s = material.sample_specular(dir, hit.normal, w.lambda, rng.uniform())?;
+                let n_out = self.prop.n_outside(hit.prim, w.lambda, hit.point);
+                let s = material.sample_specular_in(dir, hit.normal, w.lambda, rng.uniform(), n_out)?;
                 w.beta *= s.weight;
                 w.emission = Emission::Full;
                 let next = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };

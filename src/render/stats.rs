@@ -58,4 +58,6 @@ pub struct RenderStats {
     pub rays: RayCounts,
     pub irradiance_points: u64,
     pub irradiance_memory_bytes: u64,
+    /// Integrator work along the eye pass's curved paths.
+    pub eye_curved: crate::raypath::CurvedWorkTotals,
 }

@@ -13,11 +13,16 @@
 //! density = { type = "exponential", scale_height_m = 2.0, reference_m = 0.0, up = [0, 1, 0] }
 //!         # or { type = "grid", file = "smoke.mgrid" }
 //!         # or { type = "fbm", base = 0.5, amplitude = 0.5, frequency_per_m = 2.0, octaves = 5, seed = 1 }
+//! index = { type = "linear", n0 = 1.0, k_per_m = 1e-3, direction = [0, 1, 0] }
+//!         # the refractive index light curves along: see `super::index` for every field
 //! ```
+//!
+//! A medium may be clear (`sigma_a = 0`, `sigma_s = 0`) and only bend light.
 
 use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
+use crate::atmosphere::Earth;
 use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D};
 use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
@@ -27,7 +32,14 @@ use glam::DVec3;
 use std::ops::Range;
 use toml::{Spanned, Value};
 
-pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index: usize, bands: &Bands) -> R<Medium> {
+pub fn medium(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    rec: &Spanned<RawMedium>,
+    index: usize,
+    bands: &Bands,
+    earth: &Earth,
+) -> R<Medium> {
     let span = rec.span();
     let m = rec.get_ref();
     let name = ctx.require(&m.name, "name", &span, &format!("medium #{}", index + 1))?.get_ref().clone();
@@ -66,7 +78,11 @@ pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index:
         None => Density::Uniform,
         Some(d) => density(ctx, d, &what)?,
     };
-    Ok(Medium { name, coefficients, phase, density })
+    let index = match &m.index {
+        None => None,
+        Some(v) => Some(super::index::field(ctx, v, &what, earth, (bands.min_nm, bands.max_nm))?),
+    };
+    Ok(Medium { name, coefficients, phase, density, index })
 }
 
 /// A string names a parameter-free phase function ("isotropic", "rayleigh", "pure_water",
@@ -152,15 +168,15 @@ fn mixture(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, ran
 }
 
 /// Reads the keys of a table value, rejecting unknown ones.
-struct Table<'a> {
-    ctx: &'a Ctx<'a>,
-    span: Range<usize>,
-    t: &'a toml::Table,
-    what: String,
+pub(super) struct Table<'a> {
+    pub ctx: &'a Ctx<'a>,
+    pub span: Range<usize>,
+    pub t: &'a toml::Table,
+    pub what: String,
 }
 
 impl<'a> Table<'a> {
-    fn new(ctx: &'a Ctx<'a>, v: &'a Spanned<Value>, what: String, allowed: &[&str]) -> R<Table<'a>> {
+    pub fn new(ctx: &'a Ctx<'a>, v: &'a Spanned<Value>, what: String, allowed: &[&str]) -> R<Table<'a>> {
         let span = v.span();
         let Value::Table(t) = v.get_ref() else { return Err(ctx.err(&span, format!("{what}: expected a table"))) };
         if let Some(k) = t.keys().find(|k| !allowed.contains(&k.as_str())) {
@@ -169,7 +185,7 @@ impl<'a> Table<'a> {
         Ok(Table { ctx, span, t, what })
     }
 
-    fn num(&self, key: &str, default: Option<f64>) -> R<f64> {
+    pub fn num(&self, key: &str, default: Option<f64>) -> R<f64> {
         match self.t.get(key) {
             None => default.ok_or_else(|| self.ctx.err(&self.span, format!("{}: missing `{key}`", self.what))),
             Some(v) => v
@@ -180,7 +196,7 @@ impl<'a> Table<'a> {
         }
     }
 
-    fn positive(&self, key: &str, default: Option<f64>) -> R<f64> {
+    pub fn positive(&self, key: &str, default: Option<f64>) -> R<f64> {
         let x = self.num(key, default)?;
         if x > 0.0 {
             Ok(x)
@@ -189,7 +205,7 @@ impl<'a> Table<'a> {
         }
     }
 
-    fn vec3(&self, key: &str, default: DVec3) -> R<DVec3> {
+    pub fn vec3(&self, key: &str, default: DVec3) -> R<DVec3> {
         let Some(v) = self.t.get(key) else { return Ok(default) };
         let a: Option<Vec<f64>> = v
             .as_array()

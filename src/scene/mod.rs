@@ -4,6 +4,7 @@
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
 mod context;
+mod index;
 mod lights;
 mod luminaires;
 mod materials;
@@ -22,6 +23,7 @@ pub use settings::{
 };
 pub use spectrum_spec::parse_two_column_csv;
 
+use crate::atmosphere::Earth;
 use crate::error::{Error, Location, Result};
 use crate::geometry::{Aabb, Bvh, Shape};
 use crate::light::{AreaLight, Light};
@@ -194,7 +196,8 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name, &camera)?;
     let lib = SpectrumLibrary { named: &raw.spectra };
     let (material_names, materials) = build_materials(ctx, &lib, raw, &bands)?;
-    let (medium_names, media, global_medium) = build_media(ctx, &lib, raw, &bands)?;
+    let earth = build_earth(ctx, raw)?;
+    let (medium_names, media, global_medium) = build_media(ctx, &lib, raw, &bands, &earth)?;
     let names = Names { materials: &material_names, media: &medium_names };
     let (mut shapes, mut prims) = build_shapes(ctx, raw, &names, &materials, global_medium)?;
     let geometry_bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
@@ -222,7 +225,9 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         ));
     }
     let bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
-    let integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
+    let mut integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
+    check_index_fields(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
+    curved_integrator(ctx, raw, &media, &mut integrator)?;
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
     let bvh = Bvh::build(&shapes);
     let mut scene = Scene {
@@ -279,10 +284,11 @@ fn build_media(
     lib: &SpectrumLibrary,
     raw: &RawScene,
     bands: &Bands,
+    earth: &Earth,
 ) -> Result<(Vec<String>, Vec<Medium>, Option<u32>)> {
     let (mut names, mut list) = (Vec::new(), Vec::new());
     for (i, rec) in raw.medium.iter().enumerate() {
-        let m = media::medium(ctx, lib, rec, i, bands)?;
+        let m = media::medium(ctx, lib, rec, i, bands, earth)?;
         if names.contains(&m.name) || m.name == VACUUM {
             return Err(
                 ctx.err(&rec.span(), format!("medium \"{}\": names must be unique and not \"{VACUUM}\"", m.name))
@@ -297,6 +303,74 @@ fn build_media(
         Some(m) => names_ref.medium(ctx, m, "[world] medium")?,
     };
     Ok((names, list, global))
+}
+
+/// `[world] earth`: "flat" (default; ground y = 0, +y up) or "spherical" (centre (0, −R, 0),
+/// R = `earth_radius_m`, default 6 371 km): how the heights of index fields are measured.
+fn build_earth(ctx: &Ctx, raw: &RawScene) -> Result<Earth> {
+    let Some(w) = raw.world.as_ref() else { return Ok(Earth::flat_y()) };
+    let w = w.get_ref();
+    let kind = match &w.earth {
+        None => "flat",
+        Some(e) => ctx.choice(e, "[world] earth", &["flat", "spherical"])?,
+    };
+    match (kind, &w.earth_radius_m) {
+        ("flat", Some(r)) => Err(ctx.err(&r.span(), "[world] earth_radius_m is only used with earth = \"spherical\"")),
+        ("flat", None) => Ok(Earth::flat_y()),
+        (_, r) => {
+            let radius = match r {
+                None => crate::atmosphere::EARTH_RADIUS_M,
+                Some(r) => ctx.number(r, "[world] earth_radius_m", 0.0, f64::INFINITY, true)?,
+            };
+            Earth::spherical_y(radius).map_err(|e| ctx.err(&w.earth.as_ref().map_or(0..0, |e| e.span()), e))
+        }
+    }
+}
+
+/// Every index field must keep n positive (and ≥ 1 unless allowed) over the box the scene's
+/// light can reach: its geometry and camera, doubled as the world sphere is.
+fn check_index_fields(ctx: &Ctx, raw: &RawScene, media: &[Medium], bands: &Bands, bounds: &Aabb) -> Result<()> {
+    let c = bounds.centre();
+    let r = bounds.diagonal().length().max(2e-3);
+    let world = Aabb { min: c - DVec3::splat(r), max: c + DVec3::splat(r) };
+    for (rec, m) in raw.medium.iter().zip(media) {
+        if let (Some(v), Some(f)) = (&rec.get_ref().index, &m.index) {
+            index::check_over(ctx, v, &format!("medium \"{}\"", m.name), f, (bands.min_nm, bands.max_nm), &world)?;
+        }
+    }
+    Ok(())
+}
+
+/// Where light curves, shadow rays cannot follow it (Gutierrez et al. 2005, §3): direct light
+/// comes from the photon maps, and the path tracer (whose next-event estimation needs straight
+/// shadow rays) is not available. A scene that asks for either explicitly gets an error.
+fn curved_integrator(ctx: &Ctx, raw: &RawScene, media: &[Medium], s: &mut IntegratorSettings) -> Result<()> {
+    let Some(m) = media.iter().find(|m| m.bends_light()) else { return Ok(()) };
+    let r = raw.integrator.as_ref().map(|i| i.get_ref());
+    let why = format!("medium \"{}\" bends light, and shadow rays cannot follow curved paths", m.name);
+    if s.method == Method::Path {
+        let at = r.and_then(|r| r.method.as_ref()).map_or(0..0, |m| m.span());
+        return Err(ctx.err(
+            &at,
+            format!(
+                "[integrator] method = \"path\": {why} (next-event estimation needs them); use method = \"photon_map\""
+            ),
+        ));
+    }
+    if let Some(d) = r.and_then(|r| r.direct.as_ref()).filter(|_| s.direct == DirectLighting::ShadowRays) {
+        return Err(
+            ctx.err(&d.span(), format!("[integrator] direct = \"shadow_rays\": {why}; use direct = \"photon_map\""))
+        );
+    }
+    if let Some(fg) = r.and_then(|r| r.final_gather.as_ref()).filter(|f| *f.get_ref()) {
+        return Err(ctx.err(
+            &fg.span(),
+            format!("[integrator] final_gather = true: {why}; direct light comes from the photon map"),
+        ));
+    }
+    s.direct = DirectLighting::PhotonMap;
+    s.final_gather = false;
+    Ok(())
 }
 
 /// Shapes and their primitives' materials and media (see [`Prim`] for the defaults).

@@ -53,7 +53,7 @@ pub struct SceneFacts<'a> {
 impl EffectPlan {
     pub fn decide(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
         if s.method == Method::Path {
-            return Self::path_tracing(facts);
+            return Self::path_tracing(facts, s);
         }
         let diffuse = facts.used_materials.iter().find(|(_, m)| m.is_diffuse()).map(|(n, _)| *n);
         let specular = facts.used_materials.iter().find(|(_, m)| m.is_specular()).map(|(n, _)| *n);
@@ -105,14 +105,14 @@ impl EffectPlan {
             dispersion_splitting,
             participating_media: media_decision(&facts.used_media),
             volume_map: volume_map_decision(&facts.used_media, s),
-            curved_paths: Decision::off("no refractive-index field: every path is a straight line"),
+            curved_paths: curved_decision(&facts.used_media, s),
             inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
         }
     }
 
     /// The plan of the reference path tracer: no photon maps; direct light by next-event
     /// estimation.
-    fn path_tracing(facts: &SceneFacts) -> EffectPlan {
+    fn path_tracing(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
         let off = || Decision::off("method = \"path\": unbiased path tracing uses no photon maps");
         let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
         EffectPlan {
@@ -129,7 +129,7 @@ impl EffectPlan {
             }),
             participating_media: media_decision(&facts.used_media),
             volume_map: off(),
-            curved_paths: Decision::off("no refractive-index field: every path is a straight line"),
+            curved_paths: curved_decision(&facts.used_media, s),
             inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
         }
     }
@@ -159,9 +159,32 @@ impl std::fmt::Display for EffectPlan {
     }
 }
 
+/// Curved paths where a used medium's index field has a gradient; straight lines elsewhere.
+fn curved_decision(media: &[&Medium], s: &IntegratorSettings) -> Decision {
+    let bending: Vec<&str> = media.iter().filter(|m| m.bends_light()).map(|m| m.name.as_str()).collect();
+    if bending.is_empty() {
+        let constant = media.iter().find(|m| m.index.is_some());
+        return Decision::off(match constant {
+            Some(m) => format!("the refractive index of \"{}\" is constant: every path is a straight line", m.name),
+            None => "no refractive-index field: every path is a straight line".to_string(),
+        });
+    }
+    let c = &s.curved;
+    let method = match c.ode {
+        "dopri5" => format!("Dormand–Prince RK5(4)7M, rtol {:e}, atol {:e}", c.rtol, c.atol),
+        other => format!("{other} with a fixed step of {} m", c.step_m),
+    };
+    Decision::on(format!(
+        "the refractive index of \"{}\" varies: light follows Fermat's ray equation there ({method}; chords within {} m of the arc), straight lines elsewhere",
+        bending.join("\", \""),
+        c.arc_tolerance_m
+    ))
+}
+
 fn media_decision(media: &[&Medium]) -> Decision {
-    match media {
-        [] => Decision::off("the scene declares no participating medium"),
+    let media: Vec<&Medium> = media.iter().copied().filter(|m| !m.is_clear()).collect();
+    match media.as_slice() {
+        [] => Decision::off("the scene declares no medium that absorbs or scatters light"),
         _ => {
             let names: Vec<String> = media
                 .iter()
@@ -175,7 +198,7 @@ fn media_decision(media: &[&Medium]) -> Decision {
 }
 
 fn volume_map_decision(media: &[&Medium], s: &IntegratorSettings) -> Decision {
-    match (media.first(), s.direct, s.photons) {
+    match (media.iter().find(|m| !m.is_clear()), s.direct, s.photons) {
         (None, _, _) => Decision::off("no participating medium to store photons in"),
         (Some(_), _, 0) => Decision::off("[integrator] photons = 0"),
         (Some(m), DirectLighting::PhotonMap, _) => Decision::on(format!(

@@ -37,6 +37,8 @@ pub struct RawScene {
 #[serde(deny_unknown_fields)]
 pub struct RawWorld {
     pub medium: S<String>,
+    pub earth: S<String>,
+    pub earth_radius_m: S<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -49,6 +51,7 @@ pub struct RawMedium {
     pub albedo: S<toml::Value>,
     pub phase: S<toml::Value>,
     pub density: S<toml::Value>,
+    pub index: S<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -106,6 +109,12 @@ pub struct RawIntegrator {
     pub seed: S<i64>,
     pub filter: S<String>,
     pub cone_k: S<f64>,
+    pub ode: S<String>,
+    pub ode_rtol: S<f64>,
+    pub ode_atol: S<f64>,
+    pub ode_step_m: S<f64>,
+    pub ode_max_step_m: S<f64>,
+    pub arc_tolerance_m: S<f64>,
 }
 
 #[derive(Debug, Deserialize)]

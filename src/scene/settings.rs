@@ -57,6 +57,40 @@ pub enum Filter {
     Epanechnikov,
 }
 
+/// How curved paths are followed (used only where a medium's refractive index varies).
+#[derive(Clone, Debug, Serialize)]
+pub struct CurvedSettings {
+    /// The integrator of the ray equation.
+    #[serde(skip)]
+    pub method: crate::raypath::ode::Method,
+    /// "dopri5", "rk4" or "euler".
+    pub ode: &'static str,
+    /// Dormand–Prince tolerances (relative, and absolute in m and in units of n).
+    pub rtol: f64,
+    pub atol: f64,
+    /// Fixed step of RK4 and Euler, m.
+    pub step_m: f64,
+    /// Largest step, m (infinite: the world's size bounds it).
+    pub max_step_m: f64,
+    /// Chords stay within this distance of the arc, m; surface crossings are located to it.
+    pub arc_tolerance_m: f64,
+}
+
+impl Default for CurvedSettings {
+    fn default() -> Self {
+        let (rtol, atol) = (1e-9, 1e-9);
+        CurvedSettings {
+            method: crate::raypath::ode::Method::dormand_prince(rtol, atol),
+            ode: "dopri5",
+            rtol,
+            atol,
+            step_m: 1.0,
+            max_step_m: f64::INFINITY,
+            arc_tolerance_m: 1e-4,
+        }
+    }
+}
+
 #[derive(Clone, Debug, Serialize)]
 pub struct IntegratorSettings {
     pub method: Method,
@@ -80,6 +114,7 @@ pub struct IntegratorSettings {
     pub max_depth: usize,
     pub seed: u64,
     pub filter: Filter,
+    pub curved: CurvedSettings,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -218,6 +253,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         max_depth: 10,
         seed: 1,
         filter: Filter::Cone { k: 1.1 },
+        curved: CurvedSettings::default(),
     };
     let Some(i) = i else { return Ok(s) };
     let r = i.get_ref();
@@ -269,7 +305,49 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         (None, DirectLighting::ShadowRays) => true,
     };
     s.filter = filter(ctx, r)?;
+    s.curved = curved(ctx, r)?;
     Ok(s)
+}
+
+/// `ode`, `ode_rtol`, `ode_atol`, `ode_step_m`, `ode_max_step_m`, `arc_tolerance_m`.
+fn curved(ctx: &Ctx, r: &RawIntegrator) -> R<CurvedSettings> {
+    use crate::raypath::ode::Method as Ode;
+    let mut c = CurvedSettings::default();
+    let positive = |v: &Option<Spanned<f64>>, name: &str, d: f64| -> R<f64> {
+        v.as_ref().map_or(Ok(d), |v| ctx.number(v, name, 0.0, f64::INFINITY, true))
+    };
+    c.ode = match &r.ode {
+        None => "dopri5",
+        Some(o) => match ctx.choice(o, "ode", &["dopri5", "rk4", "euler"])? {
+            "rk4" => "rk4",
+            "euler" => "euler",
+            _ => "dopri5",
+        },
+    };
+    c.rtol = positive(&r.ode_rtol, "ode_rtol", c.rtol)?;
+    c.atol = positive(&r.ode_atol, "ode_atol", c.atol)?;
+    c.step_m = positive(&r.ode_step_m, "ode_step_m", c.step_m)?;
+    c.max_step_m = match &r.ode_max_step_m {
+        None => f64::INFINITY,
+        Some(v) => ctx.number(v, "ode_max_step_m", 0.0, f64::INFINITY, true)?,
+    };
+    c.arc_tolerance_m = positive(&r.arc_tolerance_m, "arc_tolerance_m", c.arc_tolerance_m)?;
+    let fixed_only = [(&r.ode_step_m, "ode_step_m")];
+    let adaptive_only = [(&r.ode_rtol, "ode_rtol"), (&r.ode_atol, "ode_atol")];
+    let unused: &[(&Option<Spanned<f64>>, &str)] = if c.ode == "dopri5" { &fixed_only } else { &adaptive_only };
+    if let Some((Some(v), name)) = unused.iter().find(|(v, _)| v.is_some()) {
+        return Err(ctx.err(&v.span(), format!("[integrator]: {name} is not used by ode = \"{}\"", c.ode)));
+    }
+    c.method = match c.ode {
+        "rk4" => Ode::Rk4 { h_m: c.step_m },
+        "euler" => Ode::Euler { h_m: c.step_m },
+        _ => Ode::DormandPrince { rtol: c.rtol, atol: c.atol, pi: true, h0: None, h_min: 0.0, h_max: c.max_step_m },
+    };
+    c.method.validate().map_err(|e| {
+        let at = r.ode.as_ref().map_or(0..0, |o| o.span());
+        ctx.err(&at, format!("[integrator]: {e}"))
+    })?;
+    Ok(c)
 }
 
 fn filter(ctx: &Ctx, r: &RawIntegrator) -> R<Filter> {

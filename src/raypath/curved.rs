@@ -1,0 +1,250 @@
+//! Following light through a medium whose refractive index varies: Fermat's ray equation
+//! d/ds(n dr/ds) = ∇n (Gutierrez et al. 2005, eq. 7), one integrator step at a time.
+//!
+//! A path alternates between two kinds of leg:
+//! - *straight*, where it is outside the field's gradient region: one chord to the nearest of
+//!   a surface, the region's boundary and the world sphere (no ODE runs there);
+//! - *curved*, inside the region: each accepted step of the integrator (the scene's
+//!   [`crate::raypath::ode::Method`]) is cut into chords within the arc tolerance
+//!   ([`super::arc`]); every chord is intersected with the scene and handed to the visitor, so a
+//!   surface crossing is found on the chord that crosses it and located on the arc to within the
+//!   tolerance; the arriving direction is the arc's tangent there (dense output). A leg ends when
+//!   a step ends outside the region.
+//!
+//! A surface the arc touches tangentially is hit when the arc goes deeper than the tolerance
+//! and missed otherwise, never both: a hit ends the event, and the next event starts on the
+//! side the path leaves to.
+
+use super::arc::{ChordOnArc, chord_count};
+use super::ode::{Integrator, OdeState, Step};
+use super::{Chord, Event, Propagator, RayState};
+use crate::geometry::{Hit, Ray};
+use crate::media::index::{GradientRegion, IndexField};
+use glam::DVec3;
+
+/// The wavelength at which a path that carries several follows a non-dispersive field (any
+/// wavelength gives the same path there).
+pub const REFERENCE_WAVELENGTH_NM: f64 = 550.0;
+
+/// Legs (straight or curved) after which a path is given up as lost: a bound no physical path
+/// reaches, since each leg either ends the event or crosses the region's boundary.
+const MAX_LEGS: usize = 10_000;
+
+/// Where a path is within one event.
+struct Walk {
+    position: DVec3,
+    dir: DVec3,
+    /// Path length so far, m.
+    travelled: f64,
+    medium: u32,
+    chords: u64,
+}
+
+/// How a leg ended.
+enum Leg {
+    /// The event is found.
+    Done(Event),
+    /// The path goes on with a leg of the other kind.
+    Switch,
+}
+
+/// The next event of a path starting at `state` in a medium with index field `field` that
+/// bends light inside `region`.
+pub(super) fn next_event(
+    prop: &Propagator,
+    state: &RayState,
+    field: &IndexField,
+    region: &GradientRegion,
+    visit: &mut dyn FnMut(&Chord) -> Option<f64>,
+) -> Event {
+    let lambda = state.wavelength_nm.unwrap_or(REFERENCE_WAVELENGTH_NM);
+    let sample = |p: DVec3| field.n_grad(lambda, p);
+    let medium = state.medium.unwrap_or_default();
+    let mut walk = Walk { position: state.position, dir: state.dir, travelled: 0.0, medium, chords: 0 };
+    let Ok(mut ode) = Integrator::new(prop.scene.integrator.curved.method) else {
+        prop.work.lose();
+        return Event::Lost { position: state.position };
+    };
+    let mut curved = region.contains(walk.position);
+    let mut event = Event::Lost { position: state.position };
+    for _ in 0..MAX_LEGS {
+        let leg = if curved {
+            curved_leg(prop, &sample, region, &mut ode, &mut walk, visit)
+        } else {
+            straight_leg(prop, region, &mut walk, visit)
+        };
+        match leg {
+            Leg::Done(e) => {
+                event = e;
+                break;
+            }
+            Leg::Switch => curved = !curved,
+        }
+    }
+    let c = ode.counters();
+    prop.work.add(c.accepted, c.rejected, c.rhs_evals, walk.chords);
+    if matches!(event, Event::Lost { .. }) {
+        prop.work.lose();
+    }
+    event
+}
+
+/// A straight leg outside the gradient region: to a surface, into the region, or out of the
+/// world.
+fn straight_leg(
+    prop: &Propagator,
+    region: &GradientRegion,
+    w: &mut Walk,
+    visit: &mut dyn FnMut(&Chord) -> Option<f64>,
+) -> Leg {
+    let hit = prop.scene.bvh.intersect(&prop.scene.shapes, &Ray::new(w.position, w.dir), f64::INFINITY);
+    let end = hit.map_or_else(|| prop.world_exit(w.position, w.dir), |h| h.t);
+    let entry = region.entry_distance(w.position, w.dir, end).filter(|t| *t < end);
+    let length = entry.unwrap_or(end);
+    w.chords += 1;
+    let chord = Chord { origin: w.position, dir: w.dir, length, medium: Some(w.medium) };
+    if let Some(t) = visit(&chord).filter(|t| *t < length) {
+        return Leg::Done(Event::Medium {
+            position: w.position + t * w.dir,
+            dir: w.dir,
+            path_length: w.travelled + t,
+            medium: w.medium,
+        });
+    }
+    if let Some(t) = entry {
+        w.position += t * w.dir;
+        w.travelled += t;
+        return Leg::Switch;
+    }
+    Leg::Done(match hit {
+        Some(mut h) => {
+            h.t += w.travelled;
+            Event::Surface { hit: h, dir: w.dir, path_length: h.t, medium: Some(w.medium) }
+        }
+        None => Event::Escape { dir: w.dir },
+    })
+}
+
+/// A curved leg inside the gradient region, step by step, until an event or until a step ends
+/// outside the region.
+fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
+    prop: &Propagator,
+    sample: &F,
+    region: &GradientRegion,
+    ode: &mut Integrator,
+    w: &mut Walk,
+    visit: &mut dyn FnMut(&Chord) -> Option<f64>,
+) -> Leg {
+    let Ok(mut state) = OdeState::launch(sample, w.position, w.dir) else {
+        return Leg::Done(Event::Lost { position: w.position });
+    };
+    ode.restart();
+    let settings = &prop.scene.integrator.curved;
+    let h_cap = settings.max_step_m.min(prop.world_radius);
+    loop {
+        let Ok(step) = ode.step(sample, &mut state, h_cap) else {
+            return Leg::Done(Event::Lost { position: w.position });
+        };
+        if let Some(e) = chords_of(prop, &step, settings.arc_tolerance_m, w, visit) {
+            return Leg::Done(e);
+        }
+        w.position = state.y.r;
+        w.dir = state.y.direction();
+        if prop.outside_world(w.position) {
+            return Leg::Done(Event::Escape { dir: w.dir });
+        }
+        if !region.contains(w.position) {
+            return Leg::Switch;
+        }
+    }
+}
+
+/// Hands the chords of one step to the scene and the visitor; the event, if one happens on
+/// this step.
+fn chords_of(
+    prop: &Propagator,
+    step: &Step,
+    tol_m: f64,
+    w: &mut Walk,
+    visit: &mut dyn FnMut(&Chord) -> Option<f64>,
+) -> Option<Event> {
+    let count = chord_count(step, tol_m);
+    for i in 0..count {
+        let c = ChordOnArc::new(step, i, count);
+        let d = c.to - c.from;
+        let len = d.length();
+        if len.is_nan() || len <= 0.0 {
+            continue;
+        }
+        let u = d / len;
+        let hit = prop.scene.bvh.intersect(&prop.scene.shapes, &Ray::new(c.from, u), len);
+        let seg = hit.map_or(len, |h| h.t);
+        w.chords += 1;
+        let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium) };
+        if let Some(t) = visit(&chord).filter(|t| *t < seg) {
+            return Some(Event::Medium {
+                position: c.from + t * u,
+                dir: step.direction_at(c.theta_at(t, len)),
+                path_length: w.travelled + t,
+                medium: w.medium,
+            });
+        }
+        if let Some(h) = hit {
+            let (h, theta, chord_dir) = refine(prop, step, &c, h, u);
+            return Some(surface(step, theta, h, chord_dir, c.from, w));
+        }
+        w.travelled += len;
+        if prop.outside_world(c.to) {
+            return Some(Event::Escape { dir: step.direction_at(c.theta1) });
+        }
+    }
+    None
+}
+
+/// Sub-chords per refinement round and rounds: each round shrinks the sagitta of the chord
+/// that crosses the surface by 8² = 64.
+const REFINE_PARTS: usize = 8;
+const REFINE_ROUNDS: usize = 3;
+
+/// Locates the crossing found on chord `c` more closely on the arc: the part of the arc that the
+/// chord spans is cut into finer chords, and the first of them that crosses the surface is
+/// searched again. When no finer chord crosses (the arc only grazes the surface, within the
+/// tolerance), the chord's own hit stands. Returns the hit, its step fraction θ and the
+/// direction of the chord that found it.
+fn refine(prop: &Propagator, step: &Step, c: &ChordOnArc, hit: Hit, u: DVec3) -> (Hit, f64, DVec3) {
+    let len = (c.to - c.from).length();
+    let mut best = (hit, c.theta_at(hit.t, len), u);
+    let (mut t0, mut t1) = (c.theta0, c.theta1);
+    for _ in 0..REFINE_ROUNDS {
+        let mut found = None;
+        for j in 0..REFINE_PARTS {
+            let a = t0 + (t1 - t0) * j as f64 / REFINE_PARTS as f64;
+            let b = t0 + (t1 - t0) * (j + 1) as f64 / REFINE_PARTS as f64;
+            let (pa, pb) = (if j == 0 { c.from } else { step.position_at(a) }, step.position_at(b));
+            let d = pb - pa;
+            let l = d.length();
+            if l.is_nan() || l <= 0.0 {
+                continue;
+            }
+            if let Some(h) = prop.scene.bvh.intersect(&prop.scene.shapes, &Ray::new(pa, d / l), l) {
+                found = Some((h, a + (b - a) * (h.t / l).clamp(0.0, 1.0), d / l, a, b));
+                break;
+            }
+        }
+        let Some((h, theta, dir, a, b)) = found else { break };
+        best = (h, theta, dir);
+        (t0, t1) = (a, b);
+    }
+    best
+}
+
+/// The surface event at hit `h` (step fraction `theta`, found by a chord along `chord_dir`): the
+/// point and normal of the hit, the arc's tangent as the arriving direction — unless at a
+/// grazing hit the tangent and the chord disagree about which side the path arrives from, where
+/// the chord (which did cross) decides.
+fn surface(step: &Step, theta: f64, mut h: Hit, chord_dir: DVec3, chord_from: DVec3, w: &Walk) -> Event {
+    let tangent = step.direction_at(theta);
+    let dir = if tangent.dot(h.normal).signum() == chord_dir.dot(h.normal).signum() { tangent } else { chord_dir };
+    h.t = w.travelled + (h.point - chord_from).length();
+    Event::Surface { hit: h, dir, path_length: h.t, medium: Some(w.medium) }
+}
