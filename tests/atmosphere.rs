@@ -186,3 +186,110 @@ fn cauchy_born_wolf_constants_agree_with_ciddor_in_the_visible() {
     close(at0, 28.79e-5 * (1.0 + 5.67e-3 / 0.5893f64.powi(2)), 1e-12, "Cauchy at 0 °C");
     assert!(Ciddor::new(-1.0).is_err() && Ciddor::new(2500.0).is_err());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Atmospheres: base + edits + dispersion.
+
+use glam::DVec3;
+use morgana::atmosphere::edit::{HotSurface, Inversion, Offset};
+use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, Edit};
+use morgana::media::index::GradientRegion;
+
+fn edited(edits: Vec<Edit>) -> Atmosphere {
+    Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, edits, AirDispersion::ciddor(450.0).unwrap(), 86_000.0)
+        .unwrap()
+}
+
+#[test]
+fn standard_atmosphere_index_at_sea_level_is_ciddors_standard_air() {
+    // USA76 sea level is 15 °C and 101325 Pa: the state of Ciddor's standard air. The model's
+    // ideal-gas density (1.2250) is 0.04% below the real-gas density Ciddor scales by (BIPM
+    // compressibility Z = 0.99959), so n − 1 agrees to 5e-4.
+    let a = Atmosphere::usa76();
+    let c = morgana::atmosphere::dispersion::Ciddor::new(450.0).unwrap();
+    for l in [400.0, 550.0, 700.0] {
+        close(
+            a.n_grad(l, DVec3::ZERO).0 - 1.0,
+            c.refractivity(l, 288.15, 101_325.0),
+            5e-4,
+            &format!("n − 1 at {l} nm"),
+        );
+    }
+    // Blue is bent more than red, and n falls with height.
+    assert!(a.n_grad(450.0, DVec3::ZERO).0 > a.n_grad(650.0, DVec3::ZERO).0);
+    assert!(a.n_grad(550.0, DVec3::ZERO).1.y < 0.0);
+}
+
+#[test]
+fn horizontal_ray_curvature_matches_the_earths_at_the_ducting_gradient() {
+    // A horizontal ray curves with κ = |∂n/∂z|/n. It follows the Earth (κ = 1/R) when dT/dz =
+    // T/((n − 1)R) − g₀M₀/R* ≈ +0.129 K/m at 15 °C, 1 atm (the ducting threshold quoted in issue 5).
+    // An inversion of ΔT = 4w·s has slope s at its midpoint; add the base lapse back so the total
+    // dT/dz there is 0.129 K/m.
+    let w = 10.0;
+    let slope = 0.129 + 0.0065;
+    let a = edited(vec![Edit::Inversion(Inversion::new(4.0 * w * slope, 0.0, w).unwrap())]);
+    let (n, g) = a.n_grad(550.0, DVec3::new(0.0, 1e-6, 0.0));
+    let kappa = -g.y / n;
+    close(kappa * EARTH_RADIUS_M, 1.0, 0.03, "κR at dT/dz = 0.129 K/m");
+    // The standard atmosphere bends a horizontal ray with about a sixth of the Earth's curvature
+    // (the coefficient of terrestrial refraction of the standard atmosphere, k ≈ 0.17).
+    let (n, g) = Atmosphere::usa76().n_grad(550.0, DVec3::ZERO);
+    let k = -g.y / n * EARTH_RADIUS_M;
+    assert!((0.15..0.19).contains(&k), "k = {k}");
+}
+
+#[test]
+fn edits_shape_the_temperature_profile_as_their_formulas_say() {
+    let hot = edited(vec![Edit::HotSurface(HotSurface::new(30.0, 20.0 / 3.0).unwrap())]);
+    for z in [0.0, 1.0, 6.0, 20.0, 60.0] {
+        let t = hot.air(DVec3::new(3.0, z, -2.0)).temperature_k;
+        let want = 288.15 - 0.0065 * usa76::geopotential_m(z) + 30.0 * (-z * 3.0 / 20.0).exp();
+        assert!((t - want).abs() < 1e-9, "hot road T({z}) = {t}, want {want}");
+    }
+    // Air near a hot road is less dense, so n increases with height there: rays bend up.
+    let g = hot.n_grad(550.0, DVec3::new(0.0, 0.5, 0.0)).1;
+    assert!(g.y > 0.0, "∂n/∂z = {}", g.y);
+    let inv =
+        edited(vec![Edit::Offset(Offset { dt_k: -15.0 }), Edit::Inversion(Inversion::new(10.0, 30.0, 3.0).unwrap())]);
+    let mid = inv.air(DVec3::new(0.0, 30.0, 0.0)).temperature_k;
+    assert!((mid - (288.15 - 15.0 - 0.0065 * usa76::geopotential_m(30.0) + 5.0)).abs() < 1e-9);
+    // Pressure is the base's (see the model's approximation); density follows the ideal gas.
+    let p = inv.air(DVec3::new(0.0, 30.0, 0.0));
+    close(p.pressure_pa, usa76::at_geometric(30.0).pressure_pa, 1e-15, "pressure unchanged by edits");
+    close(p.density_kg_m3, p.pressure_pa * gas::M0_KG_PER_MOL / (gas::R_STAR * p.temperature_k), 1e-15, "ideal gas");
+}
+
+#[test]
+fn the_atmosphere_ends_smoothly_at_its_top() {
+    for top in [86_000.0, 40_000.0] {
+        let a = Atmosphere::usa76().with_top(top).unwrap();
+        let up = |h: f64| DVec3::new(0.0, h, 0.0);
+        assert_eq!(a.n_grad(550.0, up(top)), (1.0, DVec3::ZERO));
+        assert_eq!(a.n_grad(550.0, up(top + 1e4)), (1.0, DVec3::ZERO));
+        let (n, g) = a.n_grad(550.0, up(top - 1e-3));
+        assert!(n - 1.0 < 1e-15 && g.length() < 1e-12, "just below the top: n − 1 = {}, ∇n = {g}", n - 1.0);
+        // Below the taper the index is untouched Gladstone–Dale.
+        let h = top - 1_500.0;
+        let rho = usa76::at_geometric(h).density_kg_m3();
+        let k = a.dispersion.gladstone_dale_m3_per_kg(550.0);
+        // (n is 1 + 2e-9 at 84.5 km, so n − 1 carries the rounding of 1 + x: one ulp of 1.)
+        assert!((a.n_grad(550.0, up(h)).0 - 1.0 - k * rho).abs() <= f64::EPSILON, "below the taper at {h} m");
+        match a.gradient_region() {
+            GradientRegion::Shell { r_max, .. } => close(r_max, EARTH_RADIUS_M + top, 1e-15, "shell radius"),
+            r => panic!("spherical atmosphere region {r:?}"),
+        }
+        assert!(!a.gradient_region().contains(up(top + 1.0)) && a.gradient_region().contains(up(top - 1.0)));
+    }
+}
+
+#[test]
+fn atmosphere_construction_rejects_impossible_settings() {
+    let d = AirDispersion::CauchyBornWolf;
+    let e = Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, vec![], d, 90_000.0).unwrap_err();
+    assert!(e.contains("top_m = 90000") && e.contains("86000"), "{e}");
+    let cold = vec![Edit::Offset(Offset { dt_k: -150.0 }), Edit::HotSurface(HotSurface::new(-50.0, 1.0).unwrap())];
+    let e = Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, cold, d, 86_000.0).unwrap_err();
+    assert!(e.contains("-13.05") && e.contains("must stay positive"), "{e}");
+    assert!(Inversion::new(1.0, 2.0, 0.0).is_err() && HotSurface::new(1.0, -1.0).is_err());
+}

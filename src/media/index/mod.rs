@@ -30,7 +30,7 @@ pub use monotone_cubic::MonotoneCubic;
 pub use profile::Profile;
 pub use region::GradientRegion;
 pub use sum::Sum;
-pub use temperature_grid::{GridPressure, TemperatureGrid};
+pub use temperature_grid::{GridPressure, TemperatureGrid, catmull_rom_overshoot};
 
 use crate::geometry::Aabb;
 use glam::DVec3;
@@ -48,6 +48,8 @@ pub enum IndexField {
     Profile(Profile),
     /// Air with a 3-D temperature lattice.
     TemperatureGrid(Box<TemperatureGrid>),
+    /// A standard or edited atmosphere.
+    Atmosphere(Box<crate::atmosphere::Atmosphere>),
     /// A base field plus local bumps.
     Sum(Sum),
 }
@@ -69,6 +71,7 @@ impl IndexField {
             IndexField::Exponential(e) => e.n_grad(p),
             IndexField::Profile(f) => f.n_grad(p),
             IndexField::TemperatureGrid(g) => g.n_grad(wavelength_nm, p),
+            IndexField::Atmosphere(a) => a.n_grad(wavelength_nm, p),
             IndexField::Sum(s) => s.n_grad(wavelength_nm, p),
         }
     }
@@ -83,7 +86,7 @@ impl IndexField {
         match self {
             IndexField::Constant(c) => c.is_dispersive(),
             IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => false,
-            IndexField::TemperatureGrid(_) => true,
+            IndexField::TemperatureGrid(_) | IndexField::Atmosphere(_) => true,
             IndexField::Sum(s) => s.base.is_dispersive(),
         }
     }
@@ -98,6 +101,7 @@ impl IndexField {
             IndexField::Linear(_) | IndexField::Exponential(_) => GradientRegion::Everywhere,
             IndexField::Profile(f) => height_band(&f.earth, f.height_range()),
             IndexField::TemperatureGrid(g) => g.gradient_region(),
+            IndexField::Atmosphere(a) => a.gradient_region(),
             IndexField::Sum(s) => s.bumps.iter().fold(s.base.gradient_region(), |r, b| {
                 r.union(GradientRegion::Shell { centre: b.centre, r_min: 0.0, r_max: b.radius_m })
             }),
@@ -113,7 +117,7 @@ impl IndexField {
             IndexField::Exponential(e) => e.min_n(),
             IndexField::Profile(f) => f.min_n(),
             // K(λ) > 0 and ρ > 0 in the air laws' range (checked by `validate`).
-            IndexField::TemperatureGrid(_) => 1.0,
+            IndexField::TemperatureGrid(_) | IndexField::Atmosphere(_) => 1.0,
             IndexField::Sum(s) => s.base.min_n_bound(domain, wavelength_range_nm) + s.min_n_added(),
         }
     }
@@ -153,6 +157,7 @@ impl IndexField {
             IndexField::Constant(c) => c.check_range(range_nm),
             IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => Ok(()),
             IndexField::TemperatureGrid(g) => g.dispersion.check_range(range_nm),
+            IndexField::Atmosphere(a) => a.dispersion.check_range(range_nm),
             IndexField::Sum(s) => s.base.check_range(range_nm),
         }
     }
