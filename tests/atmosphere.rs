@@ -293,3 +293,185 @@ fn atmosphere_construction_rejects_impossible_settings() {
     assert!(e.contains("-13.05") && e.contains("must stay positive"), "{e}");
     assert!(Inversion::new(1.0, 2.0, 0.0).is_err() && HotSurface::new(1.0, -1.0).is_err());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Atmosphere files.
+
+use morgana::atmosphere::file::{Files, load_str};
+use morgana::media::index::Lattice;
+use morgana::media::index::grid_file::{self, Encoding, Quantity};
+use std::path::{Path, PathBuf};
+
+fn repo(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+fn load_text(toml: &str) -> morgana::error::Result<Atmosphere> {
+    load_str(toml, Path::new("test.toml"), &Files::Dir(std::env::temp_dir()))
+}
+
+fn error_of(toml: &str) -> String {
+    match load_text(toml) {
+        Ok(_) => panic!("accepted but should be rejected:\n{toml}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn every_shipped_atmosphere_loads_from_disk_and_as_a_builtin() {
+    for name in morgana::atmosphere::BUILTIN_NAMES {
+        let from_disk = morgana::atmosphere::load(&repo(&format!("atmospheres/{name}.toml")))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let built_in = Atmosphere::builtin(name).unwrap();
+        assert_eq!(from_disk, built_in, "{name}");
+        assert_eq!(from_disk.name, *name);
+        assert!(morgana::atmosphere::resolve(name).is_ok());
+    }
+    // The usa76 file is the code's standard atmosphere.
+    assert_eq!(Atmosphere::builtin("usa76").unwrap(), Atmosphere::usa76());
+    let e = Atmosphere::builtin("venus").unwrap_err().to_string();
+    assert!(e.contains("venus") && e.contains("usa76, hot_road"), "{e}");
+    assert!(morgana::atmosphere::resolve("no/such/file.toml").is_err());
+}
+
+#[test]
+fn shipped_mirage_atmospheres_have_the_gradients_their_headers_claim() {
+    let up = |h: f64| DVec3::new(0.0, h, 0.0);
+    // Hot road: n rises with height at the road (rays bend up), T = 318.15 K at the road.
+    let hot = Atmosphere::builtin("hot_road").unwrap();
+    assert!((hot.air(up(0.0)).temperature_k - 318.15).abs() < 1e-9);
+    assert!(hot.n_grad(550.0, up(1.0)).1.y > 0.0);
+    // Inversion: at 30 m the ray curvature exceeds the Earth's (ducting).
+    let inv = Atmosphere::builtin("inversion").unwrap();
+    let (n, g) = inv.n_grad(550.0, up(30.0));
+    assert!(-g.y / n * EARTH_RADIUS_M > 1.0, "κR = {}", -g.y / n * EARTH_RADIUS_M);
+    // Fata Morgana: both layers duct, and 300 m (the observer) is between them and does not.
+    let fm = Atmosphere::builtin("fata_morgana").unwrap();
+    for (h, ducts) in [(100.0, true), (300.0, false), (500.0, true)] {
+        let (n, g) = fm.n_grad(550.0, up(h));
+        assert_eq!(-g.y / n * EARTH_RADIUS_M > 1.0, ducts, "at {h} m: κR = {}", -g.y / n * EARTH_RADIUS_M);
+    }
+}
+
+#[test]
+fn tropical_table_is_the_afgl_model_and_hydrostatic() {
+    let a = Atmosphere::builtin("tropical").unwrap();
+    let at = |h: f64| a.air(DVec3::new(0.0, h, 0.0));
+    // Anderson et al. 1986 Table 1a: 299.7 K and 1013 mb at the surface, 194.8 K at 17 km.
+    assert!((at(0.0).temperature_k - 299.7).abs() < 1e-9 && (at(0.0).pressure_pa - 101_300.0).abs() < 1e-6);
+    assert!((at(17_000.0).temperature_k - 194.8).abs() < 1e-9);
+    // The report built its pressures hydrostatically from its temperatures: check each layer up to
+    // 86 km against ln(P₁/P₀) = −(g M₀/R*)∫dz/T (T linear in the layer, g at mid-layer), to 1%
+    // (the table prints 3–4 digits). A mistyped digit in the transcription would show here.
+    let text = std::fs::read_to_string(repo("atmospheres/tropical_afgl1986.csv")).unwrap();
+    let cols = morgana::atmosphere::table::parse_numeric_columns(&text, &["z", "t", "p"]).unwrap();
+    let (z, t, p) = (&cols[0], &cols[1], &cols[2]);
+    for i in 0..z.len() - 1 {
+        if z[i + 1] > 86_000.0 {
+            break;
+        }
+        let dz = z[i + 1] - z[i];
+        let integral = if t[i] == t[i + 1] { dz / t[i] } else { dz * (t[i + 1] / t[i]).ln() / (t[i + 1] - t[i]) };
+        let zm = 0.5 * (z[i] + z[i + 1]);
+        let g = usa76::G0 * (EARTH_RADIUS_M / (EARTH_RADIUS_M + zm)).powi(2);
+        let predicted = p[i] * (-g * gas::M0_KG_PER_MOL / gas::R_STAR * integral).exp();
+        close(p[i + 1], predicted, 0.01, &format!("hydrostatic pressure at {} m", z[i + 1]));
+    }
+}
+
+#[test]
+fn keys_default_and_choose_as_documented() {
+    let a = load_text("").unwrap();
+    assert_eq!(
+        a,
+        Atmosphere::usa76()
+            .with_top(86_000.0)
+            .map(|mut x| {
+                x.name = "test".into();
+                x
+            })
+            .unwrap()
+    );
+    let a = load_text("dispersion = \"cauchy_born_wolf\"\nearth = \"flat\"\ntop_m = 40000\n").unwrap();
+    assert_eq!((a.dispersion, a.earth, a.top_m()), (AirDispersion::CauchyBornWolf, Earth::flat_y(), 40_000.0));
+    let a = load_text("earth_radius_m = 3389500\nco2_ppm = 300\n").unwrap();
+    assert_eq!(a.earth, Earth::spherical_y(3_389_500.0).unwrap());
+    assert_eq!(a.dispersion, AirDispersion::ciddor(300.0).unwrap());
+}
+
+#[test]
+fn bad_atmosphere_files_are_rejected_with_file_line_and_key() {
+    let cases: &[(&str, &[&str])] = &[
+        ("top_m = 86000\nfoo = 1\n", &["test.toml:2:1", "foo"]),
+        ("top_m = 90000\n", &["test.toml:1:9", "top_m = 90000", "at most 86000"]),
+        ("top_m = -5\n", &["top_m = -5", "greater than 0"]),
+        ("dispersion = \"sellmeier\"\n", &["test.toml:1:14", "allowed: ciddor, cauchy_born_wolf"]),
+        (
+            "dispersion = \"cauchy_born_wolf\"\nco2_ppm = 400\n",
+            &["test.toml:2:11", "only used with dispersion = \"ciddor\""],
+        ),
+        ("co2_ppm = 5000\n", &["co2_ppm = 5000", "between 0 and 2000"]),
+        ("earth = \"flat\"\nearth_radius_m = 1\n", &["test.toml:2", "only used with earth = \"spherical\""]),
+        ("base = \"usa76\"\nprofile = \"x.csv\"\n", &["test.toml:1", "either `base` or `profile`"]),
+        ("base = \"usa62\"\n", &["allowed: usa76"]),
+        ("profile = \"definitely-missing.csv\"\n", &["test.toml:1:11", "cannot read"]),
+        ("[[edit]]\ndT_k = 3\n", &["test.toml:1", "missing key `type`"]),
+        ("[[edit]]\ntype = \"heatwave\"\n", &["test.toml:2:8", "allowed: offset, hot_surface"]),
+        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\n", &["edit \"hot_surface\": missing key `z0_m`"]),
+        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\nz0_m = 0\n", &["test.toml:4:8", "z0_m = 0", "greater than 0"]),
+        (
+            "[[edit]]\ntype = \"offset\"\ndT_k = 1\nheight_m = 3\n",
+            &["test.toml:4:12", "key `height_m` is not used here; allowed keys: dT_k"],
+        ),
+        ("[[edit]]\ntype = \"inversion\"\ndT_k = 1\nheight_m = 3\nthickness_m = -1\n", &["thickness_m = -1"]),
+        ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "key `centre`"]),
+        ("[[edit]]\ntype = \"offset\"\ndT_k = -400\n", &["can cool the air to", "must stay positive"]),
+        ("[[edit]]\ntype = \"grid\"\nfile = \"missing.mfield\"\n", &["missing.mfield", "cannot read"]),
+        ("top_m = \"high\"\n", &["test.toml:1:9", "key `top_m`", "expected f64"]),
+    ];
+    for (toml, wants) in cases {
+        let e = error_of(toml);
+        for w in *wants {
+            assert!(e.contains(w), "error for\n{toml}\nwas: {e}\nmissing: {w}");
+        }
+    }
+}
+
+#[test]
+fn profile_tables_and_grid_edits_load_from_files_beside_the_atmosphere() {
+    let dir = std::env::temp_dir().join(format!("morgana-atm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("bad.csv"), "altitude_m,temperature_k,pressure_pa\n0,280,1e5\n1000,abc,9e4\n").unwrap();
+    let e = load_str("profile = \"bad.csv\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone())).unwrap_err().to_string();
+    assert!(e.contains("bad.csv:3") && e.contains("expected 3 numbers"), "{e}");
+    std::fs::write(dir.join("good.csv"), "# two rows\n0,280,1e5\n2000,270,8e4\n").unwrap();
+    let a = load_str("profile = \"good.csv\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone())).unwrap();
+    assert_eq!(a.top_m(), 2000.0);
+    assert!((a.air(DVec3::new(0.0, 2000.0, 0.0)).temperature_k - 270.0).abs() < 1e-9);
+
+    // A ΔT lattice that fades to zero on its faces: 4 K at the centre point.
+    let bump =
+        Lattice::from_fn([5, 5, 5], DVec3::splat(-2.0), DVec3::ONE, |p| if p == DVec3::ZERO { 4.0 } else { 0.0 })
+            .unwrap();
+    grid_file::write(&dir.join("warm.mfield"), Quantity::DeltaTemperatureK, &bump, Encoding::F64Le).unwrap();
+    let toml = "earth = \"flat\"\n[[edit]]\ntype = \"grid\"\nfile = \"warm.mfield\"\ninterpolation = \"trilinear\"\n";
+    let a = load_str(toml, &dir.join("a.toml"), &Files::Dir(dir.clone())).unwrap();
+    let base = usa76::at_geometric(0.0).temperature_k;
+    assert!((a.air(DVec3::ZERO).temperature_k - base - 4.0).abs() < 1e-9);
+    assert!((a.air(DVec3::new(5.0, 0.0, 0.0)).temperature_k - base).abs() < 1e-9);
+    // Absolute temperatures are not a perturbation; a lattice that does not fade out is refused.
+    let abs = Lattice::from_fn([3, 3, 3], DVec3::ZERO, DVec3::ONE, |_| 290.0).unwrap();
+    grid_file::write(&dir.join("abs.mfield"), Quantity::TemperatureK, &abs, Encoding::Ascii).unwrap();
+    let e =
+        load_str("[[edit]]\ntype = \"grid\"\nfile = \"abs.mfield\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone()))
+            .unwrap_err()
+            .to_string();
+    assert!(e.contains("a.toml:3:8") && e.contains("delta_temperature_k"), "{e}");
+    grid_file::write(&dir.join("edge.mfield"), Quantity::DeltaTemperatureK, &abs, Encoding::Ascii).unwrap();
+    let e =
+        load_str("[[edit]]\ntype = \"grid\"\nfile = \"edge.mfield\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone()))
+            .unwrap_err()
+            .to_string();
+    assert!(e.contains("faces reaches 290 K"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
