@@ -280,6 +280,11 @@ fn gradient_regions_bound_where_the_gradient_is_non_zero() {
     let above = profile.n(500.0, DVec3::new(0.0, 10.0 + 1e-9, 0.0));
     assert!((below - above).abs() < 1e-12);
 
+    // The exponential field is held at n₀ below the ground: its region is h ≥ 0.
+    let exp = IndexField::Exponential(Exponential::new(1.0003, 8000.0, Earth::flat_y()).unwrap());
+    assert_eq!(exp.gradient_region(), GradientRegion::Slab { up: DVec3::Y, h_min: 0.0, h_max: f64::INFINITY });
+    assert_eq!(exp.n_grad(500.0, DVec3::new(0.0, -3.0, 0.0)).1, DVec3::ZERO);
+
     let sum = IndexField::Sum(Sum {
         base: Box::new(IndexField::Constant(Constant::Ior(Ior::Constant { n: 1.33 }))),
         bumps: vec![Bump::new(DVec3::new(5.0, 0.0, 0.0), 1.0, 1e-3).unwrap()],
@@ -438,4 +443,92 @@ fn tabulated_base_atmosphere_gradient_matches_differences() {
         }
         check.at(l, pt);
     }
+}
+
+#[test]
+fn bumps_on_a_dispersive_atmosphere_keep_both_gradients_and_regions() {
+    let base = atmosphere(
+        Earth::standard(),
+        vec![Edit::HotSurface(HotSurface::new(10.0, 2.0).unwrap())],
+        AirDispersion::CauchyBornWolf,
+    );
+    let bump = Bump::new(DVec3::new(0.0, 3.0, 0.0), 2.0, 5e-6).unwrap();
+    let f = IndexField::Sum(Sum { base: Box::new(base), bumps: vec![bump] });
+    let check = Check { name: "atmosphere + bump", field: &f, step: 1e-4 };
+    for (l, p) in samples(70, 300, |u| spread(u, DVec3::splat(2.5), DVec3::new(0.0, 3.0, 0.0))) {
+        if p.y > 1e-3 {
+            check.at(l, p);
+        }
+    }
+    assert!(f.is_dispersive());
+    assert!(!f.gradient_region().contains(DVec3::new(0.0, 1e5, 0.0)));
+    assert!(f.gradient_region().contains(DVec3::new(0.0, 3.0, 0.0)));
+}
+
+#[test]
+fn every_field_is_finite_at_extreme_points() {
+    // Far away, deep underground, at the Earth's centre, on the ground, exactly at the top:
+    // no field may return NaN or Inf (the ODE must never see one).
+    let earth = Earth::standard();
+    let r = morgana::atmosphere::EARTH_RADIUS_M;
+    let points = [
+        DVec3::ZERO,
+        DVec3::new(0.0, -r, 0.0),
+        DVec3::new(0.0, -0.5 * r, 0.0),
+        DVec3::new(1e12, 1e12, -1e12),
+        DVec3::new(0.0, 86_000.0, 0.0),
+        DVec3::new(0.0, -1e4, 0.0),
+        DVec3::new(3e6, 0.0, 0.0),
+    ];
+    let d = AirDispersion::ciddor(450.0).unwrap();
+    let fields = [
+        IndexField::Exponential(Exponential::new(1.0003, 8000.0, earth).unwrap()),
+        IndexField::Profile(Profile::new(vec![0.0, 100.0], vec![1.0003, 1.0002], earth).unwrap()),
+        IndexField::TemperatureGrid(Box::new(
+            TemperatureGrid::new(plume_lattice(), Interpolation::Tricubic, GridPressure::Usa76 { earth }, d).unwrap(),
+        )),
+        atmosphere(
+            earth,
+            vec![
+                Edit::HotSurface(HotSurface::new(30.0, 0.01).unwrap()),
+                Edit::Inversion(Inversion::new(20.0, 10.0, 1e-3).unwrap()),
+                Edit::Bubble(Bubble::new(DVec3::ZERO, 1.0, 5.0).unwrap()),
+            ],
+            d,
+        ),
+        IndexField::Atmosphere(Box::new(Atmosphere::builtin("tropical").unwrap())),
+    ];
+    for (i, f) in fields.iter().enumerate() {
+        for p in points {
+            for l in [200.0, 550.0, 2000.0] {
+                let (n, g) = f.n_grad(l, p);
+                assert!(
+                    n.is_finite() && g.is_finite() && n >= 1.0 - 1e-15,
+                    "field #{i} at {p}, {l} nm: n = {n}, ∇n = {g}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn profiles_and_temperature_grids_load_from_files() {
+    use morgana::media::index::grid_file::{self, Encoding, Quantity};
+    let dir = std::env::temp_dir().join(format!("morgana-fields-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("n.csv"), "height_m,n\n0,1.0003\n50,1.00029\n").unwrap();
+    let p = Profile::load(&dir.join("n.csv"), Earth::flat_y()).unwrap();
+    assert_eq!(p.height_range(), (0.0, 50.0));
+    std::fs::write(dir.join("bad.csv"), "height_m,n\n0,1.0003\n50\n").unwrap();
+    let e = Profile::load(&dir.join("bad.csv"), Earth::flat_y()).unwrap_err().to_string();
+    assert!(e.contains("bad.csv:3") && e.contains("expected 2 numbers"), "{e}");
+    let path = dir.join("t.mfield");
+    grid_file::write(&path, Quantity::TemperatureK, &plume_lattice(), Encoding::F64Le).unwrap();
+    let press = GridPressure::Constant { pressure_pa: 101_325.0 };
+    let g = TemperatureGrid::load(&path, Interpolation::Trilinear, press, AirDispersion::CauchyBornWolf).unwrap();
+    assert_eq!(g.lattice(), &plume_lattice());
+    grid_file::write(&path, Quantity::DeltaTemperatureK, &plume_lattice(), Encoding::F64Le).unwrap();
+    let e = TemperatureGrid::load(&path, Interpolation::Trilinear, press, AirDispersion::CauchyBornWolf).unwrap_err();
+    assert!(e.to_string().contains("needs quantity temperature_k"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

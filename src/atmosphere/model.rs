@@ -125,6 +125,11 @@ impl Atmosphere {
     /// Temperature, pressure and density at `p`, with their gradients.
     pub fn air(&self, p: DVec3) -> AirPoint {
         let (h, gh) = self.earth.height_grad(p);
+        self.air_at(p, h, gh)
+    }
+
+    /// [`Atmosphere::air`] at `p` of height `h` with ∇h = `gh`.
+    fn air_at(&self, p: DVec3, h: f64, gh: DVec3) -> AirPoint {
         let s = self.base.state(h);
         let (mut t, mut gt) = (s.temperature_k, s.dt_dz * gh);
         for e in &self.edits {
@@ -152,7 +157,7 @@ impl Atmosphere {
         if h >= self.top_m {
             return (1.0, DVec3::ZERO);
         }
-        let a = self.air(p);
+        let a = self.air_at(p, h, gh);
         let (s, ds) = self.taper(h);
         let k = self.dispersion.gladstone_dale_m3_per_kg(wavelength_nm);
         let n = 1.0 + k * a.density_kg_m3 * s;

@@ -61,6 +61,26 @@ impl TemperatureGrid {
         Ok(TemperatureGrid { lattice, interpolation, pressure, dispersion, uniform_faces })
     }
 
+    /// Reads a lattice file of quantity `temperature_k` (see [`super::grid_file`]); errors name
+    /// the file.
+    pub fn load(
+        path: &std::path::Path,
+        interpolation: Interpolation,
+        pressure: GridPressure,
+        dispersion: AirDispersion,
+    ) -> crate::error::Result<TemperatureGrid> {
+        use crate::error::{Error, Location};
+        let (quantity, lattice) = super::grid_file::read(path)?;
+        let at = || Some(Location::file(path));
+        if quantity != super::grid_file::Quantity::TemperatureK {
+            return Err(Error::input(
+                at(),
+                format!("a temperature grid needs quantity temperature_k, the file holds {}", quantity.name()),
+            ));
+        }
+        TemperatureGrid::new(lattice, interpolation, pressure, dispersion).map_err(|e| Error::input(at(), e))
+    }
+
     pub fn lattice(&self) -> &Lattice {
         &self.lattice
     }
