@@ -2,7 +2,7 @@
 //! T += ΔT·σ((z − h)/w), σ(u) = 1/(1 + e^{−u}), so ∂ΔT/∂z = (ΔT/w)·σ(1 − σ). Inversions over cold
 //! sea bend rays down (superior mirage); two stacked ones make a Fata Morgana. Gutierrez et al.
 //! 2005 §5 interpolate their altered profiles with Fermi's distribution (their reference
-//! [VDWGL00]).
+//! \[VDWGL00\]).
 //!
 //! σ and σ(1 − σ) = e^{−|u|}/(1 + e^{−|u|})² are evaluated with e^{−|u|}, which cannot overflow.
 

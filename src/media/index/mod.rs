@@ -24,7 +24,7 @@ mod temperature_grid;
 pub use bump::Bump;
 pub use constant::Constant;
 pub use exponential::Exponential;
-pub use lattice::{Beyond, Interpolation, Lattice};
+pub use lattice::{Beyond, Interpolation, Lattice, MAX_LATTICE_POINTS};
 pub use linear::Linear;
 pub use monotone_cubic::MonotoneCubic;
 pub use profile::Profile;
@@ -92,7 +92,8 @@ impl IndexField {
     }
 
     /// Where ∇n can be non-zero; outside it n is constant and paths are straight, and n is
-    /// continuous across its boundary.
+    /// continuous across its boundary. Built on each call (a `Sum` allocates its union): ask once
+    /// per scene, not per step.
     pub fn gradient_region(&self) -> GradientRegion {
         match self {
             IndexField::Constant(_) => GradientRegion::Nowhere,
