@@ -186,3 +186,292 @@ fn cauchy_born_wolf_constants_agree_with_ciddor_in_the_visible() {
     close(at0, 28.79e-5 * (1.0 + 5.67e-3 / 0.5893f64.powi(2)), 1e-12, "Cauchy at 0 °C");
     assert!(Ciddor::new(-1.0).is_err() && Ciddor::new(2500.0).is_err());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Atmospheres: base + edits + dispersion.
+
+use glam::DVec3;
+use morgana::atmosphere::edit::{HotSurface, Inversion, Offset};
+use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, Edit};
+use morgana::media::index::GradientRegion;
+
+fn edited(edits: Vec<Edit>) -> Atmosphere {
+    Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, edits, AirDispersion::ciddor(450.0).unwrap(), 86_000.0)
+        .unwrap()
+}
+
+#[test]
+fn standard_atmosphere_index_at_sea_level_is_ciddors_standard_air() {
+    // USA76 sea level is 15 °C and 101325 Pa: the state of Ciddor's standard air. The model's
+    // ideal-gas density (1.2250) is 0.04% below the real-gas density Ciddor scales by (BIPM
+    // compressibility Z = 0.99959), so n − 1 agrees to 5e-4.
+    let a = Atmosphere::usa76();
+    let c = morgana::atmosphere::dispersion::Ciddor::new(450.0).unwrap();
+    for l in [400.0, 550.0, 700.0] {
+        close(
+            a.n_grad(l, DVec3::ZERO).0 - 1.0,
+            c.refractivity(l, 288.15, 101_325.0),
+            5e-4,
+            &format!("n − 1 at {l} nm"),
+        );
+    }
+    // Blue is bent more than red, and n falls with height.
+    assert!(a.n_grad(450.0, DVec3::ZERO).0 > a.n_grad(650.0, DVec3::ZERO).0);
+    assert!(a.n_grad(550.0, DVec3::ZERO).1.y < 0.0);
+}
+
+#[test]
+fn horizontal_ray_curvature_matches_the_earths_at_the_ducting_gradient() {
+    // A horizontal ray curves with κ = |∂n/∂z|/n. It follows the Earth (κ = 1/R) when dT/dz =
+    // T/((n − 1)R) − g₀M₀/R* ≈ +0.129 K/m at 15 °C, 1 atm (the ducting threshold quoted in issue 5).
+    // An inversion of ΔT = 4w·s has slope s at its midpoint; add the base lapse back so the total
+    // dT/dz there is 0.129 K/m.
+    let w = 10.0;
+    let slope = 0.129 + 0.0065;
+    let a = edited(vec![Edit::Inversion(Inversion::new(4.0 * w * slope, 0.0, w).unwrap())]);
+    let (n, g) = a.n_grad(550.0, DVec3::new(0.0, 1e-6, 0.0));
+    let kappa = -g.y / n;
+    close(kappa * EARTH_RADIUS_M, 1.0, 0.03, "κR at dT/dz = 0.129 K/m");
+    // The standard atmosphere bends a horizontal ray with about a sixth of the Earth's curvature
+    // (the coefficient of terrestrial refraction of the standard atmosphere, k ≈ 0.17).
+    let (n, g) = Atmosphere::usa76().n_grad(550.0, DVec3::ZERO);
+    let k = -g.y / n * EARTH_RADIUS_M;
+    assert!((0.15..0.19).contains(&k), "k = {k}");
+}
+
+#[test]
+fn edits_shape_the_temperature_profile_as_their_formulas_say() {
+    let hot = edited(vec![Edit::HotSurface(HotSurface::new(30.0, 20.0 / 3.0).unwrap())]);
+    for z in [0.0, 1.0, 6.0, 20.0, 60.0] {
+        let t = hot.air(DVec3::new(3.0, z, -2.0)).temperature_k;
+        let want = 288.15 - 0.0065 * usa76::geopotential_m(z) + 30.0 * (-z * 3.0 / 20.0).exp();
+        assert!((t - want).abs() < 1e-9, "hot road T({z}) = {t}, want {want}");
+    }
+    // Air near a hot road is less dense, so n increases with height there: rays bend up.
+    let g = hot.n_grad(550.0, DVec3::new(0.0, 0.5, 0.0)).1;
+    assert!(g.y > 0.0, "∂n/∂z = {}", g.y);
+    let inv =
+        edited(vec![Edit::Offset(Offset { dt_k: -15.0 }), Edit::Inversion(Inversion::new(10.0, 30.0, 3.0).unwrap())]);
+    let mid = inv.air(DVec3::new(0.0, 30.0, 0.0)).temperature_k;
+    assert!((mid - (288.15 - 15.0 - 0.0065 * usa76::geopotential_m(30.0) + 5.0)).abs() < 1e-9);
+    // Pressure is the base's (see the model's approximation); density follows the ideal gas.
+    let p = inv.air(DVec3::new(0.0, 30.0, 0.0));
+    close(p.pressure_pa, usa76::at_geometric(30.0).pressure_pa, 1e-15, "pressure unchanged by edits");
+    close(p.density_kg_m3, p.pressure_pa * gas::M0_KG_PER_MOL / (gas::R_STAR * p.temperature_k), 1e-15, "ideal gas");
+}
+
+#[test]
+fn the_atmosphere_ends_smoothly_at_its_top() {
+    for top in [86_000.0, 40_000.0] {
+        let a = Atmosphere::usa76().with_top(top).unwrap();
+        let up = |h: f64| DVec3::new(0.0, h, 0.0);
+        assert_eq!(a.n_grad(550.0, up(top)), (1.0, DVec3::ZERO));
+        assert_eq!(a.n_grad(550.0, up(top + 1e4)), (1.0, DVec3::ZERO));
+        let (n, g) = a.n_grad(550.0, up(top - 1e-3));
+        assert!(n - 1.0 < 1e-15 && g.length() < 1e-12, "just below the top: n − 1 = {}, ∇n = {g}", n - 1.0);
+        // Below the taper the index is untouched Gladstone–Dale.
+        let h = top - 1_500.0;
+        let rho = usa76::at_geometric(h).density_kg_m3();
+        let k = a.dispersion.gladstone_dale_m3_per_kg(550.0);
+        // (n is 1 + 2e-9 at 84.5 km, so n − 1 carries the rounding of 1 + x: one ulp of 1.)
+        assert!((a.n_grad(550.0, up(h)).0 - 1.0 - k * rho).abs() <= f64::EPSILON, "below the taper at {h} m");
+        match a.gradient_region() {
+            GradientRegion::Shell { r_max, .. } => close(r_max, EARTH_RADIUS_M + top, 1e-15, "shell radius"),
+            r => panic!("spherical atmosphere region {r:?}"),
+        }
+        assert!(!a.gradient_region().contains(up(top + 1.0)) && a.gradient_region().contains(up(top - 1.0)));
+    }
+}
+
+#[test]
+fn atmosphere_construction_rejects_impossible_settings() {
+    let d = AirDispersion::CauchyBornWolf;
+    let e = Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, vec![], d, 90_000.0).unwrap_err();
+    assert!(e.contains("top_m = 90000") && e.contains("86000"), "{e}");
+    let cold = vec![Edit::Offset(Offset { dt_k: -150.0 }), Edit::HotSurface(HotSurface::new(-50.0, 1.0).unwrap())];
+    let e = Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, cold, d, 86_000.0).unwrap_err();
+    assert!(e.contains("-13.05") && e.contains("must stay positive"), "{e}");
+    assert!(Inversion::new(1.0, 2.0, 0.0).is_err() && HotSurface::new(1.0, -1.0).is_err());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Atmosphere files.
+
+use morgana::atmosphere::file::{Files, load_str};
+use morgana::media::index::Lattice;
+use morgana::media::index::grid_file::{self, Encoding, Quantity};
+use std::path::{Path, PathBuf};
+
+fn repo(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+fn load_text(toml: &str) -> morgana::error::Result<Atmosphere> {
+    load_str(toml, Path::new("test.toml"), &Files::Dir(std::env::temp_dir()))
+}
+
+fn error_of(toml: &str) -> String {
+    match load_text(toml) {
+        Ok(_) => panic!("accepted but should be rejected:\n{toml}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn every_shipped_atmosphere_loads_from_disk_and_as_a_builtin() {
+    for name in morgana::atmosphere::BUILTIN_NAMES {
+        let from_disk = morgana::atmosphere::load(&repo(&format!("atmospheres/{name}.toml")))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let built_in = Atmosphere::builtin(name).unwrap();
+        assert_eq!(from_disk, built_in, "{name}");
+        assert_eq!(from_disk.name, *name);
+        assert!(morgana::atmosphere::resolve(name).is_ok());
+    }
+    // The usa76 file is the code's standard atmosphere.
+    assert_eq!(Atmosphere::builtin("usa76").unwrap(), Atmosphere::usa76());
+    let e = Atmosphere::builtin("venus").unwrap_err().to_string();
+    assert!(e.contains("venus") && e.contains("usa76, hot_road"), "{e}");
+    assert!(morgana::atmosphere::resolve("no/such/file.toml").is_err());
+}
+
+#[test]
+fn shipped_mirage_atmospheres_have_the_gradients_their_headers_claim() {
+    let up = |h: f64| DVec3::new(0.0, h, 0.0);
+    // Hot road: n rises with height at the road (rays bend up), T = 318.15 K at the road.
+    let hot = Atmosphere::builtin("hot_road").unwrap();
+    assert!((hot.air(up(0.0)).temperature_k - 318.15).abs() < 1e-9);
+    assert!(hot.n_grad(550.0, up(1.0)).1.y > 0.0);
+    // Inversion: at 30 m the ray curvature exceeds the Earth's (ducting).
+    let inv = Atmosphere::builtin("inversion").unwrap();
+    let (n, g) = inv.n_grad(550.0, up(30.0));
+    assert!(-g.y / n * EARTH_RADIUS_M > 1.0, "κR = {}", -g.y / n * EARTH_RADIUS_M);
+    // Fata Morgana: both layers duct, and 300 m (the observer) is between them and does not.
+    let fm = Atmosphere::builtin("fata_morgana").unwrap();
+    for (h, ducts) in [(100.0, true), (300.0, false), (500.0, true)] {
+        let (n, g) = fm.n_grad(550.0, up(h));
+        assert_eq!(-g.y / n * EARTH_RADIUS_M > 1.0, ducts, "at {h} m: κR = {}", -g.y / n * EARTH_RADIUS_M);
+    }
+}
+
+#[test]
+fn tropical_table_is_the_afgl_model_and_hydrostatic() {
+    let a = Atmosphere::builtin("tropical").unwrap();
+    let at = |h: f64| a.air(DVec3::new(0.0, h, 0.0));
+    // Anderson et al. 1986 Table 1a: 299.7 K and 1013 mb at the surface, 194.8 K at 17 km.
+    assert!((at(0.0).temperature_k - 299.7).abs() < 1e-9 && (at(0.0).pressure_pa - 101_300.0).abs() < 1e-6);
+    assert!((at(17_000.0).temperature_k - 194.8).abs() < 1e-9);
+    // The report built its pressures hydrostatically from its temperatures: check each layer up to
+    // 86 km against ln(P₁/P₀) = −(g M₀/R*)∫dz/T (T linear in the layer, g at mid-layer), to 1%
+    // (the table prints 3–4 digits). A mistyped digit in the transcription would show here.
+    let text = std::fs::read_to_string(repo("atmospheres/tropical_afgl1986.csv")).unwrap();
+    let cols = morgana::atmosphere::table::parse_numeric_columns(&text, &["z", "t", "p"]).unwrap();
+    let (z, t, p) = (&cols[0], &cols[1], &cols[2]);
+    for i in 0..z.len() - 1 {
+        if z[i + 1] > 86_000.0 {
+            break;
+        }
+        let dz = z[i + 1] - z[i];
+        let integral = if t[i] == t[i + 1] { dz / t[i] } else { dz * (t[i + 1] / t[i]).ln() / (t[i + 1] - t[i]) };
+        let zm = 0.5 * (z[i] + z[i + 1]);
+        let g = usa76::G0 * (EARTH_RADIUS_M / (EARTH_RADIUS_M + zm)).powi(2);
+        let predicted = p[i] * (-g * gas::M0_KG_PER_MOL / gas::R_STAR * integral).exp();
+        close(p[i + 1], predicted, 0.01, &format!("hydrostatic pressure at {} m", z[i + 1]));
+    }
+}
+
+#[test]
+fn keys_default_and_choose_as_documented() {
+    let a = load_text("").unwrap();
+    assert_eq!(
+        a,
+        Atmosphere::usa76()
+            .with_top(86_000.0)
+            .map(|mut x| {
+                x.name = "test".into();
+                x
+            })
+            .unwrap()
+    );
+    let a = load_text("dispersion = \"cauchy_born_wolf\"\nearth = \"flat\"\ntop_m = 40000\n").unwrap();
+    assert_eq!((a.dispersion, a.earth, a.top_m()), (AirDispersion::CauchyBornWolf, Earth::flat_y(), 40_000.0));
+    let a = load_text("earth_radius_m = 3389500\nco2_ppm = 300\n").unwrap();
+    assert_eq!(a.earth, Earth::spherical_y(3_389_500.0).unwrap());
+    assert_eq!(a.dispersion, AirDispersion::ciddor(300.0).unwrap());
+}
+
+#[test]
+fn bad_atmosphere_files_are_rejected_with_file_line_and_key() {
+    let cases: &[(&str, &[&str])] = &[
+        ("top_m = 86000\nfoo = 1\n", &["test.toml:2:1", "foo"]),
+        ("top_m = 90000\n", &["test.toml:1:9", "top_m = 90000", "at most 86000"]),
+        ("top_m = -5\n", &["top_m = -5", "greater than 0"]),
+        ("dispersion = \"sellmeier\"\n", &["test.toml:1:14", "allowed: ciddor, cauchy_born_wolf"]),
+        (
+            "dispersion = \"cauchy_born_wolf\"\nco2_ppm = 400\n",
+            &["test.toml:2:11", "only used with dispersion = \"ciddor\""],
+        ),
+        ("co2_ppm = 5000\n", &["co2_ppm = 5000", "between 0 and 2000"]),
+        ("earth = \"flat\"\nearth_radius_m = 1\n", &["test.toml:2", "only used with earth = \"spherical\""]),
+        ("base = \"usa76\"\nprofile = \"x.csv\"\n", &["test.toml:1", "either `base` or `profile`"]),
+        ("base = \"usa62\"\n", &["allowed: usa76"]),
+        ("profile = \"definitely-missing.csv\"\n", &["test.toml:1:11", "cannot read"]),
+        ("[[edit]]\ndT_k = 3\n", &["test.toml:1", "missing key `type`"]),
+        ("[[edit]]\ntype = \"heatwave\"\n", &["test.toml:2:8", "allowed: offset, hot_surface"]),
+        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\n", &["edit \"hot_surface\": missing key `z0_m`"]),
+        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\nz0_m = 0\n", &["test.toml:4:8", "z0_m = 0", "greater than 0"]),
+        (
+            "[[edit]]\ntype = \"offset\"\ndT_k = 1\nheight_m = 3\n",
+            &["test.toml:4:12", "key `height_m` is not used here; allowed keys: dT_k"],
+        ),
+        ("[[edit]]\ntype = \"inversion\"\ndT_k = 1\nheight_m = 3\nthickness_m = -1\n", &["thickness_m = -1"]),
+        ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "key `centre`"]),
+        ("[[edit]]\ntype = \"offset\"\ndT_k = -400\n", &["can cool the air to", "must stay positive"]),
+        ("[[edit]]\ntype = \"grid\"\nfile = \"missing.mfield\"\n", &["missing.mfield", "cannot read"]),
+        ("top_m = \"high\"\n", &["test.toml:1:9", "key `top_m`", "expected f64"]),
+    ];
+    for (toml, wants) in cases {
+        let e = error_of(toml);
+        for w in *wants {
+            assert!(e.contains(w), "error for\n{toml}\nwas: {e}\nmissing: {w}");
+        }
+    }
+}
+
+#[test]
+fn profile_tables_and_grid_edits_load_from_files_beside_the_atmosphere() {
+    let dir = std::env::temp_dir().join(format!("morgana-atm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("bad.csv"), "altitude_m,temperature_k,pressure_pa\n0,280,1e5\n1000,abc,9e4\n").unwrap();
+    let e = load_str("profile = \"bad.csv\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone())).unwrap_err().to_string();
+    assert!(e.contains("bad.csv:3") && e.contains("expected 3 numbers"), "{e}");
+    std::fs::write(dir.join("good.csv"), "# two rows\n0,280,1e5\n2000,270,8e4\n").unwrap();
+    let a = load_str("profile = \"good.csv\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone())).unwrap();
+    assert_eq!(a.top_m(), 2000.0);
+    assert!((a.air(DVec3::new(0.0, 2000.0, 0.0)).temperature_k - 270.0).abs() < 1e-9);
+
+    // A ΔT lattice that fades to zero on its faces: 4 K at the centre point.
+    let bump =
+        Lattice::from_fn([5, 5, 5], DVec3::splat(-2.0), DVec3::ONE, |p| if p == DVec3::ZERO { 4.0 } else { 0.0 })
+            .unwrap();
+    grid_file::write(&dir.join("warm.mfield"), Quantity::DeltaTemperatureK, &bump, Encoding::F64Le).unwrap();
+    let toml = "earth = \"flat\"\n[[edit]]\ntype = \"grid\"\nfile = \"warm.mfield\"\ninterpolation = \"trilinear\"\n";
+    let a = load_str(toml, &dir.join("a.toml"), &Files::Dir(dir.clone())).unwrap();
+    let base = usa76::at_geometric(0.0).temperature_k;
+    assert!((a.air(DVec3::ZERO).temperature_k - base - 4.0).abs() < 1e-9);
+    assert!((a.air(DVec3::new(5.0, 0.0, 0.0)).temperature_k - base).abs() < 1e-9);
+    // Absolute temperatures are not a perturbation; a lattice that does not fade out is refused.
+    let abs = Lattice::from_fn([3, 3, 3], DVec3::ZERO, DVec3::ONE, |_| 290.0).unwrap();
+    grid_file::write(&dir.join("abs.mfield"), Quantity::TemperatureK, &abs, Encoding::Ascii).unwrap();
+    let e =
+        load_str("[[edit]]\ntype = \"grid\"\nfile = \"abs.mfield\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone()))
+            .unwrap_err()
+            .to_string();
+    assert!(e.contains("a.toml:3:8") && e.contains("delta_temperature_k"), "{e}");
+    grid_file::write(&dir.join("edge.mfield"), Quantity::DeltaTemperatureK, &abs, Encoding::Ascii).unwrap();
+    let e =
+        load_str("[[edit]]\ntype = \"grid\"\nfile = \"edge.mfield\"\n", &dir.join("a.toml"), &Files::Dir(dir.clone()))
+            .unwrap_err()
+            .to_string();
+    assert!(e.contains("faces reaches 290 K"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

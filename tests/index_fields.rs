@@ -7,7 +7,8 @@
 //! the rounding error of n (≈ 1 ulp of 1 per evaluation) adds 8ε/(2h) to the allowance.
 
 use glam::DVec3;
-use morgana::atmosphere::{AirDispersion, Earth};
+use morgana::atmosphere::edit::{Bubble, GridEdit, HotSurface, Inversion, Offset};
+use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, Earth, Edit, TableProfile, usa76};
 use morgana::geometry::Aabb;
 use morgana::material::Ior;
 use morgana::media::index::{
@@ -279,6 +280,11 @@ fn gradient_regions_bound_where_the_gradient_is_non_zero() {
     let above = profile.n(500.0, DVec3::new(0.0, 10.0 + 1e-9, 0.0));
     assert!((below - above).abs() < 1e-12);
 
+    // The exponential field is held at n₀ below the ground: its region is h ≥ 0.
+    let exp = IndexField::Exponential(Exponential::new(1.0003, 8000.0, Earth::flat_y()).unwrap());
+    assert_eq!(exp.gradient_region(), GradientRegion::Slab { up: DVec3::Y, h_min: 0.0, h_max: f64::INFINITY });
+    assert_eq!(exp.n_grad(500.0, DVec3::new(0.0, -3.0, 0.0)).1, DVec3::ZERO);
+
     let sum = IndexField::Sum(Sum {
         base: Box::new(IndexField::Constant(Constant::Ior(Ior::Constant { n: 1.33 }))),
         bumps: vec![Bump::new(DVec3::new(5.0, 0.0, 0.0), 1.0, 1e-3).unwrap()],
@@ -305,4 +311,224 @@ fn validation_rejects_n_below_one_and_non_positive_n() {
     let water = IndexField::Constant(Constant::Ior(Ior::Constant { n: 1.33 }));
     assert!(water.validate(&domain, vis, false).is_ok());
     assert!(IndexField::Constant(Constant::Ior(Ior::Constant { n: f64::NAN })).validate(&domain, vis, true).is_err());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Atmospheres.
+
+fn atmosphere(earth: Earth, edits: Vec<Edit>, dispersion: AirDispersion) -> IndexField {
+    IndexField::Atmosphere(Box::new(
+        Atmosphere::new("test", earth, BaseProfile::Usa76, edits, dispersion, 86_000.0).unwrap(),
+    ))
+}
+
+/// Geometric heights of the USA76 layer bases, where the lapse rate (so ∇n) has a kink.
+fn usa76_kinks() -> Vec<f64> {
+    [11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0].iter().map(|h| usa76::geometric_m(*h)).collect()
+}
+
+#[test]
+fn usa76_atmosphere_gradient_matches_differences_from_the_ground_to_the_top() {
+    let ciddor = AirDispersion::ciddor(450.0).unwrap();
+    let kinks: Vec<f64> = usa76_kinks().into_iter().chain([85_000.0, 86_000.0]).collect();
+    for (name, earth, disp) in [
+        ("USA76, flat, Ciddor", Earth::flat_y(), ciddor),
+        ("USA76, spherical, Cauchy", Earth::standard(), AirDispersion::CauchyBornWolf),
+    ] {
+        let f = atmosphere(earth, vec![], disp);
+        let check = Check { name, field: &f, step: 1.0 };
+        for (l, p) in samples(30, 600, |u| DVec3::new(4e5 * (u[0] - 0.5), 87_000.0 * u[1], 4e5 * (u[2] - 0.5))) {
+            let z = earth.height(p);
+            if z < 0.0 || kinks.iter().any(|k| (z - k).abs() < 3.0) {
+                continue;
+            }
+            check.at(l, p);
+        }
+    }
+}
+
+type EditCase = (&'static str, Earth, Vec<Edit>, f64, DVec3, DVec3);
+
+#[test]
+fn edited_atmospheres_gradient_matches_differences() {
+    let d = AirDispersion::ciddor(450.0).unwrap();
+    let hot = Edit::HotSurface(HotSurface::new(12.0, 0.5).unwrap());
+    let inv = |dt, h, w| Edit::Inversion(Inversion::new(dt, h, w).unwrap());
+    let bubble = Edit::Bubble(Bubble::new(DVec3::new(0.0, 5.0, 0.0), 4.0, 5.0).unwrap());
+    let lattice = Lattice::from_fn([12, 10, 12], DVec3::new(-3.0, 0.5, -3.0), DVec3::splat(0.5), |p| {
+        let r2 = p.x * p.x + (p.y - 2.75).powi(2) + p.z * p.z;
+        let s = (1.0 - r2 / 4.0).max(0.0);
+        8.0 * s * s * s
+    })
+    .unwrap();
+    // (name, Earth, edits, FD step, half-size and centre of the sampled box)
+    let cases: Vec<EditCase> = vec![
+        (
+            "hot road, flat",
+            Earth::flat_y(),
+            vec![hot.clone()],
+            1e-4,
+            DVec3::new(50.0, 1.5, 50.0),
+            DVec3::new(0.0, 1.5, 0.0),
+        ),
+        (
+            "hot road, spherical",
+            Earth::standard(),
+            vec![hot.clone()],
+            1e-4,
+            DVec3::new(50.0, 1.5, 50.0),
+            DVec3::new(0.0, 1.5, 0.0),
+        ),
+        (
+            "inversion",
+            Earth::flat_y(),
+            vec![inv(10.0, 30.0, 3.0)],
+            1e-3,
+            DVec3::new(100.0, 30.0, 100.0),
+            DVec3::new(0.0, 30.0, 0.0),
+        ),
+        (
+            "fata morgana (two inversions, offset)",
+            Earth::standard(),
+            vec![Edit::Offset(Offset { dt_k: -10.0 }), inv(8.0, 100.0, 10.0), inv(12.0, 400.0, 20.0)],
+            1e-2,
+            DVec3::new(1e4, 300.0, 1e4),
+            DVec3::new(0.0, 300.0, 0.0),
+        ),
+        ("bubble", Earth::flat_y(), vec![bubble], 1e-4, DVec3::new(5.0, 5.0, 5.0), DVec3::new(0.0, 5.0, 0.0)),
+    ];
+    for (seed, (name, earth, edits, step, half, centre)) in cases.into_iter().enumerate() {
+        let f = atmosphere(earth, edits, d);
+        let check = Check { name, field: &f, step };
+        for (l, p) in samples(40 + seed as u64, 400, |u| spread(u, half, centre)) {
+            if earth.height(p) < 2.0 * step {
+                continue;
+            }
+            check.at(l, p);
+        }
+    }
+    for (seed, interp) in [Interpolation::Trilinear, Interpolation::Tricubic].into_iter().enumerate() {
+        let edit = Edit::Grid(GridEdit::new(lattice.clone(), interp).unwrap());
+        let f = atmosphere(Earth::flat_y(), vec![edit], d);
+        let check = Check { name: interp.name(), field: &f, step: 1e-5 };
+        for (l, p) in
+            samples(50 + seed as u64, 400, |u| spread(u, DVec3::new(3.5, 3.0, 3.5), DVec3::new(0.0, 3.0, 0.0)))
+        {
+            let cell = (p - DVec3::new(-3.0, 0.5, -3.0)) / 0.5;
+            let frac = cell - cell.floor();
+            if frac.min_element() < 1e-3 || frac.max_element() > 1.0 - 1e-3 {
+                continue;
+            }
+            check.at(l, p);
+        }
+    }
+}
+
+#[test]
+fn tabulated_base_atmosphere_gradient_matches_differences() {
+    // A tropical-like table (every 1 km, 0–20 km): T falls 6 K/km to a cold tropopause, ln P falls
+    // with a 7.5 km scale height.
+    let z: Vec<f64> = (0..=20).map(|i| 1000.0 * i as f64).collect();
+    let t: Vec<f64> = z.iter().map(|z| 300.0 - 6e-3 * z.min(17_000.0) + 2e-3 * (z - 17_000.0).max(0.0)).collect();
+    let p: Vec<f64> = z.iter().map(|z| 101_300.0 * (-z / 7_500.0).exp()).collect();
+    let base = BaseProfile::Table(TableProfile::new(z.clone(), t, p).unwrap());
+    let a = Atmosphere::new("table", Earth::standard(), base, vec![], AirDispersion::ciddor(400.0).unwrap(), 20_000.0)
+        .unwrap();
+    let f = IndexField::Atmosphere(Box::new(a));
+    let check = Check { name: "table base", field: &f, step: 0.1 };
+    for (l, pt) in samples(60, 500, |u| DVec3::new(1e5 * (u[0] - 0.5), 20_500.0 * u[1], 1e5 * (u[2] - 0.5))) {
+        let h = Earth::standard().height(pt);
+        if z.iter().chain([19_000.0].iter()).any(|k| (h - k).abs() < 1.0) || h < 1.0 {
+            continue;
+        }
+        check.at(l, pt);
+    }
+}
+
+#[test]
+fn bumps_on_a_dispersive_atmosphere_keep_both_gradients_and_regions() {
+    let base = atmosphere(
+        Earth::standard(),
+        vec![Edit::HotSurface(HotSurface::new(10.0, 2.0).unwrap())],
+        AirDispersion::CauchyBornWolf,
+    );
+    let bump = Bump::new(DVec3::new(0.0, 3.0, 0.0), 2.0, 5e-6).unwrap();
+    let f = IndexField::Sum(Sum { base: Box::new(base), bumps: vec![bump] });
+    let check = Check { name: "atmosphere + bump", field: &f, step: 1e-4 };
+    for (l, p) in samples(70, 300, |u| spread(u, DVec3::splat(2.5), DVec3::new(0.0, 3.0, 0.0))) {
+        if p.y > 1e-3 {
+            check.at(l, p);
+        }
+    }
+    assert!(f.is_dispersive());
+    assert!(!f.gradient_region().contains(DVec3::new(0.0, 1e5, 0.0)));
+    assert!(f.gradient_region().contains(DVec3::new(0.0, 3.0, 0.0)));
+}
+
+#[test]
+fn every_field_is_finite_at_extreme_points() {
+    // Far away, deep underground, at the Earth's centre, on the ground, exactly at the top:
+    // no field may return NaN or Inf (the ODE must never see one).
+    let earth = Earth::standard();
+    let r = morgana::atmosphere::EARTH_RADIUS_M;
+    let points = [
+        DVec3::ZERO,
+        DVec3::new(0.0, -r, 0.0),
+        DVec3::new(0.0, -0.5 * r, 0.0),
+        DVec3::new(1e12, 1e12, -1e12),
+        DVec3::new(0.0, 86_000.0, 0.0),
+        DVec3::new(0.0, -1e4, 0.0),
+        DVec3::new(3e6, 0.0, 0.0),
+    ];
+    let d = AirDispersion::ciddor(450.0).unwrap();
+    let fields = [
+        IndexField::Exponential(Exponential::new(1.0003, 8000.0, earth).unwrap()),
+        IndexField::Profile(Profile::new(vec![0.0, 100.0], vec![1.0003, 1.0002], earth).unwrap()),
+        IndexField::TemperatureGrid(Box::new(
+            TemperatureGrid::new(plume_lattice(), Interpolation::Tricubic, GridPressure::Usa76 { earth }, d).unwrap(),
+        )),
+        atmosphere(
+            earth,
+            vec![
+                Edit::HotSurface(HotSurface::new(30.0, 0.01).unwrap()),
+                Edit::Inversion(Inversion::new(20.0, 10.0, 1e-3).unwrap()),
+                Edit::Bubble(Bubble::new(DVec3::ZERO, 1.0, 5.0).unwrap()),
+            ],
+            d,
+        ),
+        IndexField::Atmosphere(Box::new(Atmosphere::builtin("tropical").unwrap())),
+    ];
+    for (i, f) in fields.iter().enumerate() {
+        for p in points {
+            for l in [200.0, 550.0, 2000.0] {
+                let (n, g) = f.n_grad(l, p);
+                assert!(
+                    n.is_finite() && g.is_finite() && n >= 1.0 - 1e-15,
+                    "field #{i} at {p}, {l} nm: n = {n}, ∇n = {g}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn profiles_and_temperature_grids_load_from_files() {
+    use morgana::media::index::grid_file::{self, Encoding, Quantity};
+    let dir = std::env::temp_dir().join(format!("morgana-fields-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("n.csv"), "height_m,n\n0,1.0003\n50,1.00029\n").unwrap();
+    let p = Profile::load(&dir.join("n.csv"), Earth::flat_y()).unwrap();
+    assert_eq!(p.height_range(), (0.0, 50.0));
+    std::fs::write(dir.join("bad.csv"), "height_m,n\n0,1.0003\n50\n").unwrap();
+    let e = Profile::load(&dir.join("bad.csv"), Earth::flat_y()).unwrap_err().to_string();
+    assert!(e.contains("bad.csv:3") && e.contains("expected 2 numbers"), "{e}");
+    let path = dir.join("t.mfield");
+    grid_file::write(&path, Quantity::TemperatureK, &plume_lattice(), Encoding::F64Le).unwrap();
+    let press = GridPressure::Constant { pressure_pa: 101_325.0 };
+    let g = TemperatureGrid::load(&path, Interpolation::Trilinear, press, AirDispersion::CauchyBornWolf).unwrap();
+    assert_eq!(g.lattice(), &plume_lattice());
+    grid_file::write(&path, Quantity::DeltaTemperatureK, &plume_lattice(), Encoding::F64Le).unwrap();
+    let e = TemperatureGrid::load(&path, Interpolation::Trilinear, press, AirDispersion::CauchyBornWolf).unwrap_err();
+    assert!(e.to_string().contains("needs quantity temperature_k"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

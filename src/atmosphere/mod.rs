@@ -1,11 +1,25 @@
-//! Atmosphere physics: the Earth's geometry ([`Earth`]), standard atmospheres, profile edits and
-//! the refractive index of air.
+//! Atmosphere physics: the Earth's geometry ([`Earth`]), standard atmospheres ([`usa76`], tabulated
+//! profiles), temperature edits for mirages ([`edit`]), and the refractive index of air
+//! ([`dispersion`]), combined in [`Atmosphere`]. Atmospheres are data files (`atmospheres/`,
+//! loaded by [`load`]) or built in ([`Atmosphere::builtin`]).
 
+mod base;
+mod builtin;
 pub mod dispersion;
 mod earth;
+pub mod edit;
+pub mod file;
 pub mod gas;
+mod model;
 pub mod table;
+mod table_profile;
 pub mod usa76;
 
+pub use base::BaseProfile;
+pub use builtin::{BUILTIN_NAMES, resolve};
 pub use dispersion::AirDispersion;
 pub use earth::{EARTH_RADIUS_M, Earth, Sphere};
+pub use edit::Edit;
+pub use file::load;
+pub use model::{AirPoint, Atmosphere};
+pub use table_profile::TableProfile;

@@ -15,9 +15,9 @@
 //! The temperature returned is the molecular-scale temperature T_M of the standard. Below 80 km it
 //! equals the kinetic temperature; between 80 and 86 km the kinetic temperature is T_M·M/M₀ with
 //! M/M₀ falling to 0.999579 at 86 km (so 186.87 K against T_M = 186.946 K). Density computed from
-//! T_M and M₀ is exact there, which is what refraction needs. Below −5 km (the standard's lowest
-//! table entry) the state is held at its −5 km value; above 86 km the last layer's formulas
-//! continue (atmospheres end at their top, at most 86 km).
+//! T_M and M₀ is exact there, which is what refraction needs. Outside −5 km (the standard's lowest
+//! table entry) to 86 km the state is held at the nearer end's value with zero derivatives, so it
+//! stays finite anywhere (atmospheres end at their top, at most 86 km).
 //!
 //! # References
 //! - U.S. Standard Atmosphere, 1976, NOAA-S/T 76-1562 (U.S. Government Printing Office,
@@ -90,9 +90,9 @@ pub fn geometric_m(h_m: f64) -> f64 {
 
 /// The state at geopotential height `h_m`, derivatives per geopotential metre.
 pub fn at_geopotential(h_m: f64) -> State {
-    let h_min = geopotential_m(BOTTOM_GEOMETRIC_M);
-    let clamped = h_m < h_min;
-    let h = h_m.max(h_min);
+    let (h_min, h_max) = (geopotential_m(BOTTOM_GEOMETRIC_M), geopotential_m(TOP_GEOMETRIC_M));
+    let clamped = !(h_min..=h_max).contains(&h_m);
+    let h = h_m.clamp(h_min, h_max);
     let layer = &LAYERS[BASE_H_M.partition_point(|&b| b <= h).saturating_sub(1)];
     let (t, p) = within(layer, h);
     if clamped {
@@ -103,8 +103,10 @@ pub fn at_geopotential(h_m: f64) -> State {
 
 /// The state at geometric height `z_m`, derivatives per geometric metre.
 pub fn at_geometric(z_m: f64) -> State {
-    let s = at_geopotential(geopotential_m(z_m));
-    let dh_dz = (R0_M / (R0_M + z_m)).powi(2);
+    let inside = (BOTTOM_GEOMETRIC_M..=TOP_GEOMETRIC_M).contains(&z_m);
+    let z = z_m.clamp(BOTTOM_GEOMETRIC_M, TOP_GEOMETRIC_M);
+    let s = at_geopotential(geopotential_m(z));
+    let dh_dz = if inside { (R0_M / (R0_M + z)).powi(2) } else { 0.0 };
     State { dt_dz: s.dt_dz * dh_dz, dp_dz: s.dp_dz * dh_dz, ..s }
 }
 

@@ -13,6 +13,8 @@ pub mod cie_data;
 pub mod colour;
 mod rgb_sigmoid;
 mod sampler;
+pub mod solar;
+mod solar_data;
 mod tabulated;
 
 pub use bands::{Bands, MAX_BANDS};

@@ -24,13 +24,13 @@ mod temperature_grid;
 pub use bump::Bump;
 pub use constant::Constant;
 pub use exponential::Exponential;
-pub use lattice::{Beyond, Interpolation, Lattice};
+pub use lattice::{Beyond, Interpolation, Lattice, MAX_LATTICE_POINTS};
 pub use linear::Linear;
 pub use monotone_cubic::MonotoneCubic;
 pub use profile::Profile;
 pub use region::GradientRegion;
 pub use sum::Sum;
-pub use temperature_grid::{GridPressure, TemperatureGrid};
+pub use temperature_grid::{GridPressure, TemperatureGrid, catmull_rom_overshoot};
 
 use crate::geometry::Aabb;
 use glam::DVec3;
@@ -48,6 +48,8 @@ pub enum IndexField {
     Profile(Profile),
     /// Air with a 3-D temperature lattice.
     TemperatureGrid(Box<TemperatureGrid>),
+    /// A standard or edited atmosphere.
+    Atmosphere(Box<crate::atmosphere::Atmosphere>),
     /// A base field plus local bumps.
     Sum(Sum),
 }
@@ -69,6 +71,7 @@ impl IndexField {
             IndexField::Exponential(e) => e.n_grad(p),
             IndexField::Profile(f) => f.n_grad(p),
             IndexField::TemperatureGrid(g) => g.n_grad(wavelength_nm, p),
+            IndexField::Atmosphere(a) => a.n_grad(wavelength_nm, p),
             IndexField::Sum(s) => s.n_grad(wavelength_nm, p),
         }
     }
@@ -83,21 +86,24 @@ impl IndexField {
         match self {
             IndexField::Constant(c) => c.is_dispersive(),
             IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => false,
-            IndexField::TemperatureGrid(_) => true,
+            IndexField::TemperatureGrid(_) | IndexField::Atmosphere(_) => true,
             IndexField::Sum(s) => s.base.is_dispersive(),
         }
     }
 
     /// Where ∇n can be non-zero; outside it n is constant and paths are straight, and n is
-    /// continuous across its boundary.
+    /// continuous across its boundary. Built on each call (a `Sum` allocates its union): ask once
+    /// per scene, not per step.
     pub fn gradient_region(&self) -> GradientRegion {
         match self {
             IndexField::Constant(_) => GradientRegion::Nowhere,
             IndexField::Linear(l) if l.k_per_m == 0.0 => GradientRegion::Nowhere,
             IndexField::Exponential(e) if e.n0 == 1.0 => GradientRegion::Nowhere,
-            IndexField::Linear(_) | IndexField::Exponential(_) => GradientRegion::Everywhere,
+            IndexField::Linear(_) => GradientRegion::Everywhere,
+            IndexField::Exponential(e) => height_band(&e.earth, (0.0, f64::INFINITY)),
             IndexField::Profile(f) => height_band(&f.earth, f.height_range()),
             IndexField::TemperatureGrid(g) => g.gradient_region(),
+            IndexField::Atmosphere(a) => a.gradient_region(),
             IndexField::Sum(s) => s.bumps.iter().fold(s.base.gradient_region(), |r, b| {
                 r.union(GradientRegion::Shell { centre: b.centre, r_min: 0.0, r_max: b.radius_m })
             }),
@@ -113,7 +119,7 @@ impl IndexField {
             IndexField::Exponential(e) => e.min_n(),
             IndexField::Profile(f) => f.min_n(),
             // K(λ) > 0 and ρ > 0 in the air laws' range (checked by `validate`).
-            IndexField::TemperatureGrid(_) => 1.0,
+            IndexField::TemperatureGrid(_) | IndexField::Atmosphere(_) => 1.0,
             IndexField::Sum(s) => s.base.min_n_bound(domain, wavelength_range_nm) + s.min_n_added(),
         }
     }
@@ -153,6 +159,7 @@ impl IndexField {
             IndexField::Constant(c) => c.check_range(range_nm),
             IndexField::Linear(_) | IndexField::Exponential(_) | IndexField::Profile(_) => Ok(()),
             IndexField::TemperatureGrid(g) => g.dispersion.check_range(range_nm),
+            IndexField::Atmosphere(a) => a.dispersion.check_range(range_nm),
             IndexField::Sum(s) => s.base.check_range(range_nm),
         }
     }

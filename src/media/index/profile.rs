@@ -35,6 +35,16 @@ impl Profile {
         Profile::new(h, n, earth).map_err(|e| (1, e))
     }
 
+    /// Reads the CSV file described in the module notes; errors name the file and line.
+    pub fn load(path: &std::path::Path, earth: Earth) -> crate::error::Result<Profile> {
+        use crate::error::{Error, Location};
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read index profile: {e}")))?;
+        Profile::from_csv(&text, earth).map_err(|(line, msg)| {
+            Error::input(Some(Location { file: path.to_path_buf(), line: Some(line), column: None }), msg)
+        })
+    }
+
     /// n and ∇n = n′(h)·∇h.
     pub fn n_grad(&self, p: DVec3) -> (f64, DVec3) {
         let (h, gh) = self.earth.height_grad(p);

@@ -37,14 +37,14 @@ pub struct TemperatureGrid {
 
 impl TemperatureGrid {
     /// Temperatures must be positive, including the lowest value Catmull–Rom can overshoot to
-    /// (see [`overshoot`]); a constant pressure must be positive and finite.
+    /// (see [`catmull_rom_overshoot`]); a constant pressure must be positive and finite.
     pub fn new(
         lattice: Lattice,
         interpolation: Interpolation,
         pressure: GridPressure,
         dispersion: AirDispersion,
     ) -> Result<TemperatureGrid, String> {
-        let lowest = lattice.value_range().0 - overshoot(&lattice, interpolation);
+        let lowest = lattice.value_range().0 - catmull_rom_overshoot(&lattice, interpolation);
         if lowest <= 0.0 {
             return Err(format!(
                 "temperature grid: {} interpolation can reach {lowest} K; temperatures must stay positive",
@@ -59,6 +59,26 @@ impl TemperatureGrid {
         let (lo, hi) = lattice.face_range();
         let uniform_faces = hi - lo <= 1e-12 * hi.abs();
         Ok(TemperatureGrid { lattice, interpolation, pressure, dispersion, uniform_faces })
+    }
+
+    /// Reads a lattice file of quantity `temperature_k` (see [`super::grid_file`]); errors name
+    /// the file.
+    pub fn load(
+        path: &std::path::Path,
+        interpolation: Interpolation,
+        pressure: GridPressure,
+        dispersion: AirDispersion,
+    ) -> crate::error::Result<TemperatureGrid> {
+        use crate::error::{Error, Location};
+        let (quantity, lattice) = super::grid_file::read(path)?;
+        let at = || Some(Location::file(path));
+        if quantity != super::grid_file::Quantity::TemperatureK {
+            return Err(Error::input(
+                at(),
+                format!("a temperature grid needs quantity temperature_k, the file holds {}", quantity.name()),
+            ));
+        }
+        TemperatureGrid::new(lattice, interpolation, pressure, dispersion).map_err(|e| Error::input(at(), e))
     }
 
     pub fn lattice(&self) -> &Lattice {
@@ -99,7 +119,7 @@ impl TemperatureGrid {
 /// tensor product's negative weights sum to at most ((5/4)³ − 1)/2 < 0.48. The interpolant is then
 /// at least the stencil's minimum minus 0.48 × the stencil's range, and a 4×4×4 stencil spans at
 /// most 9 neighbour steps.
-pub(crate) fn overshoot(lattice: &Lattice, interpolation: Interpolation) -> f64 {
+pub fn catmull_rom_overshoot(lattice: &Lattice, interpolation: Interpolation) -> f64 {
     match interpolation {
         Interpolation::Trilinear => 0.0,
         Interpolation::Tricubic => {

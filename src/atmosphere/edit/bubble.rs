@@ -1,0 +1,25 @@
+//! A warm or cold bubble: T += ΔT·(1 − r²/R²)³ for r < R, zero outside; C² at r = R (see
+//! [`crate::media::index::Bump`] for the same kernel on n).
+
+use crate::media::index::Bump;
+use glam::DVec3;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bubble {
+    pub centre: DVec3,
+    pub radius_m: f64,
+    pub dt_k: f64,
+    kernel: Bump,
+}
+
+impl Bubble {
+    pub fn new(centre: DVec3, radius_m: f64, dt_k: f64) -> Result<Bubble, String> {
+        let kernel =
+            Bump::new(centre, radius_m, dt_k).map_err(|e| e.replace("bump", "bubble").replace("delta_n", "dT_k"))?;
+        Ok(Bubble { centre, radius_m, dt_k, kernel })
+    }
+
+    pub fn delta(&self, p: DVec3) -> (f64, DVec3) {
+        self.kernel.value_grad(p)
+    }
+}

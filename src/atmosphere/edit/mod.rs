@@ -1,0 +1,62 @@
+//! Temperature edits of a base atmosphere, the profiles a mirage needs: T = T_base + Σᵢ ΔTᵢ(x).
+//!
+//! Pressure stays that of the base atmosphere (an edit heats or cools air in place without
+//! changing the hydrostatic column above it); density follows from the ideal gas at the local
+//! pressure and the edited temperature. Every edit gives ΔT and ∇ΔT in closed form.
+
+mod bubble;
+mod grid;
+mod hot_surface;
+mod inversion;
+mod offset;
+
+pub use bubble::Bubble;
+pub use grid::GridEdit;
+pub use hot_surface::HotSurface;
+pub use inversion::Inversion;
+pub use offset::Offset;
+
+use glam::DVec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// T += ΔT everywhere.
+    Offset(Offset),
+    /// T += ΔT·exp(−z/z₀): air heated by the ground (a hot road).
+    HotSurface(HotSurface),
+    /// T += ΔT/(1 + exp(−(z − h)/w)): a temperature inversion.
+    Inversion(Inversion),
+    /// T += ΔT·(1 − r²/R²)³ within a ball: a warm (or cold) bubble.
+    Bubble(Bubble),
+    /// T += ΔT(x) from a lattice file (zero outside it).
+    Grid(GridEdit),
+}
+
+impl Edit {
+    /// ΔT and ∇ΔT at `p`, whose height is `h` with gradient `gh`.
+    pub fn delta(&self, p: DVec3, h: f64, gh: DVec3) -> (f64, DVec3) {
+        match self {
+            Edit::Offset(e) => (e.dt_k, DVec3::ZERO),
+            Edit::HotSurface(e) => e.delta(h, gh),
+            Edit::Inversion(e) => e.delta(h, gh),
+            Edit::Bubble(e) => e.delta(p),
+            Edit::Grid(e) => e.delta(p),
+        }
+    }
+
+    /// The smallest and largest ΔT the edit can add, K.
+    pub fn range_k(&self) -> (f64, f64) {
+        match self {
+            Edit::Offset(e) => (e.dt_k, e.dt_k),
+            Edit::HotSurface(e) => span(e.dt_k),
+            Edit::Inversion(e) => span(e.dt_k),
+            Edit::Bubble(e) => span(e.dt_k),
+            Edit::Grid(e) => e.range_k(),
+        }
+    }
+}
+
+/// [min(0, x), max(0, x)].
+fn span(x: f64) -> (f64, f64) {
+    (x.min(0.0), x.max(0.0))
+}
