@@ -360,3 +360,64 @@ fn glass_refracts_relative_to_the_medium_around_it() {
         assert_eq!((t.dir - dir).length() > 1e-6, bends, "outside n = {outside}: {} vs {}", t.dir, dir);
     }
 }
+
+#[test]
+fn a_level_ray_in_the_standard_atmosphere_bends_toward_the_earth_as_its_gradient_says() {
+    // USA76 air on the spherical Earth (centre (0, −R, 0)); a ray launched level at 2 m along
+    // +x meets a wall 10 km away. Its curvature is κ = |∇n|/n at launch (∇n is vertical and the
+    // ray horizontal), so it sags κx²/2 below the straight line: about 1.3 m (κ ≈ 0.17/R, the
+    // standard refraction coefficient).
+    let toml = r#"
+[camera]
+position = [0.0, 2.0, 0.0]
+look_at = [1.0, 2.0, 0.0]
+fov_deg = 10.0
+width = 4
+height = 4
+
+[output]
+bands = 1
+min_nm = 545.0
+max_nm = 555.0
+
+[world]
+medium = "air"
+
+[[medium]]
+name = "air"
+sigma_a = 0.0
+sigma_s = 0.0
+index = { type = "atmosphere", name = "usa76" }
+
+[[material]]
+name = "grey"
+type = "lambertian"
+reflectance = 0.5
+
+[[shape]]
+type = "quad"
+origin = [10000.0, -100.0, -100.0]
+u = [0.0, 200.0, 0.0]
+v = [0.0, 0.0, 200.0]
+material = "grey"
+
+[[light]]
+type = "point"
+position = [0.0, 50.0, 0.0]
+spectrum = 1.0
+power_w = 1.0
+"#;
+    let s = scene(toml);
+    assert!(s.plan.curved_paths.on, "{}", s.plan.curved_paths.why);
+    let prop = Propagator::new(&s);
+    let p0 = DVec3::new(0.0, 2.0, 0.0);
+    let (n, g) = s.media[0].index.as_ref().expect("index").n_grad(550.0, p0);
+    let kappa = g.length() / n;
+    let Event::Surface { hit, .. } = prop.next_event(&start(p0, DVec3::X, Some(0))) else {
+        panic!("must hit the wall")
+    };
+    let sag = 2.0 - hit.point.y;
+    let expected = 0.5 * kappa * 1e8;
+    assert!((sag / expected - 1.0).abs() < 0.01, "sag {sag} m, κx²/2 = {expected} m");
+    assert!((kappa * 6_371_000.0 - 0.17).abs() < 0.01, "refraction coefficient {}", kappa * 6_371_000.0);
+}

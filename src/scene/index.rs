@@ -9,6 +9,9 @@
 //! index = { type = "profile", file = "n_of_h.csv" }          # CSV height_m,n; monotone cubic
 //! index = { type = "temperature_grid", file = "plume.mfield", interpolation = "tricubic",
 //!           pressure_pa = 101325 }                           # or pressure = "usa76"
+//! index = { type = "atmosphere", file = "../atmospheres/hot_road.toml" }  # or name = "usa76"
+//!         # (an atmosphere file: USA76 or a table, mirage edits, dispersion, its own Earth — which
+//!         #  an explicit [world] earth replaces; see atmospheres/README.md)
 //! # any of these (but a number) may add local bumps and allow n < 1:
 //! #   bumps = [{ center = [0, 1, 0], radius_m = 0.5, delta_n = 1e-4 }], allow_below_one = false
 //! ```
@@ -28,10 +31,21 @@ use crate::media::index::{
 use glam::DVec3;
 use toml::{Spanned, Value};
 
-const KINDS: &str = "\"constant\", \"air\", \"linear\", \"exponential\", \"profile\" or \"temperature_grid\"";
+const KINDS: &str =
+    "\"constant\", \"air\", \"linear\", \"exponential\", \"profile\", \"temperature_grid\" or \"atmosphere\"";
 
 /// The field a medium's `index` value describes, checked over the scene's wavelengths.
-pub fn field(ctx: &Ctx, v: &Spanned<Value>, what: &str, earth: &Earth, range_nm: (f64, f64)) -> R<IndexField> {
+///
+/// `earth` is the scene's Earth; `explicit_earth` says whether `[world]` gave it (then it also
+/// replaces an atmosphere file's own).
+pub fn field(
+    ctx: &Ctx,
+    v: &Spanned<Value>,
+    what: &str,
+    earth: &Earth,
+    explicit_earth: bool,
+    range_nm: (f64, f64),
+) -> R<IndexField> {
     let span = v.span();
     let iwhat = format!("{what}: index");
     if let Some(n) = v.get_ref().as_float().or_else(|| v.get_ref().as_integer().map(|i| i as f64)) {
@@ -82,6 +96,26 @@ pub fn field(ctx: &Ctx, v: &Spanned<Value>, what: &str, earth: &Earth, range_nm:
             IndexField::Profile(p)
         }
         "temperature_grid" => temperature_grid(ctx, v, &iwhat, earth, &keys)?,
+        "atmosphere" => {
+            let t = Table::new(ctx, v, iwhat.clone(), &keys(&["file", "name"]))?;
+            let a = match (t.t.get("file").and_then(Value::as_str), t.t.get("name").and_then(Value::as_str)) {
+                (Some(f), None) => crate::atmosphere::load(&ctx.dir.join(f))?,
+                (None, Some(n)) => {
+                    crate::atmosphere::Atmosphere::builtin(n).map_err(|e| ctx.err(&span, format!("{iwhat}: {e}")))?
+                }
+                _ => {
+                    return Err(ctx.err(
+                        &span,
+                        format!(
+                            "{iwhat}: give file (an atmosphere TOML) or name (built-in: {})",
+                            crate::atmosphere::BUILTIN_NAMES.join(", ")
+                        ),
+                    ));
+                }
+            };
+            let a = if explicit_earth { a.with_earth(*earth) } else { a };
+            IndexField::Atmosphere(Box::new(a))
+        }
         _ => return Err(ctx.err(&span, format!("{iwhat}: type must be {KINDS}"))),
     };
     let field = with_bumps(ctx, v, &iwhat, base)?;

@@ -38,7 +38,7 @@ pub fn medium(
     rec: &Spanned<RawMedium>,
     index: usize,
     bands: &Bands,
-    earth: &Earth,
+    earth: &(Earth, bool),
 ) -> R<Medium> {
     let span = rec.span();
     let m = rec.get_ref();
@@ -80,7 +80,7 @@ pub fn medium(
     };
     let index = match &m.index {
         None => None,
-        Some(v) => Some(super::index::field(ctx, v, &what, earth, (bands.min_nm, bands.max_nm))?),
+        Some(v) => Some(super::index::field(ctx, v, &what, &earth.0, earth.1, (bands.min_nm, bands.max_nm))?),
     };
     Ok(Medium { name, coefficients, phase, density, index })
 }

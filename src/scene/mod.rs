@@ -284,7 +284,7 @@ fn build_media(
     lib: &SpectrumLibrary,
     raw: &RawScene,
     bands: &Bands,
-    earth: &Earth,
+    earth: &(Earth, bool),
 ) -> Result<(Vec<String>, Vec<Medium>, Option<u32>)> {
     let (mut names, mut list) = (Vec::new(), Vec::new());
     for (i, rec) in raw.medium.iter().enumerate() {
@@ -306,23 +306,27 @@ fn build_media(
 }
 
 /// `[world] earth`: "flat" (default; ground y = 0, +y up) or "spherical" (centre (0, −R, 0),
-/// R = `earth_radius_m`, default 6 371 km): how the heights of index fields are measured.
-fn build_earth(ctx: &Ctx, raw: &RawScene) -> Result<Earth> {
-    let Some(w) = raw.world.as_ref() else { return Ok(Earth::flat_y()) };
+/// R = `earth_radius_m`, default 6 371 km): how the heights of index fields are measured; and
+/// whether the scene gave it (an atmosphere file otherwise keeps its own Earth).
+fn build_earth(ctx: &Ctx, raw: &RawScene) -> Result<(Earth, bool)> {
+    let Some(w) = raw.world.as_ref() else { return Ok((Earth::flat_y(), false)) };
     let w = w.get_ref();
+    let explicit = w.earth.is_some();
     let kind = match &w.earth {
         None => "flat",
         Some(e) => ctx.choice(e, "[world] earth", &["flat", "spherical"])?,
     };
     match (kind, &w.earth_radius_m) {
         ("flat", Some(r)) => Err(ctx.err(&r.span(), "[world] earth_radius_m is only used with earth = \"spherical\"")),
-        ("flat", None) => Ok(Earth::flat_y()),
+        ("flat", None) => Ok((Earth::flat_y(), explicit)),
         (_, r) => {
             let radius = match r {
                 None => crate::atmosphere::EARTH_RADIUS_M,
                 Some(r) => ctx.number(r, "[world] earth_radius_m", 0.0, f64::INFINITY, true)?,
             };
-            Earth::spherical_y(radius).map_err(|e| ctx.err(&w.earth.as_ref().map_or(0..0, |e| e.span()), e))
+            let earth =
+                Earth::spherical_y(radius).map_err(|e| ctx.err(&w.earth.as_ref().map_or(0..0, |e| e.span()), e))?;
+            Ok((earth, explicit))
         }
     }
 }
