@@ -6,6 +6,7 @@
 //! identical for any thread count.
 
 mod emit;
+pub mod projection;
 mod targeting;
 mod trace;
 

@@ -95,6 +95,11 @@ impl<'a> Propagator<'a> {
         Propagator { scene, world_centre: centre, world_radius: radius, regions, work: CurvedWork::default() }
     }
 
+    /// The scene light moves through.
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
     /// The index field of `medium` and where it bends light, when paths in it curve.
     fn curved_field(&self, medium: Option<u32>) -> Option<(&IndexField, &GradientRegion)> {
         let m = medium? as usize;

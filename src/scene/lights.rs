@@ -7,7 +7,8 @@
 //!   (directional: W m⁻² nm⁻¹).
 //! - `irradiance_w_m2` (directional and sun): irradiance normal to the beam within the range.
 //!
-//! A `sun` is a directional light of angular diameter `angular_diameter_deg` (default 0.53°),
+//! A `sun` is a directional light of angular diameter `angular_diameter_deg` (default 0.533°),
+//! with the extraterrestrial solar spectrum (`spectrum = "solar"`, `scale = 1`) unless given,
 //! placed by `direction` (of travel) or by `elevation_deg` and `azimuth_deg`: the direction
 //! *toward* the sun is (sin A cos e, sin e, −cos A cos e) in the scene frame (+y up), so azimuth
 //! 0° is straight ahead of a camera looking along −z and 90° is toward +x. A `directional` light
@@ -37,9 +38,9 @@ pub struct NamedLight {
 
 const KINDS: &[&str] = &["area", "point", "spot", "directional", "sun", "sky", "luminaire"];
 
-/// The sun's mean angular diameter seen from the Earth, degrees (31.6′–32.7′ over the year;
-/// Allen's Astrophysical Quantities, 4th ed., §14.7).
-pub const SUN_ANGULAR_DIAMETER_DEG: f64 = 0.53;
+/// The sun's mean angular diameter seen from the Earth, degrees (see
+/// [`crate::spectrum::solar::ANGULAR_DIAMETER_DEG`]).
+pub const SUN_ANGULAR_DIAMETER_DEG: f64 = crate::spectrum::solar::ANGULAR_DIAMETER_DEG;
 
 pub fn light(
     ctx: &Ctx,
@@ -79,7 +80,11 @@ pub fn light(
         let (light, notes) = super::luminaires::luminaire(ctx, lib, l, &span, &what, bands)?;
         return Ok(NamedLight { name, light, material: None, notes });
     }
-    let spec = ctx.require(&l.spectrum, "spectrum", &span, &what)?;
+    let solar = Spanned::new(span.clone(), toml::Value::String("solar".into()));
+    let spec = match (&l.spectrum, kind) {
+        (None, "sun") => &solar,
+        _ => ctx.require(&l.spectrum, "spectrum", &span, &what)?,
+    };
     let shape_spectrum =
         lib.parse(ctx, spec, &format!("{what}: spectrum"), Use::Emission, (bands.min_nm, bands.max_nm))?;
     let emission = LightSpectrum::new(shape_spectrum, bands.min_nm, bands.max_nm).ok_or_else(|| {
@@ -192,6 +197,10 @@ fn set_level(
     bands: &Bands,
 ) -> R<()> {
     let given: Vec<&Spanned<f64>> = [&l.power_w, &l.scale, &l.irradiance_w_m2].into_iter().flatten().collect();
+    if given.is_empty() && l.spectrum.is_none() && matches!(light, Light::Directional(d) if d.sin_max > 0.0) {
+        // A sun with its default spectrum: the solar irradiance itself, scale 1.
+        return Ok(());
+    }
     if given.len() != 1 {
         let options = match light {
             Light::Directional(_) => "irradiance_w_m2 or scale",
