@@ -13,6 +13,7 @@
 //! Media extend to the *world sphere* (twice the radius of the sphere bounding the scene and the
 //! camera); a path leaving it escapes.
 
+pub mod accuracy;
 pub mod ode;
 
 use crate::geometry::{Hit, Ray};
