@@ -351,7 +351,8 @@ impl Integrator {
         h_limit: f64,
     ) -> Result<(RayY, RayY, f64, f64, RayY), OdeError> {
         let mut h = match (self.h_next, h0) {
-            (Some(h), _) | (None, Some(h)) => h,
+            (Some(h), _) => h,
+            (None, Some(h)) => h.min(self.controller.h_max),
             (None, None) => self.controller.initial_step(field, y0, f0, &mut self.counters.rhs_evals),
         };
         let mut last_bad = None;
