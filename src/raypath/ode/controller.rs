@@ -91,13 +91,10 @@ impl Controller {
     #[inline]
     pub fn error_norm_squared(&self, e: &RayY, y0: &RayY, y1: &RayY) -> f64 {
         let (e, a, b) = (e.to_array(), y0.to_array(), y1.to_array());
-        let mut sum = 0.0;
-        for i in 0..6 {
-            let sc = self.atol + self.rtol * a[i].abs().max(b[i].abs());
-            let q = e[i] / sc;
-            sum += q * q;
-        }
-        sum * (1.0 / 6.0)
+        // Weights 1/scᵢ need only y0 and y1, so they are ready before the estimate is.
+        let q: [f64; 6] = std::array::from_fn(|i| e[i] * (1.0 / (self.atol + self.rtol * a[i].abs().max(b[i].abs()))));
+        let sq = q.map(|x| x * x);
+        ((sq[0] + sq[1]) + (sq[2] + sq[3]) + (sq[4] + sq[5])) * (1.0 / 6.0)
     }
 
     /// Accepts or rejects a step of size `h` with error norm `err` and proposes the next size.
@@ -114,9 +111,9 @@ impl Controller {
         }
         let ln_err = 0.5 * err_sq.ln();
         if err_sq <= 1.0 {
-            // q = err^α / err_prev^β / safety; err = 0 gives q = 0, the largest increase.
-            let q = (self.alpha * ln_err - self.beta * self.ln_err_prev).exp() / SAFETY;
-            let mut h_next = h / q.clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            // safety · err^(−α) · err_prev^β; err = 0 gives +∞, clamped to the largest increase.
+            let fac = SAFETY * (self.beta * self.ln_err_prev - self.alpha * ln_err).exp();
+            let mut h_next = h * fac.clamp(FAC_MIN, FAC_MAX);
             if self.rejected_last {
                 h_next = h_next.min(h);
             }
