@@ -158,6 +158,31 @@ fn very_long_path_in_a_weak_gradient() {
     assert!(err < 10.0 * TOL * length, "{err}");
     assert!(steps.len() < 200);
     assert!(drift <= budget);
+
+    // In a linear field v is integrated exactly; in an exponential profile it is not:
+    // n = 1 + 2.9e-4·exp(−y/8 km) (a flat-Earth exponential atmosphere), same path. No closed
+    // form: the endpoint is checked against the same ray at tolerance 1e-13.
+    let field = |p: DVec3| {
+        let e = 2.9e-4 * (-p.y / 8000.0).exp();
+        (1.0 + e, DVec3::new(0.0, -e / 8000.0, 0.0))
+    };
+    let start = launch_at(&field, DVec3::ZERO, 0.0);
+    let (end, steps, ode) = run(dp(), &field, start, length);
+    let (fine, ..) = run(Method::dormand_prince(1e-13, 1e-13), &field, start, length);
+    let err = (end.y.r - fine.y.r).length();
+    let drift = steps.iter().map(|s| (s.y1().v.length() - field(s.y1().r).0).abs()).fold(0.0, f64::max);
+    let grad_max = steps.iter().map(|s| field(s.y1().r).1.length()).fold(0.0, f64::max);
+    let budget = steps.len() as f64 * 6f64.sqrt() * (TOL + TOL * field(end.y.r).0) + grad_max * err;
+    eprintln!(
+        "exponential, 1e6 m: y = {:.3} m, |Δ| vs tol 1e-13 {err:.3e} m, {} steps, {} rejected, \
+         max ||v| − n| {drift:.3e} (budget {budget:.3e})",
+        end.y.r.y,
+        steps.len(),
+        ode.counters().rejected
+    );
+    assert!(err < 10.0 * TOL * length, "{err}");
+    assert!(steps.len() < 500);
+    assert!(drift <= budget);
 }
 
 /// h_limit = 0 gives a zero step: no work, no motion, no NaN; negative or NaN limits are
