@@ -79,6 +79,9 @@ enum Command {
         #[arg(long)]
         png: Option<PathBuf>,
     },
+    /// Ray-integrator accuracy and speed against the closed-form ray in n = 1 + k*y: Dormand-Prince
+    /// over tolerances, Euler and RK4 over step sizes (Gutierrez et al. 2005, Fig. 1, extended).
+    Accuracy(morgana::raypath::accuracy::AccuracyArgs),
 }
 
 fn main() {
@@ -95,6 +98,7 @@ fn main() {
         }
         Command::Tonemap(args) => run_tonemap(&args),
         Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
+        Command::Accuracy(args) => morgana::raypath::accuracy::run_cli(&args).map(|s| print!("{s}")),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");

@@ -20,6 +20,7 @@
 //! within the arc tolerance of the arc length). Media extend to the *world sphere* (twice the
 //! radius of the sphere bounding the scene and the camera); a path leaving it escapes.
 
+pub mod accuracy;
 mod arc;
 pub mod curved;
 pub mod ode;
