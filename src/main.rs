@@ -79,6 +79,9 @@ enum Command {
         #[arg(long)]
         png: Option<PathBuf>,
     },
+    /// Astronomical refraction: trace rays from an observer out of an atmosphere and print the
+    /// true altitude and refraction for each apparent altitude.
+    Refraction(morgana::atmosphere::refraction::cli::RefractionArgs),
 }
 
 fn main() {
@@ -95,6 +98,7 @@ fn main() {
         }
         Command::Tonemap(args) => run_tonemap(&args),
         Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
+        Command::Refraction(args) => morgana::atmosphere::refraction::cli::run(&args).map(|s| print!("{s}")),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");
