@@ -479,7 +479,7 @@ fn a_zero_length_step_in_the_middle_of_a_path_changes_nothing() {
             if Some(i) == zero_at {
                 let before = (s, ode.counters().rhs_evals);
                 let step = ode.step(&field, &mut s, 0.0).expect("zero step");
-                assert_eq!((step.h, s, ode.counters().rhs_evals), (0.0, before.0, before.1));
+                assert_eq!((step.h(), s, ode.counters().rhs_evals), (0.0, before.0, before.1));
             }
             ode.step(&field, &mut s, 1e5).expect("step");
         }
@@ -491,8 +491,10 @@ fn a_zero_length_step_in_the_middle_of_a_path_changes_nothing() {
 #[test]
 fn rays_starting_exactly_on_a_region_boundary_go_on_as_if_they_had_arrived_there() {
     // (1) The top of the USA76 shell (86 km above the origin): a ray starting there and one
-    // started 1 km back along the same line meet the sea at the same point (to 1 µm) — the start
-    // on the boundary is neither skipped nor doubled. (2) A ray starting on the boundary heading
+    // started 1 km back along the same line meet the sea at the same point, to the integrator's
+    // accuracy over the ~320 km path (rtol 1e-9: a few times 1e-9 × 3.2e5 m ≈ 0.3 mm; the two
+    // take different step sequences) — the start on the boundary is neither skipped nor doubled
+    // (either would move the landing point by kilometres). (2) A ray starting on the boundary heading
     // straight out, and one tangent to it, escape unbent (direction unchanged to 10⁻¹²).
     let s = scene(&air_scene(r#"{ type = "atmosphere", name = "usa76" }"#, "", "", &sea("grey")));
     let prop = Propagator::new(&s);
@@ -503,7 +505,7 @@ fn rays_starting_exactly_on_a_region_boundary_go_on_as_if_they_had_arrived_there
         panic!("must reach the sea")
     };
     eprintln!("from the top: sea at {} and {} ({:e} m apart)", a.point, b.point, (a.point - b.point).length());
-    assert!((a.point - b.point).length() < 1e-6);
+    assert!((a.point - b.point).length() < 10.0 * 1e-9 * 3.2e5);
     for out in [DVec3::Y, DVec3::X] {
         let Event::Escape { dir } = prop.next_event(&start(top, out)) else { panic!("{out} must escape") };
         assert!((dir - out).length() < 1e-12, "{out} left as {dir}");

@@ -212,7 +212,7 @@ impl<'a> Tracer<'a> {
         if h(1.0) < 0.0 {
             return Some(first_below(&h, 0.0, 1.0));
         }
-        if self.radial(&step.y0) < 0.0 && self.radial(&step.y1) > 0.0 {
+        if self.radial(&step.y0()) < 0.0 && self.radial(&step.y1()) > 0.0 {
             let t = extremum(&h, false);
             if h(t) < 0.0 {
                 return Some(first_below(&h, 0.0, t));
@@ -239,7 +239,7 @@ impl Climb {
     /// Takes in the part of `step` up to fraction `upto` (its end, or a ground crossing).
     fn observe(&mut self, tracer: &Tracer, step: &Step, upto: f64) {
         let h = |t: f64| tracer.height(step.position_at(t * upto));
-        let (r0, r1) = (tracer.radial(&step.y0), tracer.radial(&step.state_at(upto).y));
+        let (r0, r1) = (tracer.radial(&step.y0()), tracer.radial(&step.state_at(upto).y));
         let top = if r0 > 0.0 && r1 < 0.0 { h(extremum(&h, true)) } else { h(1.0) };
         self.max_height_m = self.max_height_m.max(top).max(h(0.0));
         if r1 < 0.0 && (self.rose || r0 > 0.0) {
