@@ -19,7 +19,7 @@ pub struct Settings {
 }
 
 impl Default for Settings {
-    /// rtol = atol = 10⁻¹² (the refraction then changes by less than 10⁻⁴″ when they are
+    /// rtol = atol = 10⁻¹² (the refraction then changes by less than 10⁻³″ when they are
     /// tightened further; tests/refraction.rs), and 20 000 km: half-way round the Earth.
     fn default() -> Settings {
         Settings { rtol: 1e-12, atol: 1e-12, max_path_m: 2e7 }
