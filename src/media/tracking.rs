@@ -114,6 +114,7 @@ mod tests {
                 reference_m: 0.0,
                 scale_height_m: 2.0,
             }),
+            inelastic: crate::media::inelastic::Inelastic::none(),
         }
     }
 

@@ -33,11 +33,38 @@ pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index:
     let name = ctx.require(&m.name, "name", &span, &format!("medium #{}", index + 1))?.get_ref().clone();
     let what = format!("medium \"{name}\"");
     let range = (bands.min_nm, bands.max_nm);
+    let mut medium = match &m.kind {
+        Some(kind) => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
+        None => {
+            super::inelastic::reject_ocean_fields(ctx, m, &what)?;
+            elastic(ctx, lib, m, &span, name, &what, range)?
+        }
+    };
+    if let Some(v) = &m.inelastic {
+        let extra = super::inelastic::components(ctx, lib, v, &what, range)?;
+        medium.inelastic.components.extend(extra);
+    }
+    super::inelastic::finish(&mut medium, bands);
+    Ok(medium)
+}
+
+/// A medium given by its coefficients, phase function and density.
+fn elastic(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    m: &RawMedium,
+    span: &Range<usize>,
+    name: String,
+    what: &str,
+    range: (f64, f64),
+) -> R<Medium> {
+    let what = what.to_string();
     let spec = |v: &Spanned<Value>, field: &str, use_: Use| lib.parse(ctx, v, &format!("{what}: {field}"), use_, range);
     let phase = match &m.phase {
         None => PhaseFunction::isotropic(),
         Some(p) => phase(ctx, lib, p, &what, range)?,
     };
+    let span = span.clone();
     let is_mixture = matches!(phase, PhaseFunction::Mixture(_));
     let coefficients = match (&m.sigma_a, &m.sigma_s, &m.sigma_t, &m.albedo) {
         (Some(a), None, None, None) if is_mixture => {
@@ -66,13 +93,19 @@ pub fn medium(ctx: &Ctx, lib: &SpectrumLibrary, rec: &Spanned<RawMedium>, index:
         None => Density::Uniform,
         Some(d) => density(ctx, d, &what)?,
     };
-    Ok(Medium { name, coefficients, phase, density })
+    Ok(Medium { name, coefficients, phase, density, inelastic: crate::media::inelastic::Inelastic::none() })
 }
 
 /// A string names a parameter-free phase function ("isotropic", "rayleigh", "pure_water",
 /// "raman"); a table has `type` — "hg" (g), "schlick" (k, or g), "two_term_hg" (w, g1, g2),
 /// "tabulated" (file: CSV of angle_deg, value), "mixture" (components = [{ sigma_s, phase }]).
-fn phase(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, range: (f64, f64)) -> R<PhaseFunction> {
+pub(super) fn phase(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    v: &Spanned<Value>,
+    what: &str,
+    range: (f64, f64),
+) -> R<PhaseFunction> {
     let span = v.span();
     let named = ["isotropic", "rayleigh", "pure_water", "raman"];
     let kind = match v.get_ref() {
@@ -152,15 +185,15 @@ fn mixture(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, ran
 }
 
 /// Reads the keys of a table value, rejecting unknown ones.
-struct Table<'a> {
+pub(super) struct Table<'a> {
     ctx: &'a Ctx<'a>,
-    span: Range<usize>,
-    t: &'a toml::Table,
+    pub span: Range<usize>,
+    pub t: &'a toml::Table,
     what: String,
 }
 
 impl<'a> Table<'a> {
-    fn new(ctx: &'a Ctx<'a>, v: &'a Spanned<Value>, what: String, allowed: &[&str]) -> R<Table<'a>> {
+    pub fn new(ctx: &'a Ctx<'a>, v: &'a Spanned<Value>, what: String, allowed: &[&str]) -> R<Table<'a>> {
         let span = v.span();
         let Value::Table(t) = v.get_ref() else { return Err(ctx.err(&span, format!("{what}: expected a table"))) };
         if let Some(k) = t.keys().find(|k| !allowed.contains(&k.as_str())) {
@@ -169,7 +202,7 @@ impl<'a> Table<'a> {
         Ok(Table { ctx, span, t, what })
     }
 
-    fn num(&self, key: &str, default: Option<f64>) -> R<f64> {
+    pub fn num(&self, key: &str, default: Option<f64>) -> R<f64> {
         match self.t.get(key) {
             None => default.ok_or_else(|| self.ctx.err(&self.span, format!("{}: missing `{key}`", self.what))),
             Some(v) => v
@@ -180,7 +213,7 @@ impl<'a> Table<'a> {
         }
     }
 
-    fn positive(&self, key: &str, default: Option<f64>) -> R<f64> {
+    pub fn positive(&self, key: &str, default: Option<f64>) -> R<f64> {
         let x = self.num(key, default)?;
         if x > 0.0 {
             Ok(x)

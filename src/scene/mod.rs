@@ -4,6 +4,7 @@
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
 mod context;
+mod inelastic;
 mod lights;
 mod luminaires;
 mod materials;

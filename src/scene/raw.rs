@@ -49,6 +49,19 @@ pub struct RawMedium {
     pub albedo: S<toml::Value>,
     pub phase: S<toml::Value>,
     pub density: S<toml::Value>,
+    /// `type = "ocean"` builds sea water from the fields below (src/scene/inelastic.rs).
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub chl_mg_m3: S<f64>,
+    pub cdom_a440_per_m: S<f64>,
+    pub cdom_slope_per_nm: S<f64>,
+    pub chl_yield: S<f64>,
+    pub cdom_yield: S<f64>,
+    pub raman: S<bool>,
+    pub particle_phase: S<toml::Value>,
+    pub data_dir: S<String>,
+    /// Inelastic components of any medium: an array of tables.
+    pub inelastic: S<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
