@@ -187,7 +187,10 @@ fn inelastic_decision(media: &[&Medium]) -> Decision {
     if parts.is_empty() {
         Decision::off("no medium re-emits light at another wavelength")
     } else {
-        Decision::on(format!("second Russian roulette on the quantum yield in {}", parts.join("; ")))
+        Decision::on(format!(
+            "light is re-emitted at other wavelengths (a second Russian roulette on the quantum yield after absorption; Raman scattering always re-emits) in {}",
+            parts.join("; ")
+        ))
     }
 }
 

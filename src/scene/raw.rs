@@ -208,4 +208,9 @@ pub struct RawSensor {
     pub resolution: S<[i64; 2]>,
     pub samples: S<i64>,
     pub gather_rays: S<i64>,
+    /// `type = "ocean_profile"` only.
+    pub depths_m: S<Vec<f64>>,
+    pub slab_m: S<f64>,
+    pub lu_cone_deg: S<f64>,
+    pub ior: S<f64>,
 }

@@ -7,9 +7,10 @@
 //!   energy redistribution is f(λ' → λ) = Φ f̂(λ' → λ) λ'/λ — Mobley (1994) Eq. 5.104 for
 //!   chlorophyll, Gutierrez et al. (2005) Eq. 12. Default for fluorescence.
 //! - [`Accounting::Energy`]: Φ is an energy yield and the re-emitted photon keeps its energy,
-//!   f = Φ f̂. Default for Raman scattering, whose redistribution as published (Mobley 1994,
-//!   §5.13) integrates to one over λ, i.e. b_R counts energy; Mobley et al. (1993) problem 7
-//!   uses that form.
+//!   f = Φ f̂. Default for a generic Raman component, whose redistribution as published
+//!   (Mobley 1994, §5.13) integrates to one over λ, i.e. b_R counts energy (the form of the
+//!   Mobley et al. 1993 comparisons). The ocean model's Raman component counts photons instead,
+//!   because its b_R(λ') (Bartlett et al. 1998, λ'^−5.3) is normalised to photons.
 //!
 //! Raman scattering is a scattering, not an absorption: its coefficient b_R(λ') adds to the
 //! extinction and every Raman event re-emits (Φ = 1).

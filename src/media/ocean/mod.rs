@@ -12,10 +12,12 @@
 //!     Morel & Prieur 1981; Mobley 1994 Eq. 3.27 — exponential: the linear form printed by
 //!     Gutierrez et al. 2005 is a typo), FA7 redistribution (Hawes 1992) with its own yield
 //!     Γ(λ') ≈ 0.01–0.02, or a constant Φ_Y;
-//!   - Raman scattering by water, b_R(λ') = 2.7·10⁻⁴ (488/λ')^5.3 m⁻¹ (Bartlett et al. 1998
-//!     measured b_R(488) = 2.7·10⁻⁴ m⁻¹; the exponent as in the issue, cf. Mobley 1994 §5.13,
-//!     who uses λ'^−5 with 2.6·10⁻⁴), Walrafen's band, Raman phase function, energy
-//!     accounting (as published).
+//!   - Raman scattering by water, b_R(λ') = 2.7·10⁻⁴ (488/λ')^5.3 m⁻¹: Bartlett et al. (1998)
+//!     measured b_R(488) = (2.7 ± 0.2)·10⁻⁴ m⁻¹ and λ'^(−5.3 ± 0.3) *normalised to photons*
+//!     (λ'^−5.5 normalised to energy), so this component counts photons (photon-number
+//!     accounting: energy × λ'/λ); Walrafen's band; the Raman phase function. (Mobley 1994,
+//!     §5.13, uses 2.6·10⁻⁴ m⁻¹ and an energy-normalised redistribution; a generic `raman`
+//!     component defaults to that energy accounting.)
 //!
 //! Spectra are tabulated every 1 nm over the scene's wavelength range.
 //!
@@ -135,7 +137,7 @@ pub fn sea_water(name: &str, p: &OceanParams, range: (f64, f64)) -> Result<Mediu
         });
     }
     if p.raman {
-        components.push(raman_component(grid(&raman_coefficient)?, RamanShift::walrafen(), Accounting::Energy));
+        components.push(raman_component(grid(&raman_coefficient)?, RamanShift::walrafen(), Accounting::PhotonNumber));
     }
     let sigma_a = if p.cdom_a440_per_m > 0.0 && !cdom_on { grid(&|l| sigma_a.eval(l) + a_y(l))? } else { sigma_a };
     Ok(Medium {
