@@ -1,12 +1,12 @@
 #!/usr/bin/env sh
 # Chlorophyll sweep: renders examples/chlorophyll_sweep.toml for Chl = 0.01 … 10 mg m⁻³ and
 # writes OUT/rrs_sweep.csv (chl_mg_m3,wavelength_nm,Rrs_per_sr) and OUT/rrs_sweep.png.
-# Usage: scripts/chl_sweep.sh [OUT] [PHOTONS]  (defaults: out/chl_sweep, 3000000; about a minute
+# Usage: scripts/chl_sweep.sh [OUT] [PHOTONS]  (defaults: out/chl_sweep, 1000000; about half a minute
 # per concentration on 2 cores at the default).
 set -eu
 cd "$(dirname "$0")/.."
 OUT=${1:-out/chl_sweep}
-PHOTONS=${2:-3000000}
+PHOTONS=${2:-1000000}
 mkdir -p "$OUT"
 cargo build --release --bin morgana --bin morgana-rrs-plot
 echo "chl_mg_m3,wavelength_nm,Rrs_per_sr" > "$OUT/rrs_sweep.csv"

@@ -216,9 +216,10 @@ fn mobley1993_problems_1_and_2_at_tau_1() {
     }
 }
 
-/// The collision estimator's Lu against the path tracer: a camera at depth z looking straight
-/// down sees the upwelling radiance Lu(z) (here a 2° field of view against the sensor's 10°
-/// cone, whose averaging is negligible for the smooth Rayleigh light field). The surface is
+/// The profile's Lu (the expected value of upward scattering over the collisions below z)
+/// against the path tracer: a camera at depth z looking straight down sees the upwelling
+/// radiance Lu(z) (over a 2° field of view, whose averaging is negligible for the smooth
+/// Rayleigh light field). The surface is
 /// index-matched here, because the path tracer reaches a delta light (the sun) only by shadow
 /// rays, which do not refract.
 /// Slow: `cargo test --release --test ocean -- --ignored path_tracer`.

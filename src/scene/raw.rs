@@ -211,6 +211,5 @@ pub struct RawSensor {
     /// `type = "ocean_profile"` only.
     pub depths_m: S<Vec<f64>>,
     pub slab_m: S<f64>,
-    pub lu_cone_deg: S<f64>,
     pub ior: S<f64>,
 }

@@ -21,7 +21,6 @@
 //! normal = [0.0, 1.0, 0.0]      # optional: up, toward the air (default +Y)
 //! depths_m = [1.0, 5.0, 10.0]   # below the surface
 //! slab_m = 0.2                  # optional: thickness of each measuring slab (default 0.1)
-//! lu_cone_deg = 10.0            # optional: half-angle of the Lu radiometer (default 10)
 //! ior = 1.34                    # optional: water's refractive index for Lw (default 1.34)
 //! samples = 64                  # optional: shadow rays per band for Ed(0+)
 //! ```
@@ -57,8 +56,7 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
     if kind == "ocean_profile" {
         return profile(ctx, rec, name, &what, integrator);
     }
-    let present =
-        present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, lu_cone_deg, ior);
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior);
     ctx.only(&present, &["origin", "u", "v", "normal", "resolution", "samples", "gather_rays"], &what)?;
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, &what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
@@ -104,9 +102,8 @@ fn profile(
 ) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present =
-        present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, lu_cone_deg, ior);
-    ctx.only(&present, &["origin", "u", "v", "normal", "samples", "depths_m", "slab_m", "lu_cone_deg", "ior"], what)?;
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior);
+    ctx.only(&present, &["origin", "u", "v", "normal", "samples", "depths_m", "slab_m", "ior"], what)?;
     if integrator.photons == 0 {
         return Err(ctx.err(
             &span,
@@ -129,9 +126,8 @@ fn profile(
         return Err(ctx.err(&d.span(), format!("{what}: depths_m must be a non-empty list of depths ≥ 0 (m)")));
     }
     let slab_m = s.slab_m.as_ref().map_or(Ok(0.1), |x| ctx.number(x, "slab_m", 0.0, f64::INFINITY, true))?;
-    let lu_cone_deg = s.lu_cone_deg.as_ref().map_or(Ok(10.0), |x| ctx.number(x, "lu_cone_deg", 0.0, 90.0, true))?;
     let ior = s.ior.as_ref().map_or(Ok(1.34), |x| ctx.number(x, "ior", 1.0, 3.0, false))?;
     let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
-    let p = OceanProfile { origin, u, v, up, depths_m, slab_m, lu_cone_deg, ior, samples };
+    let p = OceanProfile { origin, u, v, up, depths_m, slab_m, ior, samples };
     Ok(NamedSensor { name, sensor: Sensor::OceanProfile(p) })
 }

@@ -11,23 +11,33 @@
 //!
 //! - E_od = Σ_↓ ΔΦ_p / (σ_t V Δλ_b),  E_ou = Σ_↑ ΔΦ_p / (σ_t V Δλ_b);
 //! - E_d = Σ_↓ |μ_p| ΔΦ_p / (σ_t V Δλ_b),  E_u = Σ_↑ |μ_p| ΔΦ_p / (σ_t V Δλ_b);
-//! - L_u = Σ_{↑, μ_p > cos θ_c} ΔΦ_p / (σ_t V Ω_c Δλ_b), Ω_c = 2π (1 − cos θ_c): the mean
-//!   radiance in a cone of half-angle θ_c about the zenith direction of travel (a radiometer
-//!   looking straight down).
 //!
 //! This is the collision estimator of the fluence (Spanier & Gelbard 1969, §3.5; Mobley 1994,
 //! §6.4): unbiased apart from averaging over the slab (an exponential decay K over Δz biases by
-//! (KΔz)²/24) and, for L_u, over the cone. It reads the same map the eye pass reads, costs one
-//! pass over the stored photons, and needs no change to photon tracing; its noise is that of
-//! the number of collisions in the slab. A plane-crossing tally during tracing would count
-//! crossings instead (lower noise for Ed near the surface, but it would reach into the tracer).
+//! (KΔz)²/24). It reads the same map the eye pass reads, costs one pass over the stored photons,
+//! and needs no change to photon tracing; its noise is that of the number of collisions in the
+//! slab. (A plane-crossing tally during tracing would count crossings instead — lower noise
+//! near the surface, but it would reach into the tracer.)
+//!
+//! L_u, the nadir-viewing (zenith-travelling) radiance at depth z, is the light scattered
+//! straight up by every collision below z and attenuated on the way (the expected-value, or
+//! next-event, estimator for a horizontally homogeneous field, Spanier & Gelbard §3.6):
+//!
+//! L_u(z, b) = (1/(A Δλ_b)) Σ_{z_p > z} ΔΦ_p [α(λ_p) p(μ_p) 1_b(λ_p) e^{−σ_t(λ_p)(z_p − z)}
+//!             + Σ_i p_i(μ_p) T_i(λ_p, b) e^{−σ_t(λ_b)(z_p − z)}],
+//!
+//! μ_p the cosine between the photon's direction and up, the second term the inelastic
+//! re-emission into band b (see [`crate::media::inelastic::BandTransfer`], attenuated at the
+//! band centre λ_b). It uses every collision below z, so it is far less noisy than counting
+//! photons in a cone, and exact for the nadir direction; it assumes the water column between
+//! z_p and z is the medium at the photon (no surface in between) and the field horizontally
+//! homogeneous over the measured square.
 //!
 //! Above the water, E_d(0+) is computed from the lights by shadow rays from the surface point
 //! (`samples` per band, each at a jittered wavelength in the band).
 //!
 //! Derived: L_w = L_u(0−) (1 − R(0)) / n², with R(0) = ((n − 1)/(n + 1))² the Fresnel
-//! reflectance at normal incidence and L_u(0−) the estimate in the slab [0, Δz] below the
-//! surface; R_rs = L_w / E_d(0+) (sr⁻¹); K_d between consecutive depths
+//! reflectance at normal incidence and L_u(0−) the estimate at depth 0; R_rs = L_w / E_d(0+) (sr⁻¹); K_d between consecutive depths
 //! = ln(E_d(z₁)/E_d(z₂)) / (z₂ − z₁) (Mobley 1994, §1.7 and §4.? for the n² law).
 //!
 //! Units: irradiances W m⁻² nm⁻¹, radiances W m⁻² sr⁻¹ nm⁻¹, R_rs sr⁻¹, K_d m⁻¹.
@@ -42,7 +52,6 @@ use crate::render::maps::Maps;
 use crate::rng::{Rng, Stream};
 use crate::scene::Scene;
 use glam::DVec3;
-use std::f64::consts::PI;
 use std::io::{self, Write};
 use std::path::Path;
 
@@ -57,7 +66,6 @@ pub struct OceanProfile {
     pub up: DVec3,
     pub depths_m: Vec<f64>,
     pub slab_m: f64,
-    pub lu_cone_deg: f64,
     /// Refractive index of the water for L_w.
     pub ior: f64,
     /// Shadow-ray samples per band for E_d(0+).
@@ -90,18 +98,17 @@ impl OceanProfile {
     pub fn evaluate(&self, scene: &Scene, maps: &Maps, name: &str, index: u64) -> ProfileReading {
         let bands = scene.bands;
         let mut depths = self.depths_m.clone();
-        depths.push(0.5 * self.slab_m);
+        depths.push(0.0);
         let mut sums = vec![[0.0f64; 5]; depths.len() * bands.count];
-        let cos_c = self.lu_cone_deg.to_radians().cos();
         if let Some(map) = &maps.volume {
             for i in 0..map.len() as u32 {
                 let p = map.record(i);
-                self.tally(scene, &p, &depths, cos_c, &mut sums);
+                self.tally(scene, &p, &depths, &mut sums);
             }
         }
         let area = self.u.cross(self.v).length();
-        let omega = 2.0 * PI * (1.0 - cos_c);
         let scale = 1.0 / (area * self.slab_m * bands.width_nm());
+        let lu_scale = 1.0 / (area * bands.width_nm());
         let row = |k: usize, b: usize| {
             let s = sums[k * bands.count + b];
             ProfileRow {
@@ -111,7 +118,7 @@ impl OceanProfile {
                 eu: s[1] * scale,
                 eod: s[2] * scale,
                 eou: s[3] * scale,
-                lu: s[4] * scale / omega,
+                lu: s[4] * lu_scale,
             }
         };
         let rows = (0..self.depths_m.len())
@@ -130,16 +137,11 @@ impl OceanProfile {
         ProfileReading { name: name.to_string(), rows, surface }
     }
 
-    /// Adds one stored photon to every slab and band it belongs to.
-    fn tally(
-        &self,
-        scene: &Scene,
-        p: &crate::photon_map::PhotonRecord,
-        depths: &[f64],
-        cos_c: f64,
-        sums: &mut [[f64; 5]],
-    ) {
-        let Some(b) = scene.bands.index_of(p.wavelength_nm) else { return };
+    /// Adds one stored photon to every slab and band it belongs to, and its upward scattering
+    /// to L_u at every depth above it.
+    fn tally(&self, scene: &Scene, p: &crate::photon_map::PhotonRecord, depths: &[f64], sums: &mut [[f64; 5]]) {
+        let bands = scene.bands;
+        let Some(b) = bands.index_of(p.wavelength_nm) else { return };
         let rel = p.position - self.origin;
         let depth = -rel.dot(self.up);
         let (su, sv) = (rel.dot(self.u) / self.u.length_squared(), rel.dot(self.v) / self.v.length_squared());
@@ -153,20 +155,31 @@ impl OceanProfile {
         }
         let mu = p.dir.dot(self.up);
         let w = p.power_w / sigma_t;
+        let l = p.wavelength_nm;
+        let up_elastic = m.albedo(l) * m.phase.eval(l, mu) * p.power_w;
+        let mut up_inelastic = [0.0; crate::spectrum::MAX_BANDS];
+        if let Some(t) = &m.inelastic.transfer {
+            t.add_photon(&m.inelastic, &mut up_inelastic, l, mu, p.power_w);
+        }
+        let density = m.density.at(p.position);
         for (k, z) in depths.iter().enumerate() {
+            if depth > *z {
+                let h = depth - z;
+                sums[k * bands.count + b][4] += up_elastic * (-sigma_t * h).exp();
+                for (j, v) in up_inelastic.iter().enumerate().take(bands.count).filter(|(_, v)| **v > 0.0) {
+                    sums[k * bands.count + j][4] += v * (-m.sigma_t(bands.centre_nm(j)) * density * h).exp();
+                }
+            }
             if (depth - z).abs() > 0.5 * self.slab_m {
                 continue;
             }
-            let s = &mut sums[k * scene.bands.count + b];
+            let s = &mut sums[k * bands.count + b];
             if mu < 0.0 {
                 s[0] += w * -mu;
                 s[2] += w;
             } else {
                 s[1] += w * mu;
                 s[3] += w;
-                if mu > cos_c {
-                    s[4] += w;
-                }
             }
         }
     }
