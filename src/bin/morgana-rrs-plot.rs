@@ -27,7 +27,7 @@ fn main() -> ExitCode {
             eprintln!("morgana-rrs-plot: {input}:{}: expected chl_mg_m3,wavelength_nm,Rrs_per_sr", i + 1);
             return ExitCode::from(2);
         };
-        let label = format!("Chl {chl} mg/m3");
+        let label = format!("{chl} mg/m3");
         match series.iter_mut().find(|s| s.label == label) {
             Some(s) => s.points.push((*l, *rrs)),
             None => series.push(Series { label, points: vec![(*l, *rrs)] }),
@@ -35,7 +35,7 @@ fn main() -> ExitCode {
     }
     match write_png(
         std::path::Path::new(output),
-        "Rrs (1/sr) by chlorophyll",
+        "Rrs (1/sr) by chlorophyll a",
         "wavelength (nm)",
         "Rrs",
         &series,

@@ -13,10 +13,10 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-const W: usize = 760;
+const W: usize = 820;
 const H: usize = 480;
 const LEFT: f64 = 90.0;
-const RIGHT: f64 = 170.0;
+const RIGHT: f64 = 220.0;
 const TOP: f64 = 40.0;
 const BOTTOM: f64 = 60.0;
 

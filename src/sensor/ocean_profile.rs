@@ -26,10 +26,12 @@
 //! L_u(z, b) = (1/(A Δλ_b)) Σ_{z_p > z} ΔΦ_p [α(λ_p) p(μ_p) 1_b(λ_p) e^{−σ_t(λ_p)(z_p − z)}
 //!             + Σ_i p_i(μ_p) T_i(λ_p, b) e^{−σ_t(λ_b)(z_p − z)}],
 //!
-//! μ_p the cosine between the photon's direction and up, the second term the inelastic
+//! μ_p the cosine between the photon's direction and up (p averaged over a 5° cone about the
+//! nadir-viewing direction for photons travelling near it, see `cone_mean_phase`, which keeps a
+//! forward-peaked phase function from giving heavy-tailed weights), the second term the inelastic
 //! re-emission into band b (see [`crate::media::inelastic::BandTransfer`], attenuated at the
 //! band centre λ_b). It uses every collision below z, so it is far less noisy than counting
-//! photons in a cone, and exact for the nadir direction; it assumes the water column between
+//! photons in a cone; it assumes the water column between
 //! z_p and z is the medium at the photon (no surface in between) and the field horizontally
 //! homogeneous over the measured square.
 //!
@@ -103,7 +105,8 @@ impl OceanProfile {
         if let Some(map) = &maps.volume {
             for i in 0..map.len() as u32 {
                 let p = map.record(i);
-                self.tally(scene, &p, &depths, &mut sums);
+                let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, (index << 40) | u64::from(i));
+                self.tally(scene, &p, &depths, &mut sums, &mut rng);
             }
         }
         let area = self.u.cross(self.v).length();
@@ -139,7 +142,14 @@ impl OceanProfile {
 
     /// Adds one stored photon to every slab and band it belongs to, and its upward scattering
     /// to L_u at every depth above it.
-    fn tally(&self, scene: &Scene, p: &crate::photon_map::PhotonRecord, depths: &[f64], sums: &mut [[f64; 5]]) {
+    fn tally(
+        &self,
+        scene: &Scene,
+        p: &crate::photon_map::PhotonRecord,
+        depths: &[f64],
+        sums: &mut [[f64; 5]],
+        rng: &mut Rng,
+    ) {
         let bands = scene.bands;
         let Some(b) = bands.index_of(p.wavelength_nm) else { return };
         let rel = p.position - self.origin;
@@ -156,7 +166,7 @@ impl OceanProfile {
         let mu = p.dir.dot(self.up);
         let w = p.power_w / sigma_t;
         let l = p.wavelength_nm;
-        let up_elastic = m.albedo(l) * m.phase.eval(l, mu) * p.power_w;
+        let up_elastic = m.albedo(l) * cone_mean_phase(&m.phase, l, p.dir, self.up, rng) * p.power_w;
         let mut up_inelastic = [0.0; crate::spectrum::MAX_BANDS];
         if let Some(t) = &m.inelastic.transfer {
             t.add_photon(&m.inelastic, &mut up_inelastic, l, mu, p.power_w);
@@ -211,6 +221,26 @@ impl OceanProfile {
             })
             .collect()
     }
+}
+
+/// Half-angle of the cone over which L_u is averaged (a narrow-field radiometer).
+pub const LU_CONE_DEG: f64 = 5.0;
+/// Phase-function samples for photons travelling within 4 cone half-angles of up.
+const CONE_SAMPLES: usize = 64;
+
+/// The mean of p(ω_p · ω) over the directions ω within [`LU_CONE_DEG`] of `up`: for a photon
+/// travelling near `up`, where a forward-peaked phase function (Petzold's reaches 10⁴ times its
+/// mean) would make p(μ) a heavy-tailed weight, the fraction of [`CONE_SAMPLES`] directions drawn
+/// from p about ω_p that fall in the cone, over the cone's solid angle (unbiased, bounded by
+/// 1/Ω_c); farther away, p at the cone's axis (p is smooth there).
+fn cone_mean_phase(phase: &crate::media::phase::PhaseFunction, l: f64, dir: DVec3, up: DVec3, rng: &mut Rng) -> f64 {
+    let cos_c = LU_CONE_DEG.to_radians().cos();
+    let mu = dir.dot(up);
+    if mu < (4.0 * LU_CONE_DEG).to_radians().cos() {
+        return phase.eval(l, mu);
+    }
+    let hits = (0..CONE_SAMPLES).filter(|_| phase.sample(l, dir, rng.uniform2()).0.dot(up) > cos_c).count();
+    hits as f64 / CONE_SAMPLES as f64 / (2.0 * std::f64::consts::PI * (1.0 - cos_c))
 }
 
 impl ProfileReading {
