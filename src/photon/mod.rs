@@ -6,6 +6,7 @@
 //! identical for any thread count.
 
 mod emit;
+pub mod inelastic;
 pub mod projection;
 mod targeting;
 mod trace;
@@ -32,7 +33,7 @@ pub fn shoot(
     seed: u64,
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> (PhotonSink, PhotonStats) {
-    let mut stats = PhotonStats { emitted, ..PhotonStats::default() };
+    let mut stats = PhotonStats { emitted, inelastic: inelastic::tallies(scene), ..PhotonStats::default() };
     let Some(chooser) = LightChooser::new(&scene.lights) else { return (PhotonSink::default(), stats) };
     let targets = match kind {
         MapKind::Caustic => match CausticTargets::new(scene) {

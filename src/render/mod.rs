@@ -38,6 +38,8 @@ pub struct Rendered {
     pub stats: RenderStats,
     /// What the scene's sensors measured.
     pub sensors: Vec<crate::sensor::Reading>,
+    /// What the scene's ocean profile sensors measured.
+    pub profiles: Vec<crate::sensor::ProfileReading>,
 }
 
 /// Renders `scene` on the current rayon thread pool.
@@ -58,10 +60,11 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
     stats.phases.add("colour conversion", t);
     let t = Instant::now();
     let sensors = crate::sensor::evaluate_all(scene, &maps);
-    if !sensors.is_empty() {
+    let profiles = crate::sensor::evaluate_profiles(scene, &maps);
+    if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
-    Rendered { image, stats, sensors }
+    Rendered { image, stats, sensors, profiles }
 }
 
 /// Per-pixel band averages (row-major, `bands.count` per pixel), the rays traced and the

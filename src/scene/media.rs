@@ -45,11 +45,41 @@ pub fn medium(
     let name = ctx.require(&m.name, "name", &span, &format!("medium #{}", index + 1))?.get_ref().clone();
     let what = format!("medium \"{name}\"");
     let range = (bands.min_nm, bands.max_nm);
+    let mut medium = match &m.kind {
+        Some(kind) => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
+        None => {
+            super::inelastic::reject_ocean_fields(ctx, m, &what)?;
+            elastic(ctx, lib, m, &span, name, &what, range)?
+        }
+    };
+    if let Some(v) = &m.inelastic {
+        let extra = super::inelastic::components(ctx, lib, v, &what, range)?;
+        medium.inelastic.components.extend(extra);
+    }
+    super::inelastic::finish(&mut medium, bands);
+    if let Some(v) = &m.index {
+        medium.index = Some(super::index::field(ctx, v, &what, &earth.0, earth.1, range)?);
+    }
+    Ok(medium)
+}
+
+/// A medium given by its coefficients, phase function and density.
+fn elastic(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    m: &RawMedium,
+    span: &Range<usize>,
+    name: String,
+    what: &str,
+    range: (f64, f64),
+) -> R<Medium> {
+    let what = what.to_string();
     let spec = |v: &Spanned<Value>, field: &str, use_: Use| lib.parse(ctx, v, &format!("{what}: {field}"), use_, range);
     let phase = match &m.phase {
         None => PhaseFunction::isotropic(),
         Some(p) => phase(ctx, lib, p, &what, range)?,
     };
+    let span = span.clone();
     let is_mixture = matches!(phase, PhaseFunction::Mixture(_));
     let coefficients = match (&m.sigma_a, &m.sigma_s, &m.sigma_t, &m.albedo) {
         (Some(a), None, None, None) if is_mixture => {
@@ -78,17 +108,26 @@ pub fn medium(
         None => Density::Uniform,
         Some(d) => density(ctx, d, &what)?,
     };
-    let index = match &m.index {
-        None => None,
-        Some(v) => Some(super::index::field(ctx, v, &what, &earth.0, earth.1, (bands.min_nm, bands.max_nm))?),
-    };
-    Ok(Medium { name, coefficients, phase, density, index })
+    Ok(Medium {
+        name,
+        coefficients,
+        phase,
+        density,
+        index: None,
+        inelastic: crate::media::inelastic::Inelastic::none(),
+    })
 }
 
 /// A string names a parameter-free phase function ("isotropic", "rayleigh", "pure_water",
 /// "raman"); a table has `type` — "hg" (g), "schlick" (k, or g), "two_term_hg" (w, g1, g2),
 /// "tabulated" (file: CSV of angle_deg, value), "mixture" (components = [{ sigma_s, phase }]).
-fn phase(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, range: (f64, f64)) -> R<PhaseFunction> {
+pub(super) fn phase(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    v: &Spanned<Value>,
+    what: &str,
+    range: (f64, f64),
+) -> R<PhaseFunction> {
     let span = v.span();
     let named = ["isotropic", "rayleigh", "pure_water", "raman"];
     let kind = match v.get_ref() {

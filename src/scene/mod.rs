@@ -5,6 +5,7 @@
 
 mod context;
 mod index;
+mod inelastic;
 mod lights;
 mod luminaires;
 mod materials;

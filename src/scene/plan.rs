@@ -106,7 +106,7 @@ impl EffectPlan {
             participating_media: media_decision(&facts.used_media),
             volume_map: volume_map_decision(&facts.used_media, s),
             curved_paths: curved_decision(&facts.used_media, s),
-            inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
+            inelastic_scattering: inelastic_decision(&facts.used_media),
         }
     }
 
@@ -130,7 +130,7 @@ impl EffectPlan {
             participating_media: media_decision(&facts.used_media),
             volume_map: off(),
             curved_paths: curved_decision(&facts.used_media, s),
-            inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
+            inelastic_scattering: inelastic_decision(&facts.used_media),
         }
     }
 
@@ -194,6 +194,26 @@ fn media_decision(media: &[&Medium]) -> Decision {
                 .collect();
             Decision::on(format!("light is absorbed and scattered in {}", names.join(", ")))
         }
+    }
+}
+
+/// On when a used medium has inelastic components, naming them.
+fn inelastic_decision(media: &[&Medium]) -> Decision {
+    let parts: Vec<String> = media
+        .iter()
+        .filter(|m| !m.inelastic.is_empty())
+        .map(|m| {
+            let names: Vec<&str> = m.inelastic.components.iter().map(|c| c.name.as_str()).collect();
+            format!("\"{}\" ({})", m.name, names.join(", "))
+        })
+        .collect();
+    if parts.is_empty() {
+        Decision::off("no medium re-emits light at another wavelength")
+    } else {
+        Decision::on(format!(
+            "light is re-emitted at other wavelengths (a second Russian roulette on the quantum yield after absorption; Raman scattering always re-emits) in {}",
+            parts.join("; ")
+        ))
     }
 }
 
