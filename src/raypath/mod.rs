@@ -78,6 +78,8 @@ pub struct Propagator<'a> {
     world_radius: f64,
     /// Per medium: where its index field bends light, if it does and the plan follows it.
     regions: Vec<Option<GradientRegion>>,
+    /// Per medium: whether it neither absorbs nor scatters (nothing happens in it but bending).
+    clear: Vec<bool>,
     /// Integrator work along curved paths.
     pub work: CurvedWork,
 }
@@ -93,7 +95,13 @@ impl<'a> Propagator<'a> {
             .iter()
             .map(|m| m.index.as_ref().filter(|f| curved && !f.is_uniform()).map(|f| f.gradient_region()))
             .collect();
-        Propagator { scene, world_centre: centre, world_radius: radius, regions, work: CurvedWork::default() }
+        let clear = scene.media.iter().map(|m| m.is_clear()).collect();
+        Propagator { scene, world_centre: centre, world_radius: radius, regions, clear, work: CurvedWork::default() }
+    }
+
+    /// Whether medium `m` neither absorbs nor scatters light.
+    pub fn is_clear(&self, m: u32) -> bool {
+        self.clear[m as usize]
     }
 
     /// The scene light moves through.

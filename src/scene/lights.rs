@@ -15,7 +15,9 @@
 //! may also be given an `angular_diameter_deg`.
 //!
 //! A `sky` is uniform radiance (`spectrum` × `scale`, W m⁻² sr⁻¹ nm⁻¹) from every direction above
-//! the plane normal to `up` (default +y); its photons are aimed at the bounding sphere of
+//! its horizon — elevation `horizon_deg` above the plane normal to `up` (defaults 0° and +y; a
+//! round-Earth scene sets it a few degrees negative, since rays that leave the atmosphere bend
+//! below the horizontal) — with photons aimed at the bounding sphere of
 //! `target_min`/`target_max` (default: of the whole scene).
 
 use super::context::{Ctx, R};
@@ -56,7 +58,7 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, elevation_deg, azimuth_deg, angular_diameter_deg, up);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, elevation_deg, azimuth_deg, angular_diameter_deg, up, horizon_deg);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
@@ -72,7 +74,7 @@ pub fn light(
             "target_min",
             "target_max",
         ],
-        "sky" => &["scale", "up", "target_min", "target_max"],
+        "sky" => &["scale", "up", "horizon_deg", "target_min", "target_max"],
         _ => &["scale", "irradiance_w_m2", "direction", "angular_diameter_deg", "target_min", "target_max"],
     };
     ctx.only(&present, allowed, &what)?;
@@ -164,7 +166,11 @@ fn sky(
         Some((lo, hi)) => (0.5 * (lo + hi), (0.5 * (hi - lo).length()).max(1e-9)),
     };
     let start_distance = 1.001 * ((target_centre - scene_centre).length() + scene_radius);
-    Ok(SkyLight { up, target_centre, target_radius, start_distance, emission })
+    let horizon = match &l.horizon_deg {
+        None => 0.0,
+        Some(h) => ctx.number(h, "horizon_deg", -90.0, 90.0, true)?,
+    };
+    Ok(SkyLight { up, sin_horizon: horizon.to_radians().sin(), target_centre, target_radius, start_distance, emission })
 }
 
 /// The direction of travel of a directional light or sun: `direction`, or (sun only) the

@@ -92,10 +92,18 @@ impl EffectPlan {
             (false, _) => Decision::off("final_gather = false: indirect light read directly from the global map"),
         };
         let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
-        let dispersion_splitting = match (dispersive, multi) {
-            (None, _) => Decision::off("no material's refractive index depends on wavelength"),
-            (Some(_), false) => Decision::off("a single band: every path carries one wavelength"),
-            (Some(m), true) => Decision::on(format!("material \"{m}\" refracts each wavelength differently")),
+        let bending = facts
+            .used_media
+            .iter()
+            .find(|m| m.bends_light() && m.index.as_ref().is_some_and(|f| f.is_dispersive()))
+            .map(|m| m.name.as_str());
+        let dispersion_splitting = match (dispersive, bending, multi) {
+            (None, None, _) => Decision::off("no material's or medium's refractive index depends on wavelength"),
+            (_, _, false) => Decision::off("a single band: every path carries one wavelength"),
+            (Some(m), _, true) => Decision::on(format!("material \"{m}\" refracts each wavelength differently")),
+            (None, Some(m), true) => Decision::on(format!(
+                "medium \"{m}\" bends each wavelength differently: eye paths split into one path per wavelength there"
+            )),
         };
         EffectPlan {
             global_map,

@@ -206,6 +206,7 @@ pub struct RawLight {
     pub azimuth_deg: S<f64>,
     pub angular_diameter_deg: S<f64>,
     pub up: S<[f64; 3]>,
+    pub horizon_deg: S<f64>,
 }
 
 #[derive(Debug, Deserialize)]
