@@ -11,6 +11,8 @@
 //!                        # { type = "mixture", components = [{ sigma_s = .., phase = .. }, ..] }
 //!                        # (then give sigma_a only: σ_s is the components' sum)
 //! density = { type = "exponential", scale_height_m = 2.0, reference_m = 0.0, up = [0, 1, 0] }
+//!         # or { type = "exponential", scale_height_m = 8000, earth = "scene" }: in height above
+//!         #    the [world] earth (a sphere: the barometric air of a round-Earth scene)
 //!         # or { type = "grid", file = "smoke.mgrid" }
 //!         # or { type = "fbm", base = 0.5, amplitude = 0.5, frequency_per_m = 2.0, octaves = 5, seed = 1 }
 //! index = { type = "linear", n0 = 1.0, k_per_m = 1e-3, direction = [0, 1, 0] }
@@ -23,7 +25,7 @@ use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::atmosphere::Earth;
-use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D};
+use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D, SphericalExponential};
 use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
 use crate::present_fields;
@@ -49,7 +51,7 @@ pub fn medium(
         Some(kind) => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
         None => {
             super::inelastic::reject_ocean_fields(ctx, m, &what)?;
-            elastic(ctx, lib, m, &span, name, &what, range)?
+            elastic(ctx, lib, m, &span, name, &what, range, &earth.0)?
         }
     };
     if let Some(v) = &m.inelastic {
@@ -64,6 +66,7 @@ pub fn medium(
 }
 
 /// A medium given by its coefficients, phase function and density.
+#[allow(clippy::too_many_arguments)]
 fn elastic(
     ctx: &Ctx,
     lib: &SpectrumLibrary,
@@ -72,6 +75,7 @@ fn elastic(
     name: String,
     what: &str,
     range: (f64, f64),
+    earth: &Earth,
 ) -> R<Medium> {
     let what = what.to_string();
     let spec = |v: &Spanned<Value>, field: &str, use_: Use| lib.parse(ctx, v, &format!("{what}: {field}"), use_, range);
@@ -106,7 +110,7 @@ fn elastic(
     };
     let density = match &m.density {
         None => Density::Uniform,
-        Some(d) => density(ctx, d, &what)?,
+        Some(d) => density(ctx, d, &what, earth)?,
     };
     Ok(Medium {
         name,
@@ -256,7 +260,7 @@ impl<'a> Table<'a> {
     }
 }
 
-fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Density> {
+fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str, earth: &Earth) -> R<Density> {
     let span = v.span();
     let kind = match v.get_ref() {
         Value::Table(t) => t.get("type").and_then(Value::as_str).unwrap_or(""),
@@ -264,6 +268,26 @@ fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Density> {
     };
     let dwhat = format!("{what}: density");
     match kind {
+        "exponential" if v.get_ref().get("earth").is_some() => {
+            let t = Table::new(ctx, v, dwhat, &["type", "scale_height_m", "reference_m", "earth"])?;
+            if v.get_ref().get("earth").and_then(Value::as_str) != Some("scene") {
+                return Err(
+                    ctx.err(&span, format!("{what}: density earth must be \"scene\" (heights above [world] earth)"))
+                );
+            }
+            let (reference_m, scale_height_m) = (t.num("reference_m", Some(0.0))?, t.positive("scale_height_m", None)?);
+            Ok(match earth {
+                Earth::Flat { up } => {
+                    Density::ExponentialHeight(ExponentialHeight { up: *up, reference_m, scale_height_m })
+                }
+                Earth::Spherical(s) => Density::SphericalExponential(SphericalExponential {
+                    centre: s.centre,
+                    radius_m: s.radius_m,
+                    reference_m,
+                    scale_height_m,
+                }),
+            })
+        }
         "exponential" => {
             let t = Table::new(ctx, v, dwhat, &["type", "scale_height_m", "reference_m", "up"])?;
             let up = t.vec3("up", DVec3::Y)?;
