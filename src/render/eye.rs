@@ -336,15 +336,21 @@ impl<'a> EyeTracer<'a> {
         {
             return self.fresnel_split(hit, dir, d, medium, at, rng, sc);
         }
-        let u = rng.uniform();
+        let u = m.specular_u(rng);
         let n_out = |l: f64| self.prop.n_outside(hit.prim, l, hit.point);
         let Some(s) = m.sample_specular_in(dir, hit.normal, lanes.nm[0], u, n_out(lanes.nm[0])) else { return out };
+        let mut w = [0.0; MAX_BANDS];
+        for (i, w) in w.iter_mut().enumerate().take(lanes.len) {
+            *w = m.sample_specular_in(dir, hit.normal, lanes.nm[i], u, n_out(lanes.nm[i])).map_or(0.0, |s| s.weight);
+        }
+        if w[..lanes.len].iter().all(|w| *w == 0.0) {
+            return out;
+        }
         let next_medium = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
         let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
         let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
         for i in 0..lanes.len {
-            let w = m.sample_specular_in(dir, hit.normal, lanes.nm[i], u, n_out(lanes.nm[i])).map_or(0.0, |s| s.weight);
-            out[i] = w * l[i];
+            out[i] = w[i] * l[i];
         }
         out
     }
