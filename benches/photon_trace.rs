@@ -2,7 +2,7 @@
 //! inelastic component (examples/fog_box.toml), on one thread: the cost the inelastic machinery
 //! must not add when no medium is inelastic (goal ≤ 5%).
 //!
-//! `cargo bench --bench photon_trace`; `scripts/bench_inelastic_overhead.sh` runs it on the
+//! `cargo bench --bench photon_trace`; `scripts/bench_overhead.sh` runs it on the
 //! commit before the inelastic code and on this one and prints criterion's change.
 
 use criterion::{Criterion, criterion_group, criterion_main};

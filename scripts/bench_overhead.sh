@@ -1,9 +1,12 @@
 #!/usr/bin/env sh
-# Overhead of the inelastic-scattering code on a scene without inelastic media.
+# Overhead of the inelastic-scattering and curved-path code on scenes that need neither:
+# `scripts/bench_overhead.sh [BASE] [fog|default]`.
 #
 # Builds the `morgana` binary of BASE (default 0bea01f, the commit this work started from, which
-# has no inelastic code) and of the working tree, then renders a reduced fog box (no inelastic
-# medium: 48×48 px, 200k photons, 2 spp, 8 gather rays, one thread) ROUNDS times with each,
+# has neither inelastic nor curved-path code) and of the working tree, then renders a reduced fog
+# box (`fog`, the default: a homogeneous medium of constant n = 1, no inelastic component: 48×48
+# px, 200k photons, 2 spp, 8 gather rays, one thread) or the reduced default Cornell box
+# (`default`: surfaces only, 128×128 px, 100k + 100k photons, 4 spp, 8 gather rays) ROUNDS times with each,
 # alternating, and prints the median user CPU time of each and their ratio. Alternating runs and
 # CPU time (not wall time) keep other load on a shared machine from favouring one side; the
 # spread of the rounds is printed so the noise can be judged. Criterion's version of the same
@@ -11,6 +14,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 BASE=${1:-0bea01f}
+SCENE=${2:-fog}
 ROUNDS=${ROUNDS:-7}
 ROOT=$(pwd)
 TMP=$(mktemp -d)
@@ -22,8 +26,13 @@ cp target/overhead-base/release/morgana "$TMP/morgana-base"
 cargo build --release --bin morgana -q
 cp target/release/morgana "$TMP/morgana-head"
 if cmp -s "$TMP/morgana-base" "$TMP/morgana-head"; then echo "the two binaries are identical: nothing to compare" >&2; exit 1; fi
-sed -e 's/width = 128/width = 48/' -e 's/height = 128/height = 48/' -e 's/photons = 400000/photons = 200000/' \
-    -e 's/spp = 8/spp = 2/' -e 's/gather_rays = 16/gather_rays = 8/' examples/fog_box.toml > "$TMP/fog_small.toml"
+if [ "$SCENE" = default ]; then
+  sed -e 's/width = 256/width = 128/' -e 's/height = 256/height = 128/' -e 's/photons = 200000/photons = 100000/' \
+      -e 's/spp = 16/spp = 4/' -e 's/gather_rays = 16/gather_rays = 8/' src/scene/default.toml > "$TMP/fog_small.toml"
+else
+  sed -e 's/width = 128/width = 48/' -e 's/height = 128/height = 48/' -e 's/photons = 400000/photons = 200000/' \
+      -e 's/spp = 8/spp = 2/' -e 's/gather_rays = 16/gather_rays = 8/' examples/fog_box.toml > "$TMP/fog_small.toml"
+fi
 for i in $(seq "$ROUNDS"); do
   for side in base head; do
     /usr/bin/time -f "%U" -o "$TMP/t" "$TMP/morgana-$side" render "$TMP/fog_small.toml" --out "$TMP/out-$side" --threads 1 --quiet >/dev/null
