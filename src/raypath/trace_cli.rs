@@ -51,8 +51,9 @@ pub struct TraceArgs {
     /// Most events to follow (surfaces, boundaries, escape).
     #[arg(long, default_value_t = 32)]
     pub events: usize,
-    /// Longest path to follow, m (a ray trapped in a duct would circle the Earth).
-    #[arg(long, default_value_t = 2.0e7)]
+    /// Longest path to follow, m (a ray trapped in a duct would circle the Earth; the world of an
+    /// Earth-scale scene reaches ~2·10⁷ m from the camera).
+    #[arg(long, default_value_t = 1.0e8)]
     pub max_length_m: f64,
 }
 
