@@ -514,3 +514,37 @@ fn a_projection_map_aims_a_bent_beam_at_its_target_without_changing_the_light_it
     assert!((power - expected).abs() < 4.0 * sigma, "plate power {power} W, closed form {expected} W (σ {sigma})");
     assert!(start_for(0.0) < -1.0, "the beam must be bent by more than the plate (start {})", start_for(0.0));
 }
+
+#[test]
+fn a_low_suns_disc_photons_reach_the_sea_in_front_of_the_camera() {
+    // examples/sunset_sea.toml in clear air with the sun's centre at true altitude 0.35°: its
+    // light reaches the sea 0.5–6 km in front of the camera along paths bent by ~0.4°, and the
+    // disc's edges cross the air elsewhere and bend differently (by ~0.1° between the limbs).
+    // With each photon's cells moved with its direction (the projection map's disc shift),
+    // most of the sun's photons land in the box, as many as with a point-like sun.
+    let text = std::fs::read_to_string("examples/sunset_sea.toml").expect("examples/sunset_sea.toml");
+    let clear = text
+        .replace("sigma_a = \"rayleigh\"", "sigma_a = 0.0")
+        .replace("elevation_deg = -0.2849", "elevation_deg = 0.35\nscale = 1.0");
+    // The sun alone: drop the sky light that follows it.
+    let sun_only = &clear[..clear.find("[[light]]\nname = \"sky\"").expect("the sky light")];
+    let fraction = |toml: &str| {
+        let s = scene(toml);
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+        let morgana::light::Light::Directional(sun) = &s.lights[0] else { panic!("the first light is the sun") };
+        assert!(sun.cells.as_ref().is_some_and(|c| !c.cells.is_empty()), "a projection map");
+        let n = 4000;
+        let (sink, _) = morgana::photon::shoot(&s, morgana::photon::MapKind::Global, n, 8, &|_| {});
+        let in_box = sink
+            .surface
+            .iter()
+            .filter(|p| p.position.x.abs() <= 60.5 && (-6000.5..=-499.5).contains(&p.position.z))
+            .count();
+        in_box as f64 / n as f64
+    };
+    let disc = fraction(sun_only);
+    let point = fraction(&sun_only.replace("angular_diameter_deg = 0.53", "angular_diameter_deg = 0.0"));
+    eprintln!("photons on the target: disc {disc}, point-like {point}");
+    assert!(point > 0.5, "point-like sun: {point} of its photons on the target");
+    assert!(disc > 0.8 * point, "disc: {disc} of its photons on the target, point-like {point}");
+}

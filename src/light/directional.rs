@@ -48,6 +48,10 @@ pub struct BeamCells {
     pub size: [f64; 2],
     /// The (i, j) indices of the cells that emit.
     pub cells: Vec<[u32; 2]>,
+    /// For a disc (the sun): how far, in (s, t), the cells move for a direction at the disc's
+    /// edge toward +s and toward +t — its rays cross the air elsewhere and bend differently (a
+    /// low sun's lower limb is lifted more than its upper) — interpolated linearly over the disc.
+    pub disc_shift: Option<[[f64; 2]; 2]>,
 }
 
 impl BeamCells {
@@ -154,7 +158,16 @@ impl DirectionalLight {
     /// by ±θ_m·L around it (±50 km from a plane 11 000 km upstream in an Earth-sized scene).
     pub fn emit(&self, u_pos: [f64; 2], u_dir: [f64; 2]) -> (DVec3, DVec3) {
         let dir = self.sample_dir(u_dir);
-        (self.aimed_origin(self.emit_origin(u_pos), dir), dir)
+        let [mut s, mut t] = self.emit_st(u_pos);
+        if let Some([ds, dt]) = self.cells.as_ref().and_then(|c| c.disc_shift)
+            && self.sin_max > 0.0
+        {
+            let frame = Frame::from_normal(self.dir);
+            let (x, y) = (dir.dot(frame.s) / self.sin_max, dir.dot(frame.t) / self.sin_max);
+            s += x * ds[0] + y * dt[0];
+            t += x * ds[1] + y * dt[1];
+        }
+        (self.aimed_origin(self.plane_point(s, t), dir), dir)
     }
 
     /// Where a ray of direction `dir` starts on the emitting plane so that it crosses the aim
@@ -178,14 +191,19 @@ impl DirectionalLight {
     /// A uniform point on the beam's cross-section (or its projection map's cells), upstream of
     /// the scene.
     pub fn emit_origin(&self, u: [f64; 2]) -> DVec3 {
-        let [s, t] = match &self.cells {
+        let [s, t] = self.emit_st(u);
+        self.plane_point(s, t)
+    }
+
+    /// A uniform point (s, t) of the beam's cross-section or of its projection map's cells.
+    fn emit_st(&self, u: [f64; 2]) -> [f64; 2] {
+        match &self.cells {
             Some(c) => c.sample(u),
             None => [
                 self.beam[0][0] + u[0] * (self.beam[0][1] - self.beam[0][0]),
                 self.beam[1][0] + u[1] * (self.beam[1][1] - self.beam[1][0]),
             ],
-        };
-        self.plane_point(s, t)
+        }
     }
 
     /// Whether the beam passes through `p` (along straight rays: used by shadow rays, which

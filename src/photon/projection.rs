@@ -7,16 +7,18 @@
 //! 1. *aim*: the curved ray from the shadow's centre is traced and its point of closest approach
 //!    to the box's centre measured; the start point is moved by the miss, in the beam plane, and
 //!    traced again (bending is nearly a translation over the box, so a few rounds converge);
-//!    for a disc (the sun) the axis and the disc's four edges are aimed each on its own, from
-//!    where their photons start, since they cross the air elsewhere and bend differently;
-//! 2. *mark*: a grid of [`GRID`]×[`GRID`] cells over a window around the aimed points (the
-//!    shadow's size plus their spread, grown until no marked cell touches its border) is tested by tracing rays
-//!    from every grid vertex — along the axis and, for a disc of finite size (the sun), toward
-//!    the four edges of the disc, each from where such a photon starts
-//!    ([`DirectionalLight::aimed_origin`]) — to their first surface; a ray that passes through the box
+//! 2. *mark*: a grid of [`GRID`]×[`GRID`] cells over a window around the aimed point (the
+//!    shadow's size, grown until no marked cell touches its border) is tested by tracing axial
+//!    rays from every grid vertex to their first surface; a ray that passes through the box
 //!    (grown by one cell's width) marks the cells around its vertex;
 //! 3. the marked cells, grown by one ring, are where photons start ([`BeamCells`]), and the
 //!    light's power is E times their area.
+//!
+//! A disc (the sun) is aimed at its axis and at its four edges, each traced from where such a
+//! photon starts ([`DirectionalLight::aimed_origin`]): its edges cross the air elsewhere and
+//! bend differently (near the horizon the lower limb is lifted more than the upper), so a
+//! photon's cells move with its direction by the aimed points' differences, interpolated
+//! linearly over the disc (`BeamCells::disc_shift`).
 //!
 //! Light that reaches the box only from unmarked cells is not simulated: a ray from every cell
 //! corner and one ring of margin keep that to light whose path changes faster than the cell size
@@ -48,13 +50,16 @@ pub fn build(scene: &Scene, light: &DirectionalLight, medium: Option<u32>) -> Op
     let centre = [0.5 * (light.beam[0][0] + light.beam[0][1]), 0.5 * (light.beam[1][0] + light.beam[1][1])];
     // Each direction of the disc is aimed on its own: rays from its edges cross the air
     // elsewhere and bend differently (a low sun's lower limb is lifted more than its upper),
-    // so the window spans all their aimed points.
+    // so each photon's cells move with its direction, by the aimed points' differences
+    // interpolated over the disc; the cells themselves are the axis's.
     let aims: Vec<[f64; 2]> =
         disc_dirs(light, &frame).iter().map(|d| aim(&prop, light, &frame, medium, &target, centre, *d)).collect();
-    let lo = aims.iter().fold([f64::INFINITY; 2], |a, p| [a[0].min(p[0]), a[1].min(p[1])]);
-    let hi = aims.iter().fold([f64::NEG_INFINITY; 2], |a, p| [a[0].max(p[0]), a[1].max(p[1])]);
-    let aimed = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
-    let mut window = [half[0].max(1e-6) * 1.5 + 0.5 * (hi[0] - lo[0]), half[1].max(1e-6) * 1.5 + 0.5 * (hi[1] - lo[1])];
+    let aimed = aims[0];
+    let disc_shift = (aims.len() == 5).then(|| {
+        let half_diff = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] - b[0]), 0.5 * (a[1] - b[1])];
+        [half_diff(aims[1], aims[2]), half_diff(aims[3], aims[4])]
+    });
+    let mut window = [half[0].max(1e-6) * 1.5, half[1].max(1e-6) * 1.5];
     for _ in 0..GROW_ROUNDS {
         let origin = [aimed[0] - window[0], aimed[1] - window[1]];
         let size = [2.0 * window[0] / GRID as f64, 2.0 * window[1] / GRID as f64];
@@ -65,7 +70,7 @@ pub fn build(scene: &Scene, light: &DirectionalLight, medium: Option<u32>) -> Op
         let last = GRID as u32 - 1;
         let touches = marks.iter().any(|[i, j]| *i == 0 || *j == 0 || *i == last || *j == last);
         if !touches {
-            return Some(BeamCells { origin, size, cells: grow(&marks) });
+            return Some(BeamCells { origin, size, cells: grow(&marks), disc_shift });
         }
         window = [2.0 * window[0], 2.0 * window[1]];
     }
@@ -110,7 +115,7 @@ fn aim(
     st
 }
 
-/// Cells around the grid vertices whose rays pass through the target (grown by a cell).
+/// Cells around the grid vertices whose axial rays pass through the target (grown by a cell).
 fn mark(
     prop: &Propagator,
     light: &DirectionalLight,
@@ -119,17 +124,13 @@ fn mark(
     origin: [f64; 2],
     size: [f64; 2],
 ) -> Vec<[u32; 2]> {
-    let frame = Frame::from_normal(light.dir);
     let grown = target.padded(size[0].max(size[1]));
-    let dirs = disc_dirs(light, &frame);
     let hits: Vec<[u32; 2]> = (0..(GRID + 1) * (GRID + 1))
         .into_par_iter()
         .filter_map(|k| {
             let (i, j) = (k % (GRID + 1), k / (GRID + 1));
             let p = light.plane_point(origin[0] + i as f64 * size[0], origin[1] + j as f64 * size[1]);
-            // Each direction from where its photons start (aimed through the same beam point).
-            let reaches =
-                dirs.iter().any(|d| trace(prop, light.aimed_origin(p, *d), *d, medium, &grown, grown.centre()).0);
+            let reaches = trace(prop, p, light.dir, medium, &grown, grown.centre()).0;
             reaches.then_some([i as u32, j as u32])
         })
         .collect();
