@@ -1,10 +1,10 @@
 //! What a render measured: wall time per phase, photons per map, rays traced.
 
 use crate::photon::PhotonStats;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PhaseTime {
     pub phase: String,
     pub seconds: f64,
@@ -35,7 +35,7 @@ pub struct MapReport {
 }
 
 /// Rays traced in the eye pass, by purpose.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct RayCounts {
     /// Camera rays and the specular continuations of eye paths.
     pub eye: u64,
@@ -60,4 +60,7 @@ pub struct RenderStats {
     pub irradiance_memory_bytes: u64,
     /// Integrator work along the eye pass's curved paths.
     pub eye_curved: crate::raypath::CurvedWorkTotals,
+    /// Ranks, per-rank photon counts and phase times, bytes moved (see [`crate::distributed`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub distributed: Option<crate::distributed::DistributedReport>,
 }

@@ -1,0 +1,133 @@
+//! Map assembly: every rank's photons gathered onto every rank, built into the same kd-tree a
+//! single process builds; and the irradiance cache, estimated in parts and gathered likewise.
+//!
+//! A photon map is built by [`PhotonMap::build`] as: bounding box of the records → origin (the
+//! box centre) → encoding relative to it → kd-tree of the photons in record order. Assembly runs
+//! the same steps across ranks:
+//!
+//! 1. each rank's box is gathered and combined by min and max (exact), giving the single-process
+//!    origin;
+//! 2. each rank encodes its records relative to it (encoding is per photon);
+//! 3. the 32-byte photons are all-gathered ([`World::all_gather_pieces`], rounds of ≤ 64 MiB per
+//!    rank) into rank order — which is batch order, since ranks shoot contiguous batch ranges;
+//! 4. each rank builds the kd-tree from that identical sequence.
+//!
+//! So every rank holds, bit for bit, the map one process would build, and images do not depend
+//! on the number of ranks. The memory check of [`super::budget`] runs between steps 2 and 3.
+//!
+//! # Seam for a distributed kd-tree
+//! Maps are [`Placement::Replicated`] only. A partitioned map (each rank keeping the photons of
+//! its kd-tree subtrees, queries forwarded to the owner of a cell) would be a second
+//! [`Placement`], chosen when the budget check fails, with the eye pass's `knn` going through it;
+//! steps 1–2 and the budget check stay as they are.
+
+use super::World;
+use super::budget::Budget;
+use super::split::{dealt, dealt_index};
+use crate::error::Result;
+use crate::photon_map::{Estimator, IrradianceCache, KdTree, Photon, PhotonMap, PhotonRecord};
+use glam::DVec3;
+use std::time::Instant;
+
+/// Where a map's photons live.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Placement {
+    /// Every rank holds the whole map.
+    Replicated,
+}
+
+/// Irradiance cache points are dealt to ranks in blocks of this many (round-robin, so ranks get
+/// points from every part of the kd-tree order and a similar share of dense regions).
+pub const IRRADIANCE_BLOCK: u64 = 256;
+
+/// What an assembly step moved, and how long its parts took on this rank.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Gathered {
+    /// Items over all ranks.
+    pub items: u64,
+    /// Bytes this rank received from the others.
+    pub received_bytes: u64,
+    /// Combining bounds and counts, the budget check and the all-gather.
+    pub gather_seconds: f64,
+    /// Building the kd-tree (photon maps) or estimating and building (irradiance cache).
+    pub build_seconds: f64,
+}
+
+/// The photon map of every rank's `records` (this rank's, in batch order), the same on every
+/// rank. Collective. Fails, on every rank, if the map would not fit in `budget`.
+pub fn photon_map(
+    world: &World,
+    budget: &mut Budget,
+    name: &str,
+    records: &[PhotonRecord],
+) -> Result<(PhotonMap, Gathered)> {
+    let t = Instant::now();
+    let (lo, hi) = global_bounds(world, records);
+    let origin = PhotonMap::origin_for(lo, hi);
+    let local: Vec<u8> = PhotonMap::encode(records, origin).iter().flat_map(|p| p.to_le_bytes()).collect();
+    let counts = world.all_gather_u64(&[(local.len() / Photon::BYTES) as u64]);
+    let offsets: Vec<u64> = counts.iter().scan(0, |acc, c| Some(std::mem::replace(acc, *acc + c[0]))).collect();
+    let items: u64 = counts.iter().map(|c| c[0]).sum();
+    let bytes = KdTree::<Photon>::bytes_for(items as usize) as u64;
+    budget.reserve(world, &format!("the {name} photon map ({items} photons)"), bytes)?;
+    let mut photons = vec![Photon::from_le_bytes(&[0; Photon::BYTES]); items as usize];
+    let received = world.all_gather_pieces(&local, Photon::BYTES, &mut |rank, offset, piece| {
+        let first = offsets[rank] as usize + offset / Photon::BYTES;
+        for (slot, b) in photons[first..].iter_mut().zip(piece.chunks_exact(Photon::BYTES)) {
+            *slot = Photon::from_le_bytes(b.try_into().unwrap_or(&[0; Photon::BYTES]));
+        }
+    });
+    drop(local);
+    let gather_seconds = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let map = PhotonMap::from_photons(origin, photons);
+    let build_seconds = t.elapsed().as_secs_f64();
+    Ok((map, Gathered { items, received_bytes: received, gather_seconds, build_seconds }))
+}
+
+/// The bounding box of every rank's finite record positions.
+fn global_bounds(world: &World, records: &[PhotonRecord]) -> (DVec3, DVec3) {
+    let (lo, hi) = PhotonMap::bounds(records);
+    let mine: Vec<u64> = lo.to_array().iter().chain(hi.to_array().iter()).map(|v| v.to_bits()).collect();
+    let f = |b: u64| f64::from_bits(b);
+    world.all_gather_u64(&mine).iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(DVec3::new(f(v[0]), f(v[1]), f(v[2]))), hi.max(DVec3::new(f(v[3]), f(v[4]), f(v[5]))))
+    })
+}
+
+/// The irradiance cache of `est`'s map (which every rank holds), each rank estimating the blocks
+/// of points dealt to it, the values gathered into point order on every rank: the cache
+/// [`IrradianceCache::build`] computes. Collective; fails on every rank if it would not fit.
+pub fn irradiance(
+    world: &World,
+    budget: &mut Budget,
+    est: &Estimator,
+    stride: usize,
+) -> Result<(IrradianceCache, Gathered)> {
+    let n = IrradianceCache::points(est.map.len(), stride) as u64;
+    let bands = est.bands.count;
+    let bytes = IrradianceCache::bytes_for(n as usize, bands) as u64;
+    budget.reserve(world, &format!("the irradiance cache ({n} points, {bands} bands)"), bytes)?;
+    let t = Instant::now();
+    let size = world.size();
+    let mine: Vec<u32> = dealt(n, IRRADIANCE_BLOCK, world.rank(), size).flatten().map(|i| i as u32).collect();
+    let local: Vec<u8> = IrradianceCache::estimate(est, stride, &mine).iter().flat_map(|v| v.to_le_bytes()).collect();
+    let estimate_seconds = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let point_bytes = (4 * bands).max(1);
+    let mut values = vec![0f32; n as usize * bands];
+    let received = world.all_gather_pieces(&local, point_bytes, &mut |rank, offset, piece| {
+        for (j, chunk) in (offset / point_bytes..).zip(piece.chunks_exact(point_bytes)) {
+            let point = dealt_index(j as u64, IRRADIANCE_BLOCK, rank, size) as usize;
+            for (d, b) in values[point * bands..][..bands].iter_mut().zip(chunk.chunks_exact(4)) {
+                *d = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+            }
+        }
+    });
+    let gather_seconds = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let cache = IrradianceCache::from_values(est, stride, values);
+    let build_seconds = estimate_seconds + t.elapsed().as_secs_f64();
+    Ok((cache, Gathered { items: n, received_bytes: received, gather_seconds, build_seconds }))
+}

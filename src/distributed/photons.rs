@@ -1,0 +1,93 @@
+//! The photon pass across ranks: each rank shoots a contiguous range of the pass's batches.
+//!
+//! A pass of `emitted` photons has `⌈emitted / BATCH⌉` batches, and batch `b` draws from the
+//! random stream `(seed, map, b)` whoever shoots it ([`crate::photon::shoot_batches`]). Rank `r`
+//! of `P` shoots [`share`]`(batches, r, P)`: shares differ by at most one batch and tile the
+//! batches in rank order, so the ranks' photons, concatenated in rank order, are exactly the
+//! single-process photon set in its order. Batches are statistically alike (every photon picks
+//! its light and direction at random), so equal shares balance the pass without scheduling.
+
+use super::World;
+use super::split::share;
+use crate::photon::{self, MapKind, PhotonSink, PhotonStats};
+use crate::scene::Scene;
+use serde::{Deserialize, Serialize};
+
+/// What one rank shot in one pass.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct RankPhotons {
+    /// The pass ("global" or "caustic").
+    pub pass: String,
+    /// Batches `[first, end)` this rank shot.
+    pub batches: [u64; 2],
+    pub emitted: u64,
+    pub stored_surface: u64,
+    pub stored_volume: u64,
+    pub trace_seconds: f64,
+}
+
+/// A pass as this rank sees it after shooting: its own photons, the statistics of all ranks.
+pub struct Shot {
+    /// This rank's stored photons, in batch order.
+    pub sink: PhotonSink,
+    /// The pass's statistics summed over ranks.
+    pub stats: PhotonStats,
+    /// This rank's share.
+    pub mine: RankPhotons,
+}
+
+/// Shoots this rank's share of a pass and sums the statistics over ranks. Collective.
+pub fn shoot(
+    world: &World,
+    scene: &Scene,
+    kind: MapKind,
+    emitted: u64,
+    pass: &str,
+    on_batch: &(dyn Fn(u64) + Sync),
+) -> Shot {
+    let t = std::time::Instant::now();
+    let batches = share(photon::batch_count(emitted), world.rank(), world.size());
+    let (sink, local) = photon::shoot_batches(scene, kind, emitted, scene.integrator.seed, batches.clone(), on_batch);
+    let mine = RankPhotons {
+        pass: pass.to_string(),
+        batches: [batches.start, batches.end],
+        emitted: local.emitted,
+        stored_surface: sink.surface.len() as u64,
+        stored_volume: sink.volume.len() as u64,
+        trace_seconds: t.elapsed().as_secs_f64(),
+    };
+    let stats = sum(&world.all_gather_json(&local));
+    Shot { sink, stats, mine }
+}
+
+/// The statistics of a pass from its ranks' parts (in rank order): counts and powers added,
+/// the power per photon (the same on every rank that had lights) kept.
+pub fn sum(parts: &[PhotonStats]) -> PhotonStats {
+    let mut total = PhotonStats {
+        emitted: parts.iter().map(|p| p.emitted).sum(),
+        power_per_photon_w: parts.iter().map(|p| p.power_per_photon_w).fold(0.0, f64::max),
+        ..PhotonStats::default()
+    };
+    for p in parts {
+        total.add(p);
+        total.curved.add(&p.curved);
+    }
+    total
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sums_add_counts_and_keep_the_photon_power() {
+        let a = PhotonStats { emitted: 10, stored: 3, power_per_photon_w: 0.5, escaped_w: 1.0, ..Default::default() };
+        let mut b =
+            PhotonStats { emitted: 6, stored: 2, power_per_photon_w: 0.5, escaped_w: 2.5, ..Default::default() };
+        b.curved.ode_steps = 7;
+        let s = sum(&[a.clone(), b]);
+        assert_eq!((s.emitted, s.stored, s.power_per_photon_w, s.escaped_w, s.curved.ode_steps), (16, 5, 0.5, 3.5, 7));
+        // One rank: the statistics themselves.
+        assert_eq!(sum(std::slice::from_ref(&a)), a);
+    }
+}
