@@ -48,9 +48,11 @@ pub struct Gathered {
     pub items: u64,
     /// Bytes this rank received from the others.
     pub received_bytes: u64,
-    /// Combining bounds and counts, the budget check and the all-gather.
+    /// Estimating this rank's share (irradiance cache; zero for photon maps).
+    pub compute_seconds: f64,
+    /// Combining bounds and counts and encoding (photon maps), the budget check, the all-gather.
     pub gather_seconds: f64,
-    /// Building the kd-tree (photon maps) or estimating and building (irradiance cache).
+    /// Building the kd-tree (the same on every rank).
     pub build_seconds: f64,
 }
 
@@ -83,7 +85,7 @@ pub fn photon_map(
     let t = Instant::now();
     let map = PhotonMap::from_photons(origin, photons);
     let build_seconds = t.elapsed().as_secs_f64();
-    Ok((map, Gathered { items, received_bytes: received, gather_seconds, build_seconds }))
+    Ok((map, Gathered { items, received_bytes: received, compute_seconds: 0.0, gather_seconds, build_seconds }))
 }
 
 /// The bounding box of every rank's finite record positions.
@@ -108,7 +110,9 @@ pub fn irradiance(
     let n = IrradianceCache::points(est.map.len(), stride) as u64;
     let bands = est.bands.count;
     let bytes = IrradianceCache::bytes_for(n as usize, bands) as u64;
+    let t = Instant::now();
     budget.reserve(world, &format!("the irradiance cache ({n} points, {bands} bands)"), bytes)?;
+    let reserve_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let size = world.size();
     let mine: Vec<u32> = dealt(n, IRRADIANCE_BLOCK, world.rank(), size).flatten().map(|i| i as u32).collect();
@@ -125,9 +129,16 @@ pub fn irradiance(
             }
         }
     });
-    let gather_seconds = t.elapsed().as_secs_f64();
+    let gather_seconds = reserve_seconds + t.elapsed().as_secs_f64();
     let t = Instant::now();
     let cache = IrradianceCache::from_values(est, stride, values);
-    let build_seconds = estimate_seconds + t.elapsed().as_secs_f64();
-    Ok((cache, Gathered { items: n, received_bytes: received, gather_seconds, build_seconds }))
+    let build_seconds = t.elapsed().as_secs_f64();
+    let g = Gathered {
+        items: n,
+        received_bytes: received,
+        compute_seconds: estimate_seconds,
+        gather_seconds,
+        build_seconds,
+    };
+    Ok((cache, g))
 }

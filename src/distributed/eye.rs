@@ -81,7 +81,10 @@ fn root(
     let served = std::thread::scope(|s| {
         let server =
             (world.size() > 1).then(|| s.spawn(|| serve(world, dispenser, &image, row_values, on_remote_rows)));
-        while let Some(lease) = lock(dispenser).next(0) {
+        loop {
+            // A statement of its own, so the dispenser is unlocked while the lease renders.
+            let next = lock(dispenser).next(0);
+            let Some(lease) = next else { break };
             let t = Instant::now();
             let (data, rays) = render(lease.clone());
             work.compute_seconds += t.elapsed().as_secs_f64();

@@ -36,6 +36,13 @@ pub struct Shot {
     pub mine: RankPhotons,
 }
 
+/// The batches of a pass of `emitted` photons that this rank shoots, and their photons.
+pub fn my_share(world: &World, emitted: u64) -> (std::ops::Range<u64>, u64) {
+    let batches = share(photon::batch_count(emitted), world.rank(), world.size());
+    let photons = batches.clone().map(|b| photon::batch_photons(emitted, b)).sum();
+    (batches, photons)
+}
+
 /// Shoots this rank's share of a pass and sums the statistics over ranks. Collective.
 pub fn shoot(
     world: &World,
@@ -46,7 +53,7 @@ pub fn shoot(
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> Shot {
     let t = std::time::Instant::now();
-    let batches = share(photon::batch_count(emitted), world.rank(), world.size());
+    let (batches, _) = my_share(world, emitted);
     let (sink, local) = photon::shoot_batches(scene, kind, emitted, scene.integrator.seed, batches.clone(), on_batch);
     let mine = RankPhotons {
         pass: pass.to_string(),

@@ -68,8 +68,9 @@ pub fn build(
         let (cache, gathered) = assemble::irradiance(rank.world, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
         rank.report.irradiance_received_bytes += gathered.received_bytes;
         maps.irradiance = Some(cache);
+        add(phases, "irradiance precompute", gathered.compute_seconds);
         add(phases, "irradiance gather", gathered.gather_seconds);
-        add(phases, "irradiance precompute", gathered.build_seconds);
+        add(phases, "irradiance cache build", gathered.build_seconds);
     }
     Ok(maps)
 }
@@ -92,7 +93,8 @@ fn shoot(
         &format!("{name} photons: {batches} batches over {} ranks", rank.world.size()),
     );
     let t = Instant::now();
-    let pb = progress::bar(quiet, emitted, &format!("{name} photons"));
+    let (_, mine) = distributed::photons::my_share(rank.world, emitted);
+    let pb = progress::bar(quiet, mine, &format!("{name} photons"));
     let shot = distributed::photons::shoot(rank.world, scene, kind, emitted, name, &|n| pb.inc(n));
     pb.finish_and_clear();
     phases.add(&format!("{name} photon tracing"), t);

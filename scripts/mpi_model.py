@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""Tables for README "Distributed rendering (MPI)" from scripts/bench_mpi.sh's runs.
+
+    python3 scripts/mpi_model.py target/bench_mpi
+
+1. Measured: per phase, 1 rank against 2 ranks (one thread each), minimum over repetitions.
+2. Eye-pass schedules: dynamic (guided self-scheduling) against static interleaved blocks.
+3. Model: predicted speedup on P nodes (one rank of one thread each, as measured here) from the
+   1-rank phase times and the message sizes of the run:
+
+   T(P) = t_other + t_build                        serial on every rank: scene, kd-tree builds
+        + (t_trace + t_encode + t_irr) / P         photon tracing, encoding, irradiance estimates
+        + AG(M_maps, P) + AG(M_irr, P)             all-gathers of the maps and the cache values
+        + t_eye / P + t_eye / H                    eye pass, plus the last lease (one row)
+        + max(L/P (2a + poll) + I/(P b), I (P-1)/(P b))   leases: round trips and row data into
+                                                   rank 0 (its link carries the whole image)
+        + 20 ceil(log2 P) a                        small collectives (bounds, counts, reports)
+   AG(M, P) = (P-1) a + (P-1)/P M / b              ring all-gather (Thakur, Rabenseifner & Gropp
+                                                   2005, "Optimization of collective communication
+                                                   operations in MPICH", IJHPCA 19(1))
+   with M_maps = 32 bytes x stored photons, M_irr = 4 bytes x bands x cache points, I = 4 bytes x
+   bands x pixels, L the leases the dispenser hands out (simulated), a the latency and b the
+   bandwidth of the network: 1 GbE a = 50 us, b = 117 MB/s (TCP payload); 10 GbE a = 10 us,
+   b = 1.17 GB/s; this machine's shared memory a = 2 us, b = 4 GB/s (for checking against the
+   measured 2 ranks).
+"""
+
+import csv
+import json
+import math
+import os
+import sys
+from collections import defaultdict
+
+POLL = 200e-6
+NETWORKS = {"1 GbE": (50e-6, 117e6), "10 GbE": (10e-6, 1.17e9)}
+SHM = (2e-6, 4e9)
+NODES = [2, 6, 16, 64]
+
+
+def load(root):
+    runs = defaultdict(list)
+    with open(os.path.join(root, "runs.csv")) as f:
+        for row in csv.DictReader(f):
+            d = os.path.join(root, f"{row['scene']}-{row['config']}-{row['rep']}")
+            rep = json.load(open(os.path.join(d, "report.json")))
+            rep["_wall"] = float(row["total_seconds"])
+            rep["_load"] = float(row["load1"])
+            runs[(row["scene"], row["config"])].append(rep)
+    return runs
+
+
+def groups(rep):
+    """Phase seconds grouped for the model (rank 0's view)."""
+    g = defaultdict(float)
+    for p in rep["phases"]:
+        name = p["phase"]
+        if name.endswith("photon tracing"):
+            g["photon tracing"] += p["seconds"]
+        elif name.endswith("map gather"):
+            g["map gather"] += p["seconds"]
+        elif name.endswith("map build") or name == "irradiance cache build":
+            g["kd-tree builds"] += p["seconds"]
+        elif name == "irradiance precompute":
+            g["irradiance precompute"] += p["seconds"]
+        elif name == "irradiance gather":
+            g["irradiance gather"] += p["seconds"]
+        elif name == "eye pass":
+            g["eye pass"] += p["seconds"]
+    g["other (scene, colour, init)"] = rep["total_seconds"] - sum(p["seconds"] for p in rep["phases"]) + sum(
+        p["seconds"] for p in rep["phases"] if p["phase"] in ("colour conversion", "sensors")
+    )
+    g["total"] = rep["total_seconds"]
+    return g
+
+
+def best(reps):
+    """Minimum over repetitions of each group."""
+    out = {}
+    for g in map(groups, reps):
+        for k, v in g.items():
+            out[k] = min(out.get(k, math.inf), v)
+    return out
+
+
+ORDER = ["photon tracing", "map gather", "kd-tree builds", "irradiance precompute", "irradiance gather",
+         "eye pass", "other (scene, colour, init)", "total"]
+
+
+def leases(rows, ranks):
+    """Leases the dynamic dispenser hands out (tiles.rs: ceil(R / 2P) rows each)."""
+    n, left = 0, rows
+    while left > 0:
+        left -= min(left, -(-left // (2 * ranks)))
+        n += 1
+    return n
+
+
+def sizes(rep):
+    bands = rep["wavelengths"]["bands"]
+    stored = sum(m["stored"] for m in rep["maps"])
+    return {
+        "maps": 32 * stored,
+        "irr": 4 * bands * rep["irradiance_points"],
+        "image": 4 * bands * rep["width"] * rep["height"],
+        "rows": rep["height"],
+        "stored": stored,
+    }
+
+
+def ag(m, p, a, b):
+    return (p - 1) * a + (p - 1) / p * m / b if p > 1 else 0.0
+
+
+def model(g, s, p, a, b):
+    t = g["other (scene, colour, init)"] + g["kd-tree builds"]
+    t += (g["photon tracing"] + g["map gather"] + g["irradiance precompute"]) / p
+    t += ag(s["maps"], p, a, b) + ag(s["irr"], p, a, b)
+    t += g["eye pass"] / p + (g["eye pass"] / s["rows"] if p > 1 else 0.0)
+    if p > 1:
+        lw = leases(s["rows"], p) / p
+        t += max(lw * (2 * a + POLL) + s["image"] / (p * b), s["image"] * (p - 1) / (p * b))
+        t += 20 * math.ceil(math.log2(p)) * a
+    return t
+
+
+def limit(g, s, a, b):
+    """Speedup as P grows without bound."""
+    serial = g["other (scene, colour, init)"] + g["kd-tree builds"] + (s["maps"] + s["irr"] + s["image"]) / b
+    return g["total"] / serial
+
+
+def main(root):
+    runs = load(root)
+    scenes = sorted({s for s, _ in runs}, key=lambda s: ["photons", "eye"].index(s) if s in ("photons", "eye") else 9)
+    loads = [r["_load"] for reps in runs.values() for r in reps]
+    print(f"Load average before the runs: {min(loads):.2f}–{max(loads):.2f} (2 cores).\n")
+    for sc in scenes:
+        one, two = best(runs[(sc, "np1")]), best(runs[(sc, "np2")])
+        thr = best(runs[(sc, "np1-2threads")]) if (sc, "np1-2threads") in runs else None
+        s = sizes(runs[(sc, "np1")][0])
+        print(f"### Scene `{sc}`: {s['stored']:,} stored photons, {runs[(sc, 'np1')][0]['width']}×{s['rows']} pixels\n")
+        print("| phase | 1 rank (s) | 2 ranks (s) | speedup | 1 rank × 2 threads (s) |")
+        print("|---|---:|---:|---:|---:|")
+        for k in ORDER:
+            if one.get(k, 0) < 1e-4 and two.get(k, 0) < 1e-4:
+                continue
+            sp = one[k] / two[k] if two.get(k, 0) > 0 else float("nan")
+            t2 = f"{thr[k]:.3f}" if thr else "–"
+            print(f"| {k} | {one[k]:.3f} | {two[k]:.3f} | {sp:.2f} | {t2} |")
+        rep2 = runs[(sc, "np2")][0]["distributed"]
+        print(f"\nBytes received over both ranks (2 ranks): maps {rep2['map_allgather_bytes']:,}, irradiance "
+              f"{rep2['irradiance_allgather_bytes']:,}, tiles {rep2['tile_bytes']:,}.\n")
+    print("### Eye-pass schedules (2 ranks)\n")
+    print("| scene | schedule | eye pass (s) | rank compute (s) | imbalance max/mean | worker wait (s) |")
+    print("|---|---|---:|---:|---:|---:|")
+    for sc in scenes:
+        for cfg, name in (("np2", "dynamic"), ("np2-static", "static")):
+            if (sc, cfg) not in runs:
+                continue
+            reps = runs[(sc, cfg)]
+            r = min(reps, key=lambda x: best([x])["eye pass"])
+            comp = [p["eye"]["compute_seconds"] for p in r["distributed"]["per_rank"]]
+            wait = sum(p["eye"]["wait_seconds"] for p in r["distributed"]["per_rank"][1:])
+            imb = max(comp) / (sum(comp) / len(comp))
+            print(f"| {sc} | {name} | {best([r])['eye pass']:.3f} | {' / '.join(f'{c:.2f}' for c in comp)} "
+                  f"| {imb:.3f} | {wait:.3f} |")
+    print("\n### Model: predicted speedup on P nodes (one single-thread rank each)\n")
+    print("| scene | network | P = 2 | P = 6 | P = 16 | P = 64 | limit P → ∞ |")
+    print("|---|---|---:|---:|---:|---:|---:|")
+    for sc in scenes:
+        g, s = best(runs[(sc, "np1")]), sizes(runs[(sc, "np1")][0])
+        t1 = model(g, s, 1, 0, 1)
+        measured = g["total"] / best(runs[(sc, "np2")])["total"]
+        a, b = SHM
+        print(f"| {sc} | this machine (measured {measured:.2f}) | {t1 / model(g, s, 2, a, b):.2f} | | | | |")
+        for net, (a, b) in NETWORKS.items():
+            cells = " | ".join(f"{t1 / model(g, s, p, a, b):.2f}" for p in NODES)
+            print(f"| {sc} | {net} | {cells} | {limit(g, s, a, b):.1f} |")
+    print("\nLucifer (Gutierrez et al. 2005, §6): 4.2–4.8 on 6 nodes (Pentium 4, network not stated).")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "target/bench_mpi")
