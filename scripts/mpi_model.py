@@ -88,10 +88,10 @@ ORDER = ["photon tracing", "map gather", "kd-tree builds", "irradiance precomput
 
 
 def leases(rows, ranks):
-    """Leases the dynamic dispenser hands out (tiles.rs: ceil(R / 2P) rows each)."""
+    """Leases the dynamic dispenser hands out (tiles.rs: ceil(R / 4P) rows each)."""
     n, left = 0, rows
     while left > 0:
-        left -= min(left, -(-left // (2 * ranks)))
+        left -= min(left, -(-left // (4 * ranks)))
         n += 1
     return n
 
@@ -124,9 +124,28 @@ def model(g, s, p, a, b):
     return t
 
 
+def scaled(g, s, photons=1.0, eye=1.0, pixels=1.0):
+    """A workload extrapolated from a measured one: photon-pass terms and map bytes times
+    `photons` (kd-tree builds times photons · log(n·photons) / log(n)), the eye pass times `eye`,
+    the image (rows, bytes) times `pixels`."""
+    g, s = dict(g), dict(s)
+    n = max(s["stored"], 2)
+    for k in ("photon tracing", "map gather", "irradiance precompute", "irradiance gather"):
+        g[k] *= photons
+    g["kd-tree builds"] *= photons * math.log(n * photons) / math.log(n)
+    g["eye pass"] *= eye
+    for k in ("maps", "irr", "stored"):
+        s[k] *= photons
+    s["image"] *= pixels
+    s["rows"] = round(s["rows"] * math.sqrt(pixels))
+    g["total"] = sum(g[k] for k in ORDER if k != "total")
+    return g, s
+
+
 def limit(g, s, a, b):
     """Speedup as P grows without bound."""
-    serial = g["other (scene, colour, init)"] + g["kd-tree builds"] + (s["maps"] + s["irr"] + s["image"]) / b
+    serial = g["other (scene, colour, init)"] + g["kd-tree builds"] + g["eye pass"] / s["rows"]
+    serial += (s["maps"] + s["irr"] + s["image"]) / b
     return g["total"] / serial
 
 
@@ -165,18 +184,38 @@ def main(root):
             imb = max(comp) / (sum(comp) / len(comp))
             print(f"| {sc} | {name} | {best([r])['eye pass']:.3f} | {' / '.join(f'{c:.2f}' for c in comp)} "
                   f"| {imb:.3f} | {wait:.3f} |")
-    print("\n### Model: predicted speedup on P nodes (one single-thread rank each)\n")
-    print("| scene | network | P = 2 | P = 6 | P = 16 | P = 64 | limit P → ∞ |")
+    print("\n### Model: predicted speedup on P nodes\n")
+    print("Nodes of one thread (the 1-rank runs' phase times) unless marked \"2 threads\" (the 1 rank × 2")
+    print("threads runs: a node like this machine). Speedup against one such node.\n")
+    print("| workload | network | P = 2 | P = 6 | P = 16 | P = 64 | limit P → ∞ |")
     print("|---|---|---:|---:|---:|---:|---:|")
     for sc in scenes:
         g, s = best(runs[(sc, "np1")]), sizes(runs[(sc, "np1")][0])
         t1 = model(g, s, 1, 0, 1)
         measured = g["total"] / best(runs[(sc, "np2")])["total"]
         a, b = SHM
-        print(f"| {sc} | this machine (measured {measured:.2f}) | {t1 / model(g, s, 2, a, b):.2f} | | | | |")
+        print(f"| {sc} | shared memory (measured: {measured:.2f}) | {t1 / model(g, s, 2, a, b):.2f} | | | | |")
         for net, (a, b) in NETWORKS.items():
             cells = " | ".join(f"{t1 / model(g, s, p, a, b):.2f}" for p in NODES)
             print(f"| {sc} | {net} | {cells} | {limit(g, s, a, b):.1f} |")
+        if (sc, "np1-2threads") in runs:
+            g2 = best(runs[(sc, "np1-2threads")])
+            t2 = model(g2, s, 1, 0, 1)
+            for net, (a, b) in NETWORKS.items():
+                cells = " | ".join(f"{t2 / model(g2, s, p, a, b):.2f}" for p in NODES)
+                print(f"| {sc}, 2 threads | {net} | {cells} | {limit(g2, s, a, b):.1f} |")
+    extra = []
+    if ("photons", "np1") in runs:
+        g, s = best(runs[("photons", "np1")]), sizes(runs[("photons", "np1")][0])
+        extra.append(("photons × 25: 10⁸ emitted photons (extrapolated)", *scaled(g, s, photons=25)))
+    if ("eye", "np1") in runs:
+        g, s = best(runs[("eye", "np1")]), sizes(runs[("eye", "np1")][0])
+        extra.append(("eye × 400: 768×768 pixels, 25× the samples (extrapolated)", *scaled(g, s, eye=400, pixels=16)))
+    for name, g, s in extra:
+        t1 = model(g, s, 1, 0, 1)
+        for net, (a, b) in NETWORKS.items():
+            cells = " | ".join(f"{t1 / model(g, s, p, a, b):.2f}" for p in NODES)
+            print(f"| {name}, T(1) = {t1:.0f} s | {net} | {cells} | {limit(g, s, a, b):.0f} |")
     print("\nLucifer (Gutierrez et al. 2005, §6): 4.2–4.8 on 6 nodes (Pentium 4, network not stated).")
 
 

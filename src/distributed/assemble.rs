@@ -67,25 +67,42 @@ pub fn photon_map(
     let t = Instant::now();
     let (lo, hi) = global_bounds(world, records);
     let origin = PhotonMap::origin_for(lo, hi);
-    let local: Vec<u8> = PhotonMap::encode(records, origin).iter().flat_map(|p| p.to_le_bytes()).collect();
-    let counts = world.all_gather_u64(&[(local.len() / Photon::BYTES) as u64]);
+    let encoded = PhotonMap::encode(records, origin);
+    let counts = world.all_gather_u64(&[encoded.len() as u64]);
     let offsets: Vec<u64> = counts.iter().scan(0, |acc, c| Some(std::mem::replace(acc, *acc + c[0]))).collect();
     let items: u64 = counts.iter().map(|c| c[0]).sum();
     let bytes = KdTree::<Photon>::bytes_for(items as usize) as u64;
     budget.reserve(world, &format!("the {name} photon map ({items} photons)"), bytes)?;
-    let mut photons = vec![Photon::from_le_bytes(&[0; Photon::BYTES]); items as usize];
-    let received = world.all_gather_pieces(&local, Photon::BYTES, &mut |rank, offset, piece| {
-        let first = offsets[rank] as usize + offset / Photon::BYTES;
-        for (slot, b) in photons[first..].iter_mut().zip(piece.chunks_exact(Photon::BYTES)) {
-            *slot = Photon::from_le_bytes(b.try_into().unwrap_or(&[0; Photon::BYTES]));
-        }
-    });
-    drop(local);
+    let (photons, received) = match world.size() {
+        // One rank's all-gather hands back its own photons.
+        1 => (encoded, 0),
+        _ => gather_photons(world, encoded, &offsets, items as usize),
+    };
     let gather_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let map = PhotonMap::from_photons(origin, photons);
     let build_seconds = t.elapsed().as_secs_f64();
     Ok((map, Gathered { items, received_bytes: received, compute_seconds: 0.0, gather_seconds, build_seconds }))
+}
+
+/// Every rank's photons in rank order: this rank's copied in place, the others' decoded from
+/// the all-gather. Returns them and the bytes received.
+fn gather_photons(world: &World, encoded: Vec<Photon>, offsets: &[u64], items: usize) -> (Vec<Photon>, u64) {
+    let me = world.rank();
+    let wire: Vec<u8> = encoded.iter().flat_map(|p| p.to_le_bytes()).collect();
+    let mut photons = vec![Photon::from_le_bytes(&[0; Photon::BYTES]); items];
+    photons[offsets[me] as usize..][..encoded.len()].copy_from_slice(&encoded);
+    drop(encoded);
+    let received = world.all_gather_pieces(&wire, Photon::BYTES, &mut |rank, offset, piece| {
+        if rank == me {
+            return;
+        }
+        let first = offsets[rank] as usize + offset / Photon::BYTES;
+        for (slot, b) in photons[first..].iter_mut().zip(piece.chunks_exact(Photon::BYTES)) {
+            *slot = Photon::from_le_bytes(b.try_into().unwrap_or(&[0; Photon::BYTES]));
+        }
+    });
+    (photons, received)
 }
 
 /// The bounding box of every rank's finite record positions.
