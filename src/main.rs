@@ -88,6 +88,12 @@ enum Command {
         #[arg(long)]
         png: Option<PathBuf>,
     },
+    /// Ray-integrator accuracy and speed against the closed-form ray in n = 1 + k*y: Dormand-Prince
+    /// over tolerances, Euler and RK4 over step sizes (Gutierrez et al. 2005, Fig. 1, extended).
+    Accuracy(morgana::raypath::accuracy::AccuracyArgs),
+    /// Astronomical refraction: trace rays from an observer out of an atmosphere and print the
+    /// true altitude and refraction for each apparent altitude.
+    Refraction(morgana::atmosphere::refraction::cli::RefractionArgs),
 }
 
 fn main() {
@@ -106,6 +112,8 @@ fn main() {
         }
         Command::Tonemap(args) => run_tonemap(&args),
         Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
+        Command::Accuracy(args) => morgana::raypath::accuracy::run_cli(&args).map(|s| print!("{s}")),
+        Command::Refraction(args) => morgana::atmosphere::refraction::cli::run(&args).map(|s| print!("{s}")),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");

@@ -421,3 +421,96 @@ power_w = 1.0
     assert!((sag / expected - 1.0).abs() < 0.01, "sag {sag} m, κx²/2 = {expected} m");
     assert!((kappa * 6_371_000.0 - 0.17).abs() < 0.01, "refraction coefficient {}", kappa * 6_371_000.0);
 }
+
+/// A collimated beam along +x through n = 2 + 0.004·y (curvature 0.002 m⁻¹: over ~60 m the
+/// beam rises by metres) onto a black 1 m plate at x = 50, aimed at the box `target`.
+fn bent_beam(target: &str) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 5.0]
+look_at = [50.0, 0.0, 0.0]
+fov_deg = 10.0
+width = 4
+height = 4
+
+[output]
+bands = 1
+min_nm = 540.0
+max_nm = 560.0
+
+[world]
+medium = "air"
+
+[[medium]]
+name = "air"
+sigma_a = 0.0
+sigma_s = 0.0
+index = {{ type = "linear", n0 = 2.0, k_per_m = 0.004, direction = [0.0, 1.0, 0.0] }}
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [50.0, -0.5, -0.5]
+u = [0.0, 1.0, 0.0]
+v = [0.0, 0.0, 1.0]
+material = "black"
+
+[[shape]]
+type = "sphere"
+center = [-10.0, 0.0, 30.0]
+radius = 0.1
+material = "black"
+
+[[light]]
+type = "directional"
+direction = [1.0, 0.0, 0.0]
+spectrum = 1.0
+irradiance_w_m2 = 1.0
+{target}
+"#
+    )
+}
+
+/// Power the plate at x = 50 receives from `photons` photons.
+fn plate_power(s: &morgana::scene::Scene, photons: u64) -> (f64, u64) {
+    let (sink, _) = morgana::photon::shoot(s, morgana::photon::MapKind::Global, photons, 5, &|_| {});
+    let on: Vec<_> = sink.surface.iter().filter(|p| (p.position.x - 50.0).abs() < 1e-6).collect();
+    (on.iter().map(|p| p.power_w).sum(), on.len() as u64)
+}
+
+#[test]
+fn a_projection_map_aims_a_bent_beam_at_its_target_without_changing_the_light_it_delivers() {
+    let s = scene(&bent_beam("target_min = [49.9, -0.5, -0.5]\ntarget_max = [50.1, 0.5, 0.5]"));
+    let morgana::light::Light::Directional(d) = &s.lights[0] else { panic!("directional") };
+    assert!(d.cells.is_some(), "a projection map must be built where paths curve: {:?}", s.warnings);
+    let n = 20_000;
+    let (power, hits) = plate_power(&s, n);
+    assert!(hits as f64 > 0.25 * n as f64, "only {hits} of {n} photons reach the plate");
+    // Closed form: the ray starting at height y₀ on the emitting plane (x = x₀) follows
+    // y = y₀ + (n/a)(cosh(a(x − x₀)/n) − 1) with n = 2 + a·y₀, rising monotonically with y₀;
+    // the plate (|y| ≤ 0.5, 1 m deep) receives E times the band of start heights that lands
+    // on it: Φ = E · 1 m · (y₀(0.5) − y₀(−0.5)).
+    let (a, x0) = (0.004, d.plane_point(0.0, 0.0).x);
+    let land = |y0: f64| {
+        let n = 2.0 + a * y0;
+        y0 + n / a * ((a * (50.0 - x0) / n).cosh() - 1.0)
+    };
+    let start_for = |y: f64| {
+        let (mut lo, mut hi) = (-50.0, 50.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if land(mid) < y { lo = mid } else { hi = mid }
+        }
+        0.5 * (lo + hi)
+    };
+    let expected = start_for(0.5) - start_for(-0.5);
+    // Each photon carries the same power: the plate's share is binomial, σ ≈ Φ/√hits.
+    let sigma = power / (hits as f64).sqrt();
+    assert!((power - expected).abs() < 4.0 * sigma, "plate power {power} W, closed form {expected} W (σ {sigma})");
+    assert!(start_for(0.0) < -1.0, "the beam must be bent by more than the plate (start {})", start_for(0.0));
+}

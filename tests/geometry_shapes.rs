@@ -449,3 +449,18 @@ fn check_rejects_degenerate_shapes() {
     let good = Shape::Triangle(Triangle { p: [DVec3::ZERO, DVec3::X, DVec3::Y] });
     assert!(good.check().is_ok());
 }
+
+#[test]
+fn a_sphere_touches_a_box_only_where_its_surface_passes_through() {
+    use morgana::geometry::{Aabb, Sphere};
+    let earth = Shape::Sphere(Sphere { center: DVec3::new(0.0, -6_371_000.0, 0.0), radius: 6_371_000.0 });
+    let cube = |c: DVec3, h: f64| Aabb { min: c - DVec3::splat(h), max: c + DVec3::splat(h) };
+    // Straddling the ground, wholly above it (10 km up), wholly inside (100 km down), and a
+    // box beside the horizon 100 km away whose bottom (y = −700 m) stays above the ground there
+    // (the surface is 785 m below y = 0 at that distance).
+    assert!(earth.may_touch_box(&cube(DVec3::ZERO, 1.0)));
+    assert!(!earth.may_touch_box(&cube(DVec3::new(0.0, 10_000.0, 0.0), 100.0)));
+    assert!(!earth.may_touch_box(&cube(DVec3::new(0.0, -100_000.0, 0.0), 1000.0)));
+    assert!(!earth.may_touch_box(&cube(DVec3::new(100_000.0, -650.0, 0.0), 50.0)));
+    assert!(earth.may_touch_box(&cube(DVec3::new(100_000.0, -785.0, 0.0), 50.0)));
+}

@@ -34,7 +34,7 @@ fn one_step_dense_error(h: f64, dp: bool) -> f64 {
     let mut evals = 0;
     let dense = if dp {
         let t = dopri5::trial(&field, &y0, &f0, h, &mut evals).unwrap();
-        Dense::with_c5(y0, f0, t.y1, t.f1, h, t.c5)
+        Dense { y0, f0, y1: t.y1, f1: t.f1, h, c5: t.c5 }
     } else {
         let y1 = rk4::step(&field, &y0, &f0, h, &mut evals).unwrap();
         let (f1, _) = eval(&field, &y1).unwrap();
@@ -75,19 +75,19 @@ fn dense_output_between_nodes_matches_the_closed_form() {
         let node_err = |s: f64, y: &RayY| (y.r - exact(p0, d0, s).r).length();
         let mut worst: f64 = 0.0;
         for s in &steps {
-            let ends = node_err(s.s0, &s.y0).max(node_err(s.s0 + s.h, &s.y1));
+            let ends = node_err(s.s0, &s.y0()).max(node_err(s.s0 + s.h(), &s.y1()));
             for t in [0.25, 0.5, 0.75] {
-                let e = (s.position_at(t) - exact(p0, d0, s.s0 + t * s.h).r).length();
+                let e = (s.position_at(t) - exact(p0, d0, s.s0 + t * s.h()).r).length();
                 worst = worst.max(e / ends.max(tol));
                 assert!(e <= 10.0 * ends.max(tol), "θ {t} in step at s0 = {}: dense {e:e} vs ends {ends:e}", s.s0);
-                assert!((s.state_at(t).s - (s.s0 + t * s.h)).abs() < 1e-15);
+                assert!((s.state_at(t).s - (s.s0 + t * s.h())).abs() < 1e-15);
             }
         }
         eprintln!("tol {tol:e}: {} steps, worst dense / end-point error ratio {worst:.3}", steps.len());
         // The ends of the interpolant are the step's end points.
         for s in &steps {
-            assert_eq!(s.at(0.0), s.y0);
-            assert!((s.at(1.0).r - s.y1.r).length() <= 1e-15 * (1.0 + s.y1.r.length()));
+            assert_eq!(s.at(0.0), s.y0());
+            assert!((s.at(1.0).r - s.y1().r).length() <= 1e-15 * (1.0 + s.y1().r.length()));
         }
     }
 }

@@ -85,3 +85,33 @@ fn agrees_with_ode_solvers_through_a_reflecting_layer() {
         assert!((n_ours - n_ref).abs() <= 2.0 + 0.1 * n_ref, "similar step counts: {n_ours} vs {n_ref}");
     }
 }
+
+/// PI control (Hairer's β = 0.04, the default) and plain I control reach the same accuracy;
+/// the step counts of both are printed for the record, and h_max and a given h0 are obeyed.
+#[test]
+fn pi_and_i_control_and_step_bounds() {
+    let field = linear(1.0, 0.1);
+    let (exact, _) = catenary(1.0, 0.1, 0.0, 20.0);
+    for tol in [1e-6, 1e-9, 1e-12] {
+        let mut errors = Vec::new();
+        for pi in [true, false] {
+            let m = Method::DormandPrince { rtol: tol, atol: tol, pi, h0: None, h_min: 0.0, h_max: f64::INFINITY };
+            let (end, steps, ode) = run(m, &field, launch_at(&field, DVec3::ZERO, 0.0), 20.0);
+            let e = (end.y.r - exact).length();
+            eprintln!(
+                "tol {tol:e} pi {pi}: error {e:.3e} m, {} accepted, {} rejected",
+                steps.len(),
+                ode.counters().rejected
+            );
+            errors.push(e);
+        }
+        assert!(errors[0] <= 3.0 * errors[1] && errors[1] <= 3.0 * errors[0], "{errors:?}");
+    }
+    let m = Method::DormandPrince { rtol: 1e-9, atol: 1e-9, pi: true, h0: Some(5.0), h_min: 0.0, h_max: 0.5 };
+    let (_, steps, _) = run(m, &field, launch_at(&field, DVec3::ZERO, 0.0), 20.0);
+    assert!(steps.iter().all(|s| s.h() <= 0.5), "h_max");
+    assert!(steps.len() >= 40);
+    let m = Method::DormandPrince { rtol: 1e-3, atol: 1e-3, pi: true, h0: Some(1e-3), h_min: 0.0, h_max: 1.0 };
+    let (_, steps, _) = run(m, &field, launch_at(&field, DVec3::ZERO, 0.0), 20.0);
+    assert_eq!(steps[0].h(), 1e-3, "the given first step");
+}

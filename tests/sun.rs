@@ -84,19 +84,19 @@ fn the_camera_sees_a_disc_whose_radiance_integrates_to_the_suns_irradiance() {
 
 #[test]
 fn the_disc_is_as_wide_as_the_suns_angular_diameter() {
-    // The middle row crosses the disc's diameter: 0.53° of the 1.2° field, so 21.2 of 48 pixels.
+    // The middle row crosses the disc's diameter: 0.533° of the 1.2° field, so 21.3 of 48 pixels.
     let s = scene(&sun_in_view("path"));
     let r = render_with(&s, 2);
     let row = s.camera.height / 2;
     let lit = (0..s.camera.width).filter(|x| r.image.data[row * s.camera.width + x] > 0.0).count() as f64;
-    let expected = 0.53 / 1.2 * s.camera.width as f64;
+    let expected = morgana::spectrum::solar::ANGULAR_DIAMETER_DEG / 1.2 * s.camera.width as f64;
     assert!((lit - expected).abs() <= 1.5, "{lit} pixels lit, expected {expected:.1}");
 }
 
 #[test]
 fn sun_photons_carry_its_irradiance_within_its_disc() {
     // A black 2 m plate under a sun at the zenith: 4 m² × E = 8 W arrive, and every photon's
-    // direction lies within 0.265° of straight down.
+    // direction lies within the disc's 0.2665° radius of straight down.
     let toml = r#"
 [camera]
 position = [0.0, 3.0, 3.0]
@@ -131,7 +131,7 @@ target_max = [1.0, 0.01, 1.0]
     // Photons tilted off the axis can miss the plate's edge: the share is ~ the edge strip of
     // width h·tan θ over the plate (h ≈ 2.5 m upstream: under 1%).
     assert!((stored / 8.0 - 1.0).abs() < 0.01, "stored {stored} W, expected 8 W");
-    let cos_max = 0.265f64.to_radians().cos();
+    let cos_max = (0.5 * morgana::spectrum::solar::ANGULAR_DIAMETER_DEG).to_radians().cos();
     assert!(sink.surface.iter().all(|p| -p.dir.y >= cos_max - 1e-12));
     let tilted = sink.surface.iter().filter(|p| -p.dir.y < 1.0 - 1e-9).count();
     assert!(tilted > sink.surface.len() / 2, "directions should spread over the disc");
@@ -143,4 +143,17 @@ fn a_sun_needs_a_direction_or_both_angles() {
     let bad = sun_in_view("path").replace("azimuth_deg = 0.0\n", "");
     let e = common::scene_error(&bad);
     assert!(e.contains("elevation_deg and azimuth_deg"), "{e}");
+}
+
+#[test]
+fn a_sun_without_a_spectrum_shines_with_the_extraterrestrial_solar_irradiance() {
+    // Over 380–780 nm (the default output range) ASTM G173-03's extraterrestrial column carries
+    // 655.9 W m⁻² (the integral its generator recorded).
+    let toml = sun_in_view("path")
+        .replace("spectrum = 1.0\nscale = 2.0\n", "")
+        .replace("[output]\nbands = 1\nmin_nm = 540.0\nmax_nm = 560.0\n", "");
+    let s = scene(&toml);
+    let e = s.lights[0].spectrum().integral();
+    let want = morgana::spectrum::solar::ETR_INTEGRAL_380_780_W_M2;
+    assert!((e / want - 1.0).abs() < 1e-6, "∫E dλ = {e} W/m², table {want}");
 }

@@ -1,7 +1,8 @@
 //! Atmosphere physics: the Earth's geometry ([`Earth`]), standard atmospheres ([`usa76`], tabulated
 //! profiles), temperature edits for mirages ([`edit`]), and the refractive index of air
 //! ([`dispersion`]), combined in [`Atmosphere`]. Atmospheres are data files (`atmospheres/`,
-//! loaded by [`load`]) or built in ([`Atmosphere::builtin`]).
+//! loaded by [`load`]) or built in ([`Atmosphere::builtin`]). [`refraction`] traces rays out of
+//! one: astronomical refraction.
 
 mod base;
 mod builtin;
@@ -11,6 +12,7 @@ pub mod edit;
 pub mod file;
 pub mod gas;
 mod model;
+pub mod refraction;
 pub mod table;
 mod table_profile;
 pub mod usa76;

@@ -9,6 +9,7 @@
 
 use super::World;
 use super::split::share;
+use crate::photon::inelastic::InelasticTally;
 use crate::photon::{self, MapKind, PhotonSink, PhotonStats};
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
@@ -73,6 +74,7 @@ pub fn sum(parts: &[PhotonStats]) -> PhotonStats {
     let mut total = PhotonStats {
         emitted: parts.iter().map(|p| p.emitted).sum(),
         power_per_photon_w: parts.iter().map(|p| p.power_per_photon_w).fold(0.0, f64::max),
+        inelastic: parts.first().map(|p| named_tallies(&p.inelastic)).unwrap_or_default(),
         ..PhotonStats::default()
     };
     for p in parts {
@@ -80,6 +82,14 @@ pub fn sum(parts: &[PhotonStats]) -> PhotonStats {
         total.curved.add(&p.curved);
     }
     total
+}
+
+/// Zeroed copies of a rank's inelastic tallies, keeping their medium and component names (every
+/// rank has the same components: it validated the same scene).
+fn named_tallies(t: &[InelasticTally]) -> Vec<InelasticTally> {
+    t.iter()
+        .map(|t| InelasticTally { medium: t.medium.clone(), component: t.component.clone(), ..Default::default() })
+        .collect()
 }
 
 #[cfg(test)]
@@ -96,5 +106,19 @@ mod tests {
         assert_eq!((s.emitted, s.stored, s.power_per_photon_w, s.escaped_w, s.curved.ode_steps), (16, 5, 0.5, 3.5, 7));
         // One rank: the statistics themselves.
         assert_eq!(sum(std::slice::from_ref(&a)), a);
+    }
+
+    #[test]
+    fn sums_keep_the_inelastic_components_names() {
+        let t = |events, w| InelasticTally {
+            medium: "sea".into(),
+            component: "chlorophyll".into(),
+            events,
+            emitted_w: w,
+            ..Default::default()
+        };
+        let a = PhotonStats { inelastic: vec![t(2, 0.25)], ..Default::default() };
+        let b = PhotonStats { inelastic: vec![t(3, 0.5)], ..Default::default() };
+        assert_eq!(sum(&[a, b]).inelastic, vec![t(5, 0.75)]);
     }
 }

@@ -52,6 +52,43 @@ impl Bvh {
         self.traverse::<true>(shapes, ray, t_max).is_some()
     }
 
+    /// Whether any of `shapes` may have surface inside `b`: boxes are tested against the tree's
+    /// nodes, and at the leaves against each shape ([`Shape::may_touch_box`]: exact for spheres,
+    /// by bounding box otherwise). False means certainly not: a path segment inside `b` needs
+    /// no intersection tests.
+    pub fn may_touch_box(&self, shapes: &[Shape], b: &Aabb) -> bool {
+        let overlaps = |n: &Node| (0..3).all(|k| n.bounds[0][k] <= b.max[k] && n.bounds[1][k] >= b.min[k]);
+        let mut stack = [0usize; 64];
+        let mut top = 0usize;
+        if self.nodes.is_empty() {
+            return false;
+        }
+        stack[0] = 0;
+        top += 1;
+        while top > 0 {
+            top -= 1;
+            let i = stack[top];
+            let n = &self.nodes[i];
+            if !overlaps(n) {
+                continue;
+            }
+            if n.count > 0 {
+                let prims = &self.prims[n.offset as usize..(n.offset + n.count) as usize];
+                if prims.iter().any(|p| shapes[*p as usize].may_touch_box(b)) {
+                    return true;
+                }
+                continue;
+            }
+            if top + 2 > stack.len() {
+                return true;
+            }
+            stack[top] = i + 1;
+            stack[top + 1] = i + n.offset as usize;
+            top += 2;
+        }
+        false
+    }
+
     /// Number of nodes (interior and leaves).
     pub fn node_count(&self) -> usize {
         self.nodes.len()

@@ -32,6 +32,43 @@ pub struct DirectionalLight {
     pub emission: LightSpectrum,
     /// sin θ_m of the disc's angular radius; 0 for a collimated beam.
     pub sin_max: f64,
+    /// The box the beam is aimed at, if the scene gave one.
+    pub target: Option<crate::geometry::Aabb>,
+    /// Where paths curve, the cells of the beam whose light reaches the target (a projection
+    /// map, see [`crate::photon::projection`]); `None`: the whole rectangle.
+    pub cells: Option<BeamCells>,
+}
+
+/// A projection map of a beam: the cells of a regular grid over the beam's cross-section from
+/// which light reaches the target, drawn uniformly (each cell has the same area).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BeamCells {
+    /// The grid's corner (s, t) and cell size, m.
+    pub origin: [f64; 2],
+    pub size: [f64; 2],
+    /// The (i, j) indices of the cells that emit.
+    pub cells: Vec<[u32; 2]>,
+}
+
+impl BeamCells {
+    pub fn area(&self) -> f64 {
+        self.cells.len() as f64 * self.size[0] * self.size[1]
+    }
+
+    /// A uniform point (s, t) on the marked cells.
+    fn sample(&self, u: [f64; 2]) -> [f64; 2] {
+        let k = self.cells.len() as f64 * u[0];
+        let i = (k as usize).min(self.cells.len() - 1);
+        let v = k - i as f64;
+        let [ci, cj] = self.cells[i];
+        [self.origin[0] + (ci as f64 + v) * self.size[0], self.origin[1] + (cj as f64 + u[1]) * self.size[1]]
+    }
+
+    fn contains(&self, s: f64, t: f64) -> bool {
+        let i = ((s - self.origin[0]) / self.size[0]).floor();
+        let j = ((t - self.origin[1]) / self.size[1]).floor();
+        i >= 0.0 && j >= 0.0 && self.cells.binary_search(&[i as u32, j as u32]).is_ok()
+    }
 }
 
 impl DirectionalLight {
@@ -60,7 +97,8 @@ impl DirectionalLight {
                 b
             }
         };
-        DirectionalLight { dir, scene_centre, scene_radius, beam, emission, sin_max: 0.0 }
+        let target = target.map(|(min, max)| crate::geometry::Aabb { min, max });
+        DirectionalLight { dir, scene_centre, scene_radius, beam, emission, sin_max: 0.0, target, cells: None }
     }
 
     /// The same light as a uniformly bright disc of angular diameter `diameter_deg`.
@@ -89,28 +127,45 @@ impl DirectionalLight {
         }
     }
 
-    /// Area of the beam's cross-section, m².
+    /// Area of the beam's cross-section (of its projection map's cells, when it has one), m².
     pub fn beam_area(&self) -> f64 {
-        (self.beam[0][1] - self.beam[0][0]) * (self.beam[1][1] - self.beam[1][0])
+        match &self.cells {
+            Some(c) => c.area(),
+            None => (self.beam[0][1] - self.beam[0][0]) * (self.beam[1][1] - self.beam[1][0]),
+        }
+    }
+
+    /// The point of the emitting plane at beam coordinates (s, t).
+    pub fn plane_point(&self, s: f64, t: f64) -> DVec3 {
+        let frame = Frame::from_normal(self.dir);
+        self.scene_centre - self.dir * (1.001 * self.scene_radius) + s * frame.s + t * frame.t
     }
 
     pub fn power_w(&self) -> f64 {
         self.beam_area() * self.emission.integral()
     }
 
-    /// A uniform point on the beam's cross-section, upstream of the scene.
+    /// A uniform point on the beam's cross-section (or its projection map's cells), upstream of
+    /// the scene.
     pub fn emit_origin(&self, u: [f64; 2]) -> DVec3 {
-        let frame = Frame::from_normal(self.dir);
-        let s = self.beam[0][0] + u[0] * (self.beam[0][1] - self.beam[0][0]);
-        let t = self.beam[1][0] + u[1] * (self.beam[1][1] - self.beam[1][0]);
-        self.scene_centre - self.dir * (1.001 * self.scene_radius) + s * frame.s + t * frame.t
+        let [s, t] = match &self.cells {
+            Some(c) => c.sample(u),
+            None => [
+                self.beam[0][0] + u[0] * (self.beam[0][1] - self.beam[0][0]),
+                self.beam[1][0] + u[1] * (self.beam[1][1] - self.beam[1][0]),
+            ],
+        };
+        self.plane_point(s, t)
     }
 
-    /// Whether the beam passes through `p`.
+    /// Whether the beam passes through `p` (along straight rays: used by shadow rays, which
+    /// only run where paths are straight).
     pub fn lights(&self, p: DVec3) -> bool {
         let frame = Frame::from_normal(self.dir);
         let (s, t) = ((p - self.scene_centre).dot(frame.s), (p - self.scene_centre).dot(frame.t));
-        (self.beam[0][0]..=self.beam[0][1]).contains(&s) && (self.beam[1][0]..=self.beam[1][1]).contains(&t)
+        let in_rect =
+            (self.beam[0][0]..=self.beam[0][1]).contains(&s) && (self.beam[1][0]..=self.beam[1][1]).contains(&t);
+        in_rect && self.cells.as_ref().is_none_or(|c| c.contains(s, t))
     }
 
     /// Irradiance normal to the beam is E, so weight = 1 toward −dir (or toward a direction

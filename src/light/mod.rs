@@ -18,7 +18,7 @@ mod sky;
 mod spot;
 
 pub use area::{AreaLight, Side};
-pub use directional::DirectionalLight;
+pub use directional::{BeamCells, DirectionalLight};
 pub use luminaire::LuminaireLight;
 pub use point::PointLight;
 pub use sky::SkyLight;

@@ -10,15 +10,35 @@
 //! - Fused silica: Malitson 1965, "Interspecimen comparison of the refractive index of fused
 //!   silica", J. Opt. Soc. Am. 55:1205. B = (0.6961663, 0.4079426, 0.8974794),
 //!   C = (0.0684043², 0.1162414², 9.896161²) μm²; n_d = 1.4585.
+//! - Water and sea water: Quan & Fry 1995, "Empirical equation for the index of refraction of
+//!   seawater", Appl. Opt. 34:3477–3480, for S = 0–35 ‰, T = 0–30 °C, λ = 400–700 nm (λ in nm):
+//!   n = n₀ + (n₁ + n₂T + n₃T²)S + n₄T² + (n₅ + n₆S + n₇T)/λ + n₈/λ² + n₉/λ³, with
+//!   n₀ = 1.31405, n₁ = 1.779·10⁻⁴, n₂ = −1.05·10⁻⁶, n₃ = 1.6·10⁻⁸, n₄ = −2.02·10⁻⁶,
+//!   n₅ = 15.868, n₆ = 0.01155, n₇ = −0.00423, n₈ = −4382, n₉ = 1.1455·10⁶.
+//!   Catalogue names: "water" (S = 0, T = 20 °C), "seawater" (S = 35 ‰, T = 20 °C).
 
 use serde::Serialize;
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum Ior {
-    Constant { n: f64 },
-    Cauchy { a: f64, b_um2: f64, c_um4: f64 },
-    Sellmeier { b: [f64; 3], c_um2: [f64; 3] },
+    Constant {
+        n: f64,
+    },
+    Cauchy {
+        a: f64,
+        b_um2: f64,
+        c_um4: f64,
+    },
+    Sellmeier {
+        b: [f64; 3],
+        c_um2: [f64; 3],
+    },
+    /// Quan & Fry (1995) for water of salinity S (‰) at temperature T (°C).
+    QuanFry {
+        salinity_psu: f64,
+        temperature_c: f64,
+    },
 }
 
 impl Ior {
@@ -33,6 +53,7 @@ impl Ior {
                 let s: f64 = b.iter().zip(c_um2).map(|(b, c)| b * l2 / (l2 - c)).sum();
                 (1.0 + s).sqrt()
             }
+            Ior::QuanFry { salinity_psu: s, temperature_c: t } => quan_fry(*s, *t, wavelength_nm),
         }
     }
 
@@ -41,7 +62,7 @@ impl Ior {
         match self {
             Ior::Constant { .. } => false,
             Ior::Cauchy { b_um2, c_um4, .. } => *b_um2 != 0.0 || *c_um4 != 0.0,
-            Ior::Sellmeier { .. } => true,
+            Ior::Sellmeier { .. } | Ior::QuanFry { .. } => true,
         }
     }
 
@@ -63,6 +84,13 @@ impl Ior {
     }
 }
 
+/// n of sea water by Quan & Fry (1995), λ in nm.
+fn quan_fry(s: f64, t: f64, l: f64) -> f64 {
+    1.31405 + (1.779e-4 - 1.05e-6 * t + 1.6e-8 * t * t) * s - 2.02e-6 * t * t + (15.868 + 0.01155 * s - 0.00423 * t) / l
+        - 4382.0 / (l * l)
+        + 1.1455e6 / (l * l * l)
+}
+
 /// A glass from the built-in catalogue: "N-BK7" (alias "BK7") or "fused_silica".
 pub fn named_glass(name: &str) -> Option<Ior> {
     match name {
@@ -74,12 +102,14 @@ pub fn named_glass(name: &str) -> Option<Ior> {
             b: [0.696_166_3, 0.407_942_6, 0.897_479_4],
             c_um2: [0.068_404_3f64.powi(2), 0.116_241_4f64.powi(2), 9.896_161f64.powi(2)],
         }),
+        "water" => Some(Ior::QuanFry { salinity_psu: 0.0, temperature_c: 20.0 }),
+        "seawater" => Some(Ior::QuanFry { salinity_psu: 35.0, temperature_c: 20.0 }),
         _ => None,
     }
 }
 
 /// Names accepted by [`named_glass`], for error messages.
-pub const GLASS_NAMES: &[&str] = &["N-BK7", "BK7", "fused_silica"];
+pub const GLASS_NAMES: &[&str] = &["N-BK7", "BK7", "fused_silica", "water", "seawater"];
 
 #[cfg(test)]
 mod tests {
@@ -96,6 +126,19 @@ mod tests {
         let g = named_glass("N-BK7").unwrap();
         let v = (g.eval(587.5618) - 1.0) / (g.eval(486.1327) - g.eval(656.2725));
         assert!((v - 64.17).abs() < 0.05, "Abbe number {v}");
+    }
+
+    #[test]
+    fn quan_fry_matches_published_indices_of_water() {
+        // Pure water at 20 °C, 589.3 nm: n_D = 1.33299 (CRC Handbook; Quan & Fry's fit is within
+        // 1e-4 of the data it was fitted to, Austin & Halikas 1976).
+        let w = named_glass("water").unwrap().eval(589.3);
+        assert!((w - 1.33299).abs() < 1e-4, "water n_D = {w}");
+        // Sea water of 35 ‰ at 20 °C: n_D ≈ 1.3394 (Austin & Halikas 1976, the data Quan & Fry
+        // fitted).
+        let sw = named_glass("seawater").unwrap().eval(589.3);
+        assert!((sw - 1.3394).abs() < 5e-4, "sea water n_D = {sw}");
+        assert!(named_glass("water").unwrap().eval(450.0) > w, "normal dispersion");
     }
 
     #[test]

@@ -1,9 +1,12 @@
 //! A participating medium: absorption σ_a(λ) and scattering σ_s(λ) per metre at density 1 (given
 //! directly, or as extinction σ_t(λ) and single-scattering albedo ω(λ)), a phase function, and a
-//! density field d(x) that scales both; and, optionally, a refractive-index field n(λ, x)
-//! ([`super::index`]) along which light curves.
+//! density field d(x) that scales both; optionally inelastic components ([`Inelastic`]), whose
+//! coefficients σ_i(λ) (fluorescent absorption, Raman scattering) add to the extinction:
+//! σ_t = σ_a + σ_s + Σ_i σ_i (the albedo σ_s/σ_t is that of elastic scattering only); and,
+//! optionally, a refractive-index field n(λ, x) ([`super::index`]) along which light curves.
 
 use super::density::Density;
+use super::inelastic::Inelastic;
 use super::phase::PhaseFunction;
 use crate::spectrum::Spectrum;
 
@@ -26,11 +29,19 @@ pub struct Medium {
     pub density: Density,
     /// The medium's refractive index; `None`: n = 1 and straight paths.
     pub index: Option<super::index::IndexField>,
+    /// Fluorescence and Raman components (empty for most media).
+    pub inelastic: Inelastic,
 }
 
 impl Medium {
-    /// Extinction σ_t = σ_a + σ_s at density 1, m⁻¹.
+    /// Extinction σ_t = σ_a + σ_s + Σ_i σ_i at density 1, m⁻¹.
     pub fn sigma_t(&self, wavelength_nm: f64) -> f64 {
+        let elastic = self.sigma_t_without_inelastic(wavelength_nm);
+        if self.inelastic.is_empty() { elastic } else { elastic + self.inelastic.sigma(wavelength_nm) }
+    }
+
+    /// σ_a + σ_s as the coefficients give them, without the inelastic components, m⁻¹.
+    pub fn sigma_t_without_inelastic(&self, wavelength_nm: f64) -> f64 {
         match &self.coefficients {
             Coefficients::AbsorptionScattering { sigma_a, sigma_s } => {
                 sigma_a.eval(wavelength_nm) + sigma_s.eval(wavelength_nm)
@@ -57,8 +68,10 @@ impl Medium {
     /// Single-scattering albedo σ_s/σ_t (0 where σ_t = 0); independent of density.
     pub fn albedo(&self, wavelength_nm: f64) -> f64 {
         match &self.coefficients {
-            Coefficients::ExtinctionAlbedo { albedo, .. } => albedo.eval(wavelength_nm),
-            Coefficients::AbsorptionScattering { .. } | Coefficients::AbsorptionMixture { .. } => {
+            Coefficients::ExtinctionAlbedo { albedo, .. } if self.inelastic.is_empty() => albedo.eval(wavelength_nm),
+            Coefficients::ExtinctionAlbedo { .. }
+            | Coefficients::AbsorptionScattering { .. }
+            | Coefficients::AbsorptionMixture { .. } => {
                 let t = self.sigma_t(wavelength_nm);
                 if t > 0.0 { self.sigma_s(wavelength_nm) / t } else { 0.0 }
             }
@@ -69,11 +82,14 @@ impl Medium {
         self.density.is_uniform()
     }
 
-    /// True when the medium neither absorbs nor scatters at any wavelength (σ_t ≡ 0 as given):
-    /// clear air that only bends light.
+    /// True when the medium neither absorbs nor scatters at any wavelength (σ_t ≡ 0 as given,
+    /// and no inelastic component): clear air that only bends light.
     pub fn is_clear(&self) -> bool {
         use crate::spectrum::Spectrum;
         let zero = |s: &Spectrum| matches!(s, Spectrum::Constant(v) if *v == 0.0);
+        if !self.inelastic.is_empty() {
+            return false;
+        }
         match &self.coefficients {
             Coefficients::AbsorptionScattering { sigma_a, sigma_s } => zero(sigma_a) && zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => zero(sigma_t),

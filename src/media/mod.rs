@@ -1,10 +1,13 @@
 //! Participating media: what fills space between surfaces — absorption, scattering, phase
 //! functions ([`phase`]), spatial density ([`density`]), free-flight sampling and transmittance
-//! ([`tracking`]), and refractive-index fields ([`index`]).
+//! ([`tracking`]), refractive-index fields ([`index`]), and inelastic scattering — fluorescence and
+//! Raman — ([`inelastic`]).
 
 pub mod density;
 pub mod index;
+pub mod inelastic;
 mod medium;
+pub mod ocean;
 pub mod phase;
 pub mod tracking;
 

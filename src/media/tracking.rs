@@ -115,6 +115,7 @@ mod tests {
                 scale_height_m: 2.0,
             }),
             index: None,
+            inelastic: crate::media::inelastic::Inelastic::none(),
         }
     }
 

@@ -4,6 +4,7 @@ pub mod atomic;
 pub mod exr;
 pub mod png;
 pub mod report;
+pub mod spectrum_plot;
 
 use crate::spectrum::Bands;
 
@@ -61,6 +62,11 @@ pub fn write_outputs(
         let stem = format!("{}_{}", o.name, crate::sensor::file_stem(&s.name));
         stage(&mut staged, dir, format!("{stem}.csv"), &|p| s.write_csv(p))?;
         stage(&mut staged, dir, format!("{stem}.png"), &|p| s.write_png(p))?;
+    }
+    for s in &r.profiles {
+        let stem = format!("{}_{}", o.name, crate::sensor::file_stem(&s.name));
+        stage(&mut staged, dir, format!("{stem}.csv"), &|p| s.write_csv(p))?;
+        stage(&mut staged, dir, format!("{stem}_derived.csv"), &|p| s.write_derived_csv(p))?;
     }
     let mut outputs: Vec<PathBuf> = staged.iter().map(|s| s.target.clone()).collect();
     outputs.push(dir.join("report.json"));

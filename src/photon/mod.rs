@@ -6,6 +6,8 @@
 //! identical for any thread count.
 
 mod emit;
+pub mod inelastic;
+pub mod projection;
 mod targeting;
 mod trace;
 
@@ -58,7 +60,7 @@ pub fn shoot_batches(
 ) -> (PhotonSink, PhotonStats) {
     let batches = batches.start.min(batch_count(emitted))..batches.end.min(batch_count(emitted));
     let here = batches.clone().map(|b| batch_photons(emitted, b)).sum();
-    let mut stats = PhotonStats { emitted: here, ..PhotonStats::default() };
+    let mut stats = PhotonStats { emitted: here, inelastic: inelastic::tallies(scene), ..PhotonStats::default() };
     let Some(chooser) = LightChooser::new(&scene.lights) else { return (PhotonSink::default(), stats) };
     let targets = match kind {
         MapKind::Caustic => match CausticTargets::new(scene) {

@@ -4,9 +4,12 @@
 //! Power is carried unchanged; Russian roulette decides survival: at a diffuse surface with its
 //! reflectance ρ(λ), at a mirror with R(λ), at glass between reflection and refraction by the
 //! Fresnel reflectance, and in a medium — where the free-flight distance is sampled along each
-//! chord of the path — with the single-scattering albedo σ_s/σ_t (the first roulette; the
-//! inelastic issue adds a second). Every stored photon of a pass carries the power it was
-//! emitted with, tagged with its [`PhotonPath`].
+//! chord of the path — with the single-scattering albedo σ_s/σ_t (the first roulette). In a
+//! medium with inelastic components, an interaction that is not an elastic scattering goes to
+//! the second roulette ([`super::inelastic`]): a re-emitted photon continues at its new
+//! wavelength with its power times the component's energy factor. Every stored photon of a pass
+//! carries the power it had when it arrived there (the emitted power unless an inelastic event
+//! changed it), tagged with its [`PhotonPath`].
 
 use crate::geometry::spawn_origin;
 use crate::light::Emission;
@@ -55,6 +58,11 @@ pub struct PhotonStats {
     pub medium_interactions: u64,
     /// Integrator work along curved paths (zero where every path is straight).
     pub curved: crate::raypath::CurvedWorkTotals,
+    /// Photons re-emitted by fluorescence, and Raman scatterings (see `inelastic`).
+    pub reemitted: u64,
+    pub raman_events: u64,
+    /// Per inelastic component (empty when no medium is inelastic).
+    pub inelastic: Vec<super::inelastic::InelasticTally>,
 }
 
 impl PhotonStats {
@@ -68,6 +76,14 @@ impl PhotonStats {
         self.missed += o.missed;
         self.bounces += o.bounces;
         self.medium_interactions += o.medium_interactions;
+        self.reemitted += o.reemitted;
+        self.raman_events += o.raman_events;
+        if self.inelastic.len() < o.inelastic.len() {
+            self.inelastic.resize(o.inelastic.len(), Default::default());
+        }
+        for (a, b) in self.inelastic.iter_mut().zip(&o.inelastic) {
+            a.add(b);
+        }
     }
 }
 
@@ -124,11 +140,11 @@ pub fn trace(
         });
         let next = match event {
             Event::Escape { .. } => {
-                st.escaped_w += power_w;
+                st.escaped_w += f.power_w;
                 return;
             }
             Event::Lost { .. } => {
-                st.truncated_w += power_w;
+                st.truncated_w += f.power_w;
                 return;
             }
             Event::Medium { position, dir, medium, .. } => {
@@ -142,12 +158,18 @@ pub fn trace(
                     st.stored_volume += 1;
                 }
                 let m = &scene.media[medium as usize];
-                if rng.uniform() >= m.albedo(f.lambda) {
-                    st.absorbed_medium_w += power_w;
+                let wo = if rng.uniform() < m.albedo(f.lambda) {
+                    m.phase.sample(f.lambda, dir, rng.uniform2()).0
+                } else if m.inelastic.is_empty() {
+                    st.absorbed_medium_w += f.power_w;
                     return;
-                }
+                } else {
+                    match reemit(&mut f, m, medium, dir, rng, st) {
+                        Some(wo) => wo,
+                        None => return,
+                    }
+                };
                 f.after(PhotonPath::Diffuse);
-                let (wo, _) = m.phase.sample(f.lambda, dir, rng.uniform2());
                 RayState { position, dir: wo, wavelength_nm: Some(f.lambda), medium: Some(medium) }
             }
             Event::Surface { hit, dir, medium, .. } => {
@@ -160,7 +182,34 @@ pub fn trace(
         };
         state = next;
     }
-    st.truncated_w += power_w;
+    st.truncated_w += f.power_w;
+}
+
+/// The second roulette: the direction a re-emitted photon leaves in (its wavelength and power
+/// updated in `f`), or `None` when it stays absorbed.
+fn reemit(
+    f: &mut Flight,
+    m: &crate::media::Medium,
+    medium: u32,
+    dir: DVec3,
+    rng: &mut Rng,
+    st: &mut PhotonStats,
+) -> Option<DVec3> {
+    let r = super::inelastic::after_absorption(f.scene, m, medium, f.lambda, dir, f.power_w, rng, &mut st.inelastic);
+    let r = match r {
+        Ok(r) => r,
+        Err(absorbed_w) => {
+            st.absorbed_medium_w += absorbed_w;
+            return None;
+        }
+    };
+    match r.process {
+        crate::media::inelastic::Process::Raman => st.raman_events += 1,
+        crate::media::inelastic::Process::Fluorescence => st.reemitted += 1,
+    }
+    f.lambda = r.wavelength_nm;
+    f.power_w = r.power_w;
+    Some(r.dir)
 }
 
 /// What a photon does at a surface: the state it leaves in, or `None` when it stops there.

@@ -17,7 +17,11 @@
 //! σ_s L_i(x, ω, b) ≈ Σ_p α(λ_p) f(λ_p; ω_p·ω) ΔΦ_p / ((4/3)π r³ Δλ_b),
 //!
 //! with α = σ_s/σ_t the single-scattering albedo at the photon's own wavelength and f the phase
-//! function (ω_p the photon's direction of travel, ω the scattered light's).
+//! function (ω_p the photon's direction of travel, ω the scattered light's). A medium with
+//! inelastic components adds the light they re-emit into band b from photons of every
+//! wavelength, Σ_p Σ_i p_i(ω_p·ω) T_i(λ_p, b) ΔΦ_p over the same volume (see
+//! [`crate::media::inelastic::BandTransfer`]); that term counts every photon, direct ones
+//! included, because shadow rays compute elastic single scattering only.
 //!
 //! The radius: when k photons are found, the k-th sets r and is left out of the sum — for
 //! photons from a Poisson process, (k − 1)/V(r_k) is unbiased where k/V(r_k) is too high by
@@ -124,11 +128,14 @@ impl Estimator<'_> {
                 continue;
             }
             let p = self.map.record(i);
+            let l = p.wavelength_nm;
+            if let Some(t) = &medium.inelastic.transfer {
+                t.add_photon(&medium.inelastic, &mut out, l, p.dir.dot(wo), p.power_w);
+            }
             if !self.paths.accepts(p.path) {
                 continue;
             }
-            let Some(b) = self.bands.index_of(p.wavelength_nm) else { continue };
-            let l = p.wavelength_nm;
+            let Some(b) = self.bands.index_of(l) else { continue };
             out[b] += medium.albedo(l) * medium.phase.eval(l, p.dir.dot(wo)) * p.power_w;
         }
         let r = r2.sqrt();

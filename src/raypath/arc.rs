@@ -19,7 +19,7 @@ pub const MAX_CHORDS: usize = 1024;
 /// The number of chords that keeps every chord of `step` within `tol_m` of the arc.
 pub fn chord_count(step: &Step, tol_m: f64) -> usize {
     let mid_arc = step.position_at(0.5);
-    let mid_chord = 0.5 * (step.y0.r + step.y1.r);
+    let mid_chord = 0.5 * (step.y0().r + step.y1().r);
     let d = (mid_arc - mid_chord).length();
     if d.is_nan() || d <= tol_m {
         return 1;
@@ -40,8 +40,8 @@ impl ChordOnArc {
     pub fn new(step: &Step, i: usize, count: usize) -> ChordOnArc {
         let theta0 = i as f64 / count as f64;
         let theta1 = (i + 1) as f64 / count as f64;
-        let from = if i == 0 { step.y0.r } else { step.position_at(theta0) };
-        let to = if i + 1 == count { step.y1.r } else { step.position_at(theta1) };
+        let from = if i == 0 { step.y0().r } else { step.position_at(theta0) };
+        let to = if i + 1 == count { step.y1().r } else { step.position_at(theta1) };
         ChordOnArc { from, to, theta0, theta1 }
     }
 

@@ -168,7 +168,13 @@ fn chords_of(
     w: &mut Walk,
     visit: &mut dyn FnMut(&Chord) -> Option<f64>,
 ) -> Option<Event> {
-    let count = chord_count(step, tol_m);
+    let mut count = chord_count(step, tol_m);
+    if count > 1 && prop.is_clear(w.medium) && !geometry_near(prop, step, tol_m) {
+        // Clear air with nothing to hit near this step: no interaction can happen on it and no
+        // surface can be crossed, so one chord serves (and the path length adds the step's arc
+        // length, not the chord's).
+        count = 1;
+    }
     for i in 0..count {
         let c = ChordOnArc::new(step, i, count);
         let d = c.to - c.from;
@@ -193,12 +199,23 @@ fn chords_of(
             let (h, theta, chord_dir) = refine(prop, step, &c, h, u);
             return Some(surface(step, theta, h, chord_dir, c.from, w));
         }
-        w.travelled += len;
+        w.travelled += if count == 1 { step.h() } else { len };
         if prop.outside_world(c.to) {
             return Some(Event::Escape { dir: step.direction_at(c.theta1) });
         }
     }
     None
+}
+
+/// Whether any surface may lie within reach of `step`'s arc: the box around its ends and
+/// midpoint, grown by twice the midpoint's distance from the chord (which bounds how far the arc
+/// strays from it under the curvature assumption of [`super::arc`]) and the tolerance.
+fn geometry_near(prop: &Propagator, step: &Step, tol_m: f64) -> bool {
+    let (a, b, m) = (step.y0().r, step.y1().r, step.position_at(0.5));
+    let pad = 2.0 * (m - 0.5 * (a + b)).length() + tol_m;
+    let min = a.min(b).min(m) - DVec3::splat(pad);
+    let max = a.max(b).max(m) + DVec3::splat(pad);
+    prop.scene.bvh.may_touch_box(&prop.scene.shapes, &crate::geometry::Aabb { min, max })
 }
 
 /// Sub-chords per refinement round and rounds: each round shrinks the sagitta of the chord

@@ -20,6 +20,7 @@
 //! within the arc tolerance of the arc length). Media extend to the *world sphere* (twice the
 //! radius of the sphere bounding the scene and the camera); a path leaving it escapes.
 
+pub mod accuracy;
 mod arc;
 pub mod curved;
 pub mod ode;
@@ -77,6 +78,8 @@ pub struct Propagator<'a> {
     world_radius: f64,
     /// Per medium: where its index field bends light, if it does and the plan follows it.
     regions: Vec<Option<GradientRegion>>,
+    /// Per medium: whether it neither absorbs nor scatters (nothing happens in it but bending).
+    clear: Vec<bool>,
     /// Integrator work along curved paths.
     pub work: CurvedWork,
 }
@@ -92,7 +95,18 @@ impl<'a> Propagator<'a> {
             .iter()
             .map(|m| m.index.as_ref().filter(|f| curved && !f.is_uniform()).map(|f| f.gradient_region()))
             .collect();
-        Propagator { scene, world_centre: centre, world_radius: radius, regions, work: CurvedWork::default() }
+        let clear = scene.media.iter().map(|m| m.is_clear()).collect();
+        Propagator { scene, world_centre: centre, world_radius: radius, regions, clear, work: CurvedWork::default() }
+    }
+
+    /// Whether medium `m` neither absorbs nor scatters light.
+    pub fn is_clear(&self, m: u32) -> bool {
+        self.clear[m as usize]
+    }
+
+    /// The scene light moves through.
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
     }
 
     /// The index field of `medium` and where it bends light, when paths in it curve.

@@ -482,7 +482,7 @@ impl<'a> EyeTracer<'a> {
     /// [`EyeTracer::step_length`]); transmittance carried exactly where the medium allows, by
     /// ratio tracking otherwise; Russian roulette once it is negligible.
     fn march(&self, c: &Chord, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
-        let Some(id) = c.medium else { return };
+        let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
         let m = &self.scene.media[id as usize];
         let lanes = at.lanes;
         let est = match at.mode {

@@ -41,6 +41,8 @@ pub struct Rendered {
     pub stats: RenderStats,
     /// What the scene's sensors measured.
     pub sensors: Vec<crate::sensor::Reading>,
+    /// What the scene's ocean profile sensors measured.
+    pub profiles: Vec<crate::sensor::ProfileReading>,
 }
 
 /// Renders `scene` on the current rayon thread pool.
@@ -87,10 +89,11 @@ pub fn render_on(
     stats.phases.add("colour conversion", t);
     let t = Instant::now();
     let sensors = crate::sensor::evaluate_all(scene, &maps);
-    if !sensors.is_empty() {
+    let profiles = crate::sensor::evaluate_profiles(scene, &maps);
+    if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
-    Ok(Some(Rendered { image, stats, sensors }))
+    Ok(Some(Rendered { image, stats, sensors, profiles }))
 }
 
 /// This rank's part of the eye pass: the image's band averages (row-major, `bands.count` per

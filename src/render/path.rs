@@ -15,12 +15,24 @@
 //! surfaces counts fully.
 //! Russian roulette on the throughput after [`ROULETTE_DEPTH`] events (Veach 1997, §10;
 //! Novák et al. 2018 for the volumetric parts).
+//!
+//! Inelastic media: the light a component re-emits at λ is a volume source J(x, ω, λ) =
+//! Σ_i ∫ σ_i(λ') Φ f̂ E p_i L(x, ω', λ') dω' dλ', which need not be proportional to σ_t(λ) (a
+//! fluorescent dye is clear at its emission wavelength), so it is estimated by the track-length
+//! estimator: after each straight segment of length d that a path crosses in an inelastic
+//! medium, with probability [`INELASTIC_BRANCH`] the path leaves for a point x uniform on the
+//! segment (E[d J(x)] over free flights is ∫ T J dt), an excitation λ' drawn by
+//! [`crate::media::inelastic::Inelastic::sample_excitation`], the throughput multiplied by
+//! d d(x) σ_i(λ') Φ f̂ E / (pdf q), then next-event estimation and a new direction with the
+//! component's emission phase function at λ'; otherwise it goes on as before, its throughput
+//! divided by 1 − q. Segments are straight (the path tracer assumes no index field).
 
 use super::lanes::Lanes;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
 use crate::light::Light;
 use crate::material::{Lambertian, Material};
+use crate::media::phase::PhaseFunction;
 use crate::media::tracking;
 use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
@@ -33,6 +45,8 @@ use std::f64::consts::PI;
 pub const ROULETTE_DEPTH: usize = 4;
 /// Hard limit on events per path (reached only by pathological scenes).
 pub const MAX_EVENTS: usize = 4096;
+/// Probability of leaving a segment through an inelastic component, in a medium that has any.
+pub const INELASTIC_BRANCH: f64 = 0.5;
 
 pub struct PathTracer<'a> {
     scene: &'a Scene,
@@ -90,20 +104,26 @@ impl<'a> PathTracer<'a> {
         let mut l = 0.0;
         for events in 0..MAX_EVENTS {
             rays.eye += 1;
+            let lam = w.lambda;
             let event = self.prop.next_event_with(&state, &mut |c| {
                 let m = self.scene.medium(c.medium)?;
-                tracking::sample_interaction(m, lambda, c.origin, c.dir, c.length, rng)
+                tracking::sample_interaction(m, lam, c.origin, c.dir, c.length, rng)
             });
+            if let Some(branch) = self.inelastic_track(&state, &event, &mut w, &mut l, rng, rays) {
+                match branch {
+                    Some(s) => state = s,
+                    None => return l,
+                }
+                continue;
+            }
             let next = match event {
                 Event::Escape { dir } => return l + w.beta * self.escaped(dir, lambda, w.emission),
                 Event::Lost { .. } => return l,
                 Event::Medium { position, dir, medium, .. } => {
-                    let m = &self.scene.media[medium as usize];
-                    w.beta *= m.albedo(lambda);
-                    l += w.beta * self.direct(position, None, DVec3::ZERO, Some(medium), dir, lambda, rng, rays);
-                    let (wo, pdf) = m.phase.sample(lambda, dir, rng.uniform2());
-                    w.emission = Emission::Mis { from: position, pdf };
-                    RayState { position, dir: wo, wavelength_nm: Some(lambda), medium: Some(medium) }
+                    match self.medium_event(position, dir, medium, &mut w, &mut l, rng, rays) {
+                        Some(s) => s,
+                        None => return l,
+                    }
                 }
                 Event::Surface { hit, dir, medium, .. } => {
                     match self.surface(&hit, dir, medium, &mut w, &mut l, rng, rays) {
@@ -125,6 +145,80 @@ impl<'a> PathTracer<'a> {
             }
         }
         l
+    }
+
+    /// A collision in medium `medium`: elastic scattering, or (in an inelastic medium, with
+    /// probability [`INELASTIC_BRANCH`]) an inelastic step to an excitation wavelength.
+    #[allow(clippy::too_many_arguments)]
+    fn medium_event(
+        &self,
+        position: DVec3,
+        dir: DVec3,
+        medium: u32,
+        w: &mut Walk,
+        l: &mut f64,
+        rng: &mut Rng,
+        rays: &mut RayCounts,
+    ) -> Option<RayState> {
+        let m = &self.scene.media[medium as usize];
+        w.beta *= m.albedo(w.lambda);
+        Some(self.scatter(position, dir, medium, &m.phase, w, l, rng, rays))
+    }
+
+    /// Next-event estimation and a direction drawn from `phase` at `position`.
+    #[allow(clippy::too_many_arguments)]
+    fn scatter(
+        &self,
+        position: DVec3,
+        dir: DVec3,
+        medium: u32,
+        phase: &PhaseFunction,
+        w: &mut Walk,
+        l: &mut f64,
+        rng: &mut Rng,
+        rays: &mut RayCounts,
+    ) -> RayState {
+        let lambda = w.lambda;
+        *l += w.beta * self.direct(position, None, DVec3::ZERO, Some(medium), Some(phase), dir, lambda, rng, rays);
+        let (wo, pdf) = phase.sample(lambda, dir, rng.uniform2());
+        w.emission = Emission::Mis { from: position, pdf };
+        RayState { position, dir: wo, wavelength_nm: Some(lambda), medium: Some(medium) }
+    }
+
+    /// The track-length branch into an inelastic component (see the module documentation):
+    /// `None` when the path goes on with `event` (throughput divided by 1 − q), else the state it
+    /// continues from at the excitation wavelength (`Some(None)`: it ends).
+    fn inelastic_track(
+        &self,
+        state: &RayState,
+        event: &Event,
+        w: &mut Walk,
+        l: &mut f64,
+        rng: &mut Rng,
+        rays: &mut RayCounts,
+    ) -> Option<Option<RayState>> {
+        let id = state.medium?;
+        let m = &self.scene.media[id as usize];
+        if m.inelastic.is_empty() {
+            return None;
+        }
+        let end = match event {
+            Event::Medium { position, .. } => *position,
+            Event::Surface { hit, .. } => hit.point,
+            Event::Escape { .. } | Event::Lost { .. } => return None,
+        };
+        if rng.uniform() >= INELASTIC_BRANCH {
+            w.beta /= 1.0 - INELASTIC_BRANCH;
+            return None;
+        }
+        let d = (end - state.position).length();
+        let x = state.position + rng.uniform() * (end - state.position);
+        let range = (self.scene.bands.min_nm, self.scene.bands.max_nm);
+        let Some(e) = m.inelastic.sample_excitation(w.lambda, range, rng) else { return Some(None) };
+        w.beta *= d * m.density.at(x) * e.weight / INELASTIC_BRANCH;
+        w.lambda = e.wavelength_nm;
+        let phase = &m.inelastic.components[e.component].phase;
+        Some(Some(self.scatter(x, state.dir, id, phase, w, l, rng, rays)))
     }
 
     /// Emission and scattering at a surface; the state to continue from, if the path goes on.
@@ -165,7 +259,7 @@ impl<'a> PathTracer<'a> {
             Material::Lambertian(_) => {
                 let n = if dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
                 let rho = material.diffuse_reflectance(w.lambda);
-                *l += w.beta * rho / PI * self.direct(hit.point, Some(hit), n, medium, dir, w.lambda, rng, rays);
+                *l += w.beta * rho / PI * self.direct(hit.point, Some(hit), n, medium, None, dir, w.lambda, rng, rays);
                 w.beta *= rho;
                 let wo = Lambertian::sample(dir, hit.normal, rng.uniform2());
                 w.emission = Emission::Mis { from: hit.point, pdf: wo.dot(n).abs() / PI };
@@ -201,7 +295,8 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Next-event estimation at `p`: Σ_lights S(λ) weight T(λ) times cos θ·(1/π on a surface,
-    /// normal `n`, the caller multiplies by ρ) or the phase function f in a medium (`n` zero;
+    /// normal `n`, the caller multiplies by ρ) or the phase function f in a medium (`n` zero,
+    /// `phase` given;
     /// `dir` is the direction the path arrived in, so the scattering cosine is ω_i·dir), each
     /// area light's share weighted by the power heuristic against the scattering density.
     #[allow(clippy::too_many_arguments)]
@@ -211,6 +306,7 @@ impl<'a> PathTracer<'a> {
         from: Option<&Hit>,
         n: DVec3,
         medium: Option<u32>,
+        phase: Option<&PhaseFunction>,
         dir: DVec3,
         lambda: f64,
         rng: &mut Rng,
@@ -220,9 +316,9 @@ impl<'a> PathTracer<'a> {
         for light in &self.scene.lights {
             let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
             let (factor, p_scatter) = if n == DVec3::ZERO {
-                match self.scene.medium(medium) {
-                    Some(m) => {
-                        let f = m.phase.eval(lambda, inc.wi.dot(dir));
+                match phase {
+                    Some(ph) => {
+                        let f = ph.eval(lambda, inc.wi.dot(dir));
                         (f, f)
                     }
                     None => (0.0, 0.0),

@@ -7,14 +7,17 @@
 //!   (directional: W m⁻² nm⁻¹).
 //! - `irradiance_w_m2` (directional and sun): irradiance normal to the beam within the range.
 //!
-//! A `sun` is a directional light of angular diameter `angular_diameter_deg` (default 0.53°),
+//! A `sun` is a directional light of angular diameter `angular_diameter_deg` (default 0.533°),
+//! with the extraterrestrial solar spectrum (`spectrum = "solar"`, `scale = 1`) unless given,
 //! placed by `direction` (of travel) or by `elevation_deg` and `azimuth_deg`: the direction
 //! *toward* the sun is (sin A cos e, sin e, −cos A cos e) in the scene frame (+y up), so azimuth
 //! 0° is straight ahead of a camera looking along −z and 90° is toward +x. A `directional` light
 //! may also be given an `angular_diameter_deg`.
 //!
 //! A `sky` is uniform radiance (`spectrum` × `scale`, W m⁻² sr⁻¹ nm⁻¹) from every direction above
-//! the plane normal to `up` (default +y); its photons are aimed at the bounding sphere of
+//! its horizon — elevation `horizon_deg` above the plane normal to `up` (defaults 0° and +y; a
+//! round-Earth scene sets it a few degrees negative, since rays that leave the atmosphere bend
+//! below the horizontal) — with photons aimed at the bounding sphere of
 //! `target_min`/`target_max` (default: of the whole scene).
 
 use super::context::{Ctx, R};
@@ -37,9 +40,9 @@ pub struct NamedLight {
 
 const KINDS: &[&str] = &["area", "point", "spot", "directional", "sun", "sky", "luminaire"];
 
-/// The sun's mean angular diameter seen from the Earth, degrees (31.6′–32.7′ over the year;
-/// Allen's Astrophysical Quantities, 4th ed., §14.7).
-pub const SUN_ANGULAR_DIAMETER_DEG: f64 = 0.53;
+/// The sun's mean angular diameter seen from the Earth, degrees (see
+/// [`crate::spectrum::solar::ANGULAR_DIAMETER_DEG`]).
+pub const SUN_ANGULAR_DIAMETER_DEG: f64 = crate::spectrum::solar::ANGULAR_DIAMETER_DEG;
 
 pub fn light(
     ctx: &Ctx,
@@ -55,7 +58,7 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, elevation_deg, azimuth_deg, angular_diameter_deg, up);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, elevation_deg, azimuth_deg, angular_diameter_deg, up, horizon_deg);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
@@ -71,7 +74,7 @@ pub fn light(
             "target_min",
             "target_max",
         ],
-        "sky" => &["scale", "up", "target_min", "target_max"],
+        "sky" => &["scale", "up", "horizon_deg", "target_min", "target_max"],
         _ => &["scale", "irradiance_w_m2", "direction", "angular_diameter_deg", "target_min", "target_max"],
     };
     ctx.only(&present, allowed, &what)?;
@@ -79,7 +82,11 @@ pub fn light(
         let (light, notes) = super::luminaires::luminaire(ctx, lib, l, &span, &what, bands)?;
         return Ok(NamedLight { name, light, material: None, notes });
     }
-    let spec = ctx.require(&l.spectrum, "spectrum", &span, &what)?;
+    let solar = Spanned::new(span.clone(), toml::Value::String("solar".into()));
+    let spec = match (&l.spectrum, kind) {
+        (None, "sun") => &solar,
+        _ => ctx.require(&l.spectrum, "spectrum", &span, &what)?,
+    };
     let shape_spectrum =
         lib.parse(ctx, spec, &format!("{what}: spectrum"), Use::Emission, (bands.min_nm, bands.max_nm))?;
     let emission = LightSpectrum::new(shape_spectrum, bands.min_nm, bands.max_nm).ok_or_else(|| {
@@ -159,7 +166,11 @@ fn sky(
         Some((lo, hi)) => (0.5 * (lo + hi), (0.5 * (hi - lo).length()).max(1e-9)),
     };
     let start_distance = 1.001 * ((target_centre - scene_centre).length() + scene_radius);
-    Ok(SkyLight { up, target_centre, target_radius, start_distance, emission })
+    let horizon = match &l.horizon_deg {
+        None => 0.0,
+        Some(h) => ctx.number(h, "horizon_deg", -90.0, 90.0, true)?,
+    };
+    Ok(SkyLight { up, sin_horizon: horizon.to_radians().sin(), target_centre, target_radius, start_distance, emission })
 }
 
 /// The direction of travel of a directional light or sun: `direction`, or (sun only) the
@@ -192,6 +203,10 @@ fn set_level(
     bands: &Bands,
 ) -> R<()> {
     let given: Vec<&Spanned<f64>> = [&l.power_w, &l.scale, &l.irradiance_w_m2].into_iter().flatten().collect();
+    if given.is_empty() && l.spectrum.is_none() && matches!(light, Light::Directional(d) if d.sin_max > 0.0) {
+        // A sun with its default spectrum: the solar irradiance itself, scale 1.
+        return Ok(());
+    }
     if given.len() != 1 {
         let options = match light {
             Light::Directional(_) => "irradiance_w_m2 or scale",

@@ -11,6 +11,8 @@
 //!                        # { type = "mixture", components = [{ sigma_s = .., phase = .. }, ..] }
 //!                        # (then give sigma_a only: σ_s is the components' sum)
 //! density = { type = "exponential", scale_height_m = 2.0, reference_m = 0.0, up = [0, 1, 0] }
+//!         # or { type = "exponential", scale_height_m = 8000, earth = "scene" }: in height above
+//!         #    the [world] earth (a sphere: the barometric air of a round-Earth scene)
 //!         # or { type = "grid", file = "smoke.mgrid" }
 //!         # or { type = "fbm", base = 0.5, amplitude = 0.5, frequency_per_m = 2.0, octaves = 5, seed = 1 }
 //! index = { type = "linear", n0 = 1.0, k_per_m = 1e-3, direction = [0, 1, 0] }
@@ -23,7 +25,7 @@ use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::atmosphere::Earth;
-use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D};
+use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D, SphericalExponential};
 use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
 use crate::present_fields;
@@ -45,11 +47,43 @@ pub fn medium(
     let name = ctx.require(&m.name, "name", &span, &format!("medium #{}", index + 1))?.get_ref().clone();
     let what = format!("medium \"{name}\"");
     let range = (bands.min_nm, bands.max_nm);
+    let mut medium = match &m.kind {
+        Some(kind) => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
+        None => {
+            super::inelastic::reject_ocean_fields(ctx, m, &what)?;
+            elastic(ctx, lib, m, &span, name, &what, range, &earth.0)?
+        }
+    };
+    if let Some(v) = &m.inelastic {
+        let extra = super::inelastic::components(ctx, lib, v, &what, range)?;
+        medium.inelastic.components.extend(extra);
+    }
+    super::inelastic::finish(&mut medium, bands);
+    if let Some(v) = &m.index {
+        medium.index = Some(super::index::field(ctx, v, &what, &earth.0, earth.1, range)?);
+    }
+    Ok(medium)
+}
+
+/// A medium given by its coefficients, phase function and density.
+#[allow(clippy::too_many_arguments)]
+fn elastic(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    m: &RawMedium,
+    span: &Range<usize>,
+    name: String,
+    what: &str,
+    range: (f64, f64),
+    earth: &Earth,
+) -> R<Medium> {
+    let what = what.to_string();
     let spec = |v: &Spanned<Value>, field: &str, use_: Use| lib.parse(ctx, v, &format!("{what}: {field}"), use_, range);
     let phase = match &m.phase {
         None => PhaseFunction::isotropic(),
         Some(p) => phase(ctx, lib, p, &what, range)?,
     };
+    let span = span.clone();
     let is_mixture = matches!(phase, PhaseFunction::Mixture(_));
     let coefficients = match (&m.sigma_a, &m.sigma_s, &m.sigma_t, &m.albedo) {
         (Some(a), None, None, None) if is_mixture => {
@@ -76,19 +110,28 @@ pub fn medium(
     };
     let density = match &m.density {
         None => Density::Uniform,
-        Some(d) => density(ctx, d, &what)?,
+        Some(d) => density(ctx, d, &what, earth)?,
     };
-    let index = match &m.index {
-        None => None,
-        Some(v) => Some(super::index::field(ctx, v, &what, &earth.0, earth.1, (bands.min_nm, bands.max_nm))?),
-    };
-    Ok(Medium { name, coefficients, phase, density, index })
+    Ok(Medium {
+        name,
+        coefficients,
+        phase,
+        density,
+        index: None,
+        inelastic: crate::media::inelastic::Inelastic::none(),
+    })
 }
 
 /// A string names a parameter-free phase function ("isotropic", "rayleigh", "pure_water",
 /// "raman"); a table has `type` — "hg" (g), "schlick" (k, or g), "two_term_hg" (w, g1, g2),
 /// "tabulated" (file: CSV of angle_deg, value), "mixture" (components = [{ sigma_s, phase }]).
-fn phase(ctx: &Ctx, lib: &SpectrumLibrary, v: &Spanned<Value>, what: &str, range: (f64, f64)) -> R<PhaseFunction> {
+pub(super) fn phase(
+    ctx: &Ctx,
+    lib: &SpectrumLibrary,
+    v: &Spanned<Value>,
+    what: &str,
+    range: (f64, f64),
+) -> R<PhaseFunction> {
     let span = v.span();
     let named = ["isotropic", "rayleigh", "pure_water", "raman"];
     let kind = match v.get_ref() {
@@ -217,7 +260,7 @@ impl<'a> Table<'a> {
     }
 }
 
-fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Density> {
+fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str, earth: &Earth) -> R<Density> {
     let span = v.span();
     let kind = match v.get_ref() {
         Value::Table(t) => t.get("type").and_then(Value::as_str).unwrap_or(""),
@@ -225,6 +268,26 @@ fn density(ctx: &Ctx, v: &Spanned<Value>, what: &str) -> R<Density> {
     };
     let dwhat = format!("{what}: density");
     match kind {
+        "exponential" if v.get_ref().get("earth").is_some() => {
+            let t = Table::new(ctx, v, dwhat, &["type", "scale_height_m", "reference_m", "earth"])?;
+            if v.get_ref().get("earth").and_then(Value::as_str) != Some("scene") {
+                return Err(
+                    ctx.err(&span, format!("{what}: density earth must be \"scene\" (heights above [world] earth)"))
+                );
+            }
+            let (reference_m, scale_height_m) = (t.num("reference_m", Some(0.0))?, t.positive("scale_height_m", None)?);
+            Ok(match earth {
+                Earth::Flat { up } => {
+                    Density::ExponentialHeight(ExponentialHeight { up: *up, reference_m, scale_height_m })
+                }
+                Earth::Spherical(s) => Density::SphericalExponential(SphericalExponential {
+                    centre: s.centre,
+                    radius_m: s.radius_m,
+                    reference_m,
+                    scale_height_m,
+                }),
+            })
+        }
         "exponential" => {
             let t = Table::new(ctx, v, dwhat, &["type", "scale_height_m", "reference_m", "up"])?;
             let up = t.vec3("up", DVec3::Y)?;

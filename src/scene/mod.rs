@@ -5,6 +5,7 @@
 
 mod context;
 mod index;
+mod inelastic;
 mod lights;
 mod luminaires;
 mod materials;
@@ -257,7 +258,38 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     scene.camera_medium = scene.medium_at(scene.camera.position);
     scene.light_media = scene.lights.iter().map(|l| scene.medium_at(l.representative_point())).collect();
     scene.plan = decide_plan(&scene);
+    aim_beams(&mut scene);
     Ok(scene)
+}
+
+/// Where paths curve, lights at infinity aimed at a target get a projection map (see
+/// [`crate::photon::projection`]), so their photons reach the target along bent paths.
+fn aim_beams(scene: &mut Scene) {
+    if !scene.plan.curved_paths.on {
+        return;
+    }
+    let maps: Vec<(usize, Option<crate::light::BeamCells>)> = scene
+        .lights
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| match l {
+            Light::Directional(d) if d.target.is_some() => {
+                Some((i, crate::photon::projection::build(scene, d, scene.light_media[i])))
+            }
+            _ => None,
+        })
+        .collect();
+    for (i, cells) in maps {
+        let name = scene.light_names[i].clone();
+        if let Light::Directional(d) = &mut scene.lights[i] {
+            match cells {
+                Some(c) => d.cells = Some(c),
+                None => scene.warnings.push(format!(
+                    "light \"{name}\": no curved path from the beam reaches its target box; its photons start on the box's straight shadow"
+                )),
+            }
+        }
+    }
 }
 
 fn build_materials(

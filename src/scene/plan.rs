@@ -92,10 +92,18 @@ impl EffectPlan {
             (false, _) => Decision::off("final_gather = false: indirect light read directly from the global map"),
         };
         let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
-        let dispersion_splitting = match (dispersive, multi) {
-            (None, _) => Decision::off("no material's refractive index depends on wavelength"),
-            (Some(_), false) => Decision::off("a single band: every path carries one wavelength"),
-            (Some(m), true) => Decision::on(format!("material \"{m}\" refracts each wavelength differently")),
+        let bending = facts
+            .used_media
+            .iter()
+            .find(|m| m.bends_light() && m.index.as_ref().is_some_and(|f| f.is_dispersive()))
+            .map(|m| m.name.as_str());
+        let dispersion_splitting = match (dispersive, bending, multi) {
+            (None, None, _) => Decision::off("no material's or medium's refractive index depends on wavelength"),
+            (_, _, false) => Decision::off("a single band: every path carries one wavelength"),
+            (Some(m), _, true) => Decision::on(format!("material \"{m}\" refracts each wavelength differently")),
+            (None, Some(m), true) => Decision::on(format!(
+                "medium \"{m}\" bends each wavelength differently: eye paths split into one path per wavelength there"
+            )),
         };
         EffectPlan {
             global_map,
@@ -106,7 +114,7 @@ impl EffectPlan {
             participating_media: media_decision(&facts.used_media),
             volume_map: volume_map_decision(&facts.used_media, s),
             curved_paths: curved_decision(&facts.used_media, s),
-            inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
+            inelastic_scattering: inelastic_decision(&facts.used_media),
         }
     }
 
@@ -130,7 +138,7 @@ impl EffectPlan {
             participating_media: media_decision(&facts.used_media),
             volume_map: off(),
             curved_paths: curved_decision(&facts.used_media, s),
-            inelastic_scattering: Decision::off("no medium re-emits light at another wavelength"),
+            inelastic_scattering: inelastic_decision(&facts.used_media),
         }
     }
 
@@ -194,6 +202,26 @@ fn media_decision(media: &[&Medium]) -> Decision {
                 .collect();
             Decision::on(format!("light is absorbed and scattered in {}", names.join(", ")))
         }
+    }
+}
+
+/// On when a used medium has inelastic components, naming them.
+fn inelastic_decision(media: &[&Medium]) -> Decision {
+    let parts: Vec<String> = media
+        .iter()
+        .filter(|m| !m.inelastic.is_empty())
+        .map(|m| {
+            let names: Vec<&str> = m.inelastic.components.iter().map(|c| c.name.as_str()).collect();
+            format!("\"{}\" ({})", m.name, names.join(", "))
+        })
+        .collect();
+    if parts.is_empty() {
+        Decision::off("no medium re-emits light at another wavelength")
+    } else {
+        Decision::on(format!(
+            "light is re-emitted at other wavelengths (a second Russian roulette on the quantum yield after absorption; Raman scattering always re-emits) in {}",
+            parts.join("; ")
+        ))
     }
 }
 

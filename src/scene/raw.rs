@@ -52,6 +52,19 @@ pub struct RawMedium {
     pub phase: S<toml::Value>,
     pub density: S<toml::Value>,
     pub index: S<toml::Value>,
+    /// `type = "ocean"` builds sea water from the fields below (src/scene/inelastic.rs).
+    #[serde(rename = "type")]
+    pub kind: S<String>,
+    pub chl_mg_m3: S<f64>,
+    pub cdom_a440_per_m: S<f64>,
+    pub cdom_slope_per_nm: S<f64>,
+    pub chl_yield: S<f64>,
+    pub cdom_yield: S<f64>,
+    pub raman: S<bool>,
+    pub particle_phase: S<toml::Value>,
+    pub data_dir: S<String>,
+    /// Inelastic components of any medium: an array of tables.
+    pub inelastic: S<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -193,6 +206,7 @@ pub struct RawLight {
     pub azimuth_deg: S<f64>,
     pub angular_diameter_deg: S<f64>,
     pub up: S<[f64; 3]>,
+    pub horizon_deg: S<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -208,4 +222,8 @@ pub struct RawSensor {
     pub resolution: S<[i64; 2]>,
     pub samples: S<i64>,
     pub gather_rays: S<i64>,
+    /// `type = "ocean_profile"` only.
+    pub depths_m: S<Vec<f64>>,
+    pub slab_m: S<f64>,
+    pub ior: S<f64>,
 }

@@ -11,16 +11,28 @@
 //! normal = [0.0, 1.0, 0.0]      # optional: the side measured (any direction)
 //! samples = 4                   # optional: estimates averaged per point
 //! gather_rays = 64              # optional: rays for indirect light per sample; 0 = direct only
+//!
+//! [[sensor]]
+//! name = "profile"              # writes <output name>_profile.csv and _profile_derived.csv
+//! type = "ocean_profile"        # Ed, Eu, Eod, Eou, Lu at depths (src/sensor/ocean_profile.rs)
+//! origin = [0.0, 0.0, 0.0]      # a point on the water surface: centre of the measured square
+//! u = [100.0, 0.0, 0.0]         # edges of the horizontal square (centred on origin)
+//! v = [0.0, 0.0, 100.0]
+//! normal = [0.0, 1.0, 0.0]      # optional: up, toward the air (default +Y)
+//! depths_m = [1.0, 5.0, 10.0]   # below the surface
+//! slab_m = 0.2                  # optional: thickness of each measuring slab (default 0.1)
+//! ior = 1.34                    # optional: water's refractive index for Lw (default 1.34)
+//! samples = 64                  # optional: shadow rays per band for Ed(0+)
 //! ```
 
 use super::context::{Ctx, R};
 use super::raw::RawSensor;
 use super::settings::{DirectLighting, IntegratorSettings};
 use crate::present_fields;
-use crate::sensor::{IlluminancePlane, NamedSensor, Sensor};
+use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor};
 use toml::Spanned;
 
-const KINDS: &[&str] = &["illuminance_plane"];
+const KINDS: &[&str] = &["illuminance_plane", "ocean_profile"];
 const MAX_POINTS: i64 = 4096;
 
 pub fn sensors(ctx: &Ctx, raw: &[Spanned<RawSensor>], integrator: &IntegratorSettings) -> R<Vec<NamedSensor>> {
@@ -40,8 +52,11 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
     let s = rec.get_ref();
     let name = s.name.as_ref().map_or_else(|| format!("sensor{}", index + 1), |n| n.get_ref().clone());
     let what = format!("sensor \"{name}\"");
-    ctx.choice(ctx.require(&s.kind, "type", &span, &what)?, &format!("{what}: type"), KINDS)?;
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays);
+    let kind = ctx.choice(ctx.require(&s.kind, "type", &span, &what)?, &format!("{what}: type"), KINDS)?;
+    if kind == "ocean_profile" {
+        return profile(ctx, rec, name, &what, integrator);
+    }
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior);
     ctx.only(&present, &["origin", "u", "v", "normal", "resolution", "samples", "gather_rays"], &what)?;
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, &what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
@@ -75,4 +90,44 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
     }
     let plane = IlluminancePlane { origin, u, v, normal, nx: nx as usize, ny: ny as usize, samples, gather_rays };
     Ok(NamedSensor { name, sensor: Sensor::IlluminancePlane(plane) })
+}
+
+/// `type = "ocean_profile"`.
+fn profile(
+    ctx: &Ctx,
+    rec: &Spanned<RawSensor>,
+    name: String,
+    what: &str,
+    integrator: &IntegratorSettings,
+) -> R<NamedSensor> {
+    let span = rec.span();
+    let s = rec.get_ref();
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior);
+    ctx.only(&present, &["origin", "u", "v", "normal", "samples", "depths_m", "slab_m", "ior"], what)?;
+    if integrator.photons == 0 {
+        return Err(ctx.err(
+            &span,
+            format!("{what}: an ocean profile reads the volume photon map; set [integrator] photons > 0"),
+        ));
+    }
+    let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, what)?, "origin")?;
+    let u = ctx.vec3(ctx.require(&s.u, "u", &span, what)?, "u")?;
+    let v = ctx.vec3(ctx.require(&s.v, "v", &span, what)?, "v")?;
+    if u.cross(v).length_squared() == 0.0 {
+        return Err(ctx.err(&span, format!("{what}: u and v are parallel or zero; the square has no area")));
+    }
+    let up = match &s.normal {
+        Some(n) => ctx.direction(n, "normal")?,
+        None => glam::DVec3::Y,
+    };
+    let d = ctx.require(&s.depths_m, "depths_m", &span, what)?;
+    let depths_m = d.get_ref().clone();
+    if depths_m.is_empty() || depths_m.iter().any(|z| !(z.is_finite() && *z >= 0.0)) {
+        return Err(ctx.err(&d.span(), format!("{what}: depths_m must be a non-empty list of depths ≥ 0 (m)")));
+    }
+    let slab_m = s.slab_m.as_ref().map_or(Ok(0.1), |x| ctx.number(x, "slab_m", 0.0, f64::INFINITY, true))?;
+    let ior = s.ior.as_ref().map_or(Ok(1.34), |x| ctx.number(x, "ior", 1.0, 3.0, false))?;
+    let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
+    let p = OceanProfile { origin, u, v, up, depths_m, slab_m, ior, samples };
+    Ok(NamedSensor { name, sensor: Sensor::OceanProfile(p) })
 }

@@ -2,7 +2,8 @@
 //!
 //! A spectrum value is one of:
 //! - a number: the same value at every wavelength;
-//! - a string: a spectrum defined under `[spectra]`, or a CIE illuminant ("D65", "A", "E");
+//! - a string: a spectrum defined under `[spectra]`, a CIE illuminant ("D65", "A", "E"), or
+//!   "solar": the extraterrestrial solar spectral irradiance (ASTM G173-03, W m⁻² nm⁻¹);
 //! - a table with exactly one of `constant = x`, `blackbody_k = T`, `rgb = [r, g, b]`
 //!   (linear sRGB albedo, reflectances only), `illuminant = "D65"`, `nm = [...]` with
 //!   `values = [...]`, or `file = "data.csv"` (two columns: wavelength_nm, value; `#` comments and
@@ -64,11 +65,14 @@ impl SpectrumLibrary<'_> {
         if let Some(s) = named_illuminant(name) {
             return Ok(s);
         }
+        if name == "solar" {
+            return Ok(Spectrum::Tabulated(crate::spectrum::solar::extraterrestrial()));
+        }
         let names: Vec<&str> = self.named.keys().map(String::as_str).collect();
         Err(ctx.err(
             span,
             format!(
-                "{what}: no spectrum named \"{name}\"; define it under [spectra] (defined: {}) or use a CIE illuminant (D65, A, E)",
+                "{what}: no spectrum named \"{name}\"; define it under [spectra] (defined: {}) or use a CIE illuminant (D65, A, E) or \"solar\" (ASTM G173 extraterrestrial, W m⁻² nm⁻¹)",
                 if names.is_empty() { "none".to_string() } else { names.join(", ") }
             ),
         ))

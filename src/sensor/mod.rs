@@ -10,9 +10,11 @@
 
 mod false_colour;
 mod illuminance_plane;
+mod ocean_profile;
 
 pub use false_colour::{false_colour_png, viridis};
 pub use illuminance_plane::IlluminancePlane;
+pub use ocean_profile::{OceanProfile, ProfileReading, ProfileRow};
 
 use crate::render::eye::EyeTracer;
 use crate::render::maps::Maps;
@@ -24,6 +26,8 @@ use std::path::Path;
 #[derive(Clone, Debug)]
 pub enum Sensor {
     IlluminancePlane(IlluminancePlane),
+    /// Ocean irradiances and radiance at depths (written as a profile, see [`ProfileReading`]).
+    OceanProfile(OceanProfile),
 }
 
 /// A sensor as the scene names it.
@@ -98,8 +102,22 @@ pub fn evaluate_all(scene: &Scene, maps: &Maps) -> Vec<Reading> {
         .sensors
         .iter()
         .enumerate()
-        .map(|(i, s)| match &s.sensor {
-            Sensor::IlluminancePlane(p) => p.evaluate(scene, &tracer, &s.name, i as u64),
+        .filter_map(|(i, s)| match &s.sensor {
+            Sensor::IlluminancePlane(p) => Some(p.evaluate(scene, &tracer, &s.name, i as u64)),
+            Sensor::OceanProfile(_) => None,
+        })
+        .collect()
+}
+
+/// Evaluates every ocean profile sensor of the scene against the volume map.
+pub fn evaluate_profiles(scene: &Scene, maps: &Maps) -> Vec<ProfileReading> {
+    scene
+        .sensors
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.sensor {
+            Sensor::OceanProfile(p) => Some(p.evaluate(scene, maps, &s.name, i as u64)),
+            Sensor::IlluminancePlane(_) => None,
         })
         .collect()
 }

@@ -92,6 +92,29 @@ impl Shape {
     }
 
     /// A box containing every hit the shape can report (padded by rounding error).
+    /// Whether the shape's surface may pass through box `b`: exactly for a sphere (its surface
+    /// meets the box unless the box lies wholly inside or wholly outside it), conservatively by
+    /// the bounding box for the other shapes.
+    pub fn may_touch_box(&self, b: &Aabb) -> bool {
+        match self {
+            Shape::Sphere(s) => {
+                let nearest = s.center.clamp(b.min, b.max);
+                let far = DVec3::new(
+                    if (s.center.x - b.min.x).abs() > (s.center.x - b.max.x).abs() { b.min.x } else { b.max.x },
+                    if (s.center.y - b.min.y).abs() > (s.center.y - b.max.y).abs() { b.min.y } else { b.max.y },
+                    if (s.center.z - b.min.z).abs() > (s.center.z - b.max.z).abs() { b.min.z } else { b.max.z },
+                );
+                // A relative margin keeps rounding at Earth scale on the safe side.
+                let margin = 1e-9 * (s.radius + s.center.abs().max_element());
+                (nearest - s.center).length() <= s.radius + margin && (far - s.center).length() >= s.radius - margin
+            }
+            _ => {
+                let o = self.bounds();
+                (0..3).all(|k| o.min[k] <= b.max[k] && o.max[k] >= b.min[k])
+            }
+        }
+    }
+
     pub fn bounds(&self) -> Aabb {
         match self {
             Shape::Sphere(s) => s.bounds(),

@@ -8,10 +8,12 @@
 mod exponential;
 mod fbm;
 mod grid;
+mod spherical_exponential;
 
 pub use exponential::ExponentialHeight;
 pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
+pub use spherical_exponential::SphericalExponential;
 
 use crate::error::{Error, Result};
 use crate::output::atomic::Staged;
@@ -41,6 +43,8 @@ pub enum Density {
     /// d = 1 everywhere: a homogeneous medium.
     Uniform,
     ExponentialHeight(ExponentialHeight),
+    /// Exponential in height above a spherical Earth.
+    SphericalExponential(SphericalExponential),
     Grid(Grid3D),
     Fbm(Box<Fbm>),
 }
@@ -51,16 +55,19 @@ impl Density {
         match self {
             Density::Uniform => 1.0,
             Density::ExponentialHeight(e) => e.at(p),
+            Density::SphericalExponential(e) => e.at(p),
             Density::Grid(g) => g.at(p),
             Density::Fbm(f) => f.at(p),
         }
     }
 
-    /// ∫₀ᵗ d(o + s·dir) ds in closed form, where one exists (uniform, exponential).
+    /// ∫₀ᵗ d(o + s·dir) ds in closed form, where one exists (uniform, exponential), or by a
+    /// quadrature accurate to 10⁻¹² (exponential above a sphere).
     pub fn integral_exact(&self, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
         match self {
             Density::Uniform => Some(t),
             Density::ExponentialHeight(e) => Some(e.integral(o, dir, t)),
+            Density::SphericalExponential(e) => Some(e.integral(o, dir, t)),
             _ => None,
         }
     }
@@ -73,6 +80,7 @@ impl Density {
                 visit(0.0, t_max, 1.0);
             }
             Density::ExponentialHeight(e) => e.majorant_intervals(o, dir, t_max, visit),
+            Density::SphericalExponential(e) => e.majorant_intervals(o, dir, t_max, visit),
             Density::Grid(g) => g.majorant_intervals(o, dir, t_max, visit),
             Density::Fbm(f) => {
                 visit(0.0, t_max, f.bound());

@@ -34,6 +34,8 @@ pub const SAFETY: f64 = 0.9;
 pub const FAC_MIN: f64 = 0.2;
 pub const FAC_MAX: f64 = 10.0;
 pub const PI_BETA: f64 = 0.04;
+/// ln 10⁻⁴: the floor of err_prev (Hairer's DOPRI5).
+const LN_ERR_FLOOR: f64 = -9.210340371976184;
 
 /// The outcome of one error test.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,7 +53,8 @@ pub struct Controller {
     pub h_max: f64,
     pub beta: f64,
     alpha: f64,
-    err_prev: f64,
+    /// ln(err_prev) (err_prev ≥ 10⁻⁴), so a step costs one ln and one exp, not two powf.
+    ln_err_prev: f64,
     rejected_last: bool,
 }
 
@@ -59,48 +62,67 @@ impl Controller {
     /// A controller with PI control when `pi` (β = 0.04) and plain I control otherwise.
     pub fn new(rtol: f64, atol: f64, pi: bool, h_min: f64, h_max: f64) -> Controller {
         let beta = if pi { PI_BETA } else { 0.0 };
-        Controller { rtol, atol, h_min, h_max, beta, alpha: 0.2 - 0.75 * beta, err_prev: 1e-4, rejected_last: false }
+        Controller {
+            rtol,
+            atol,
+            h_min,
+            h_max,
+            beta,
+            alpha: 0.2 - 0.75 * beta,
+            ln_err_prev: LN_ERR_FLOOR,
+            rejected_last: false,
+        }
     }
 
     /// Forgets the history (the previous error and a pending rejection).
     pub fn reset(&mut self) {
-        self.err_prev = 1e-4;
+        self.ln_err_prev = LN_ERR_FLOOR;
         self.rejected_last = false;
     }
 
     /// The scaled RMS norm of the error estimate `e` of a step from `y0` to `y1`.
     #[inline]
     pub fn error_norm(&self, e: &RayY, y0: &RayY, y1: &RayY) -> f64 {
+        self.error_norm_squared(e, y0, y1).sqrt()
+    }
+
+    /// The square of [`Controller::error_norm`] (what the step loop uses: no square root on
+    /// its critical path).
+    #[inline]
+    pub fn error_norm_squared(&self, e: &RayY, y0: &RayY, y1: &RayY) -> f64 {
         let (e, a, b) = (e.to_array(), y0.to_array(), y1.to_array());
-        let mut sum = 0.0;
-        for i in 0..6 {
-            let sc = self.atol + self.rtol * a[i].abs().max(b[i].abs());
-            let q = e[i] / sc;
-            sum += q * q;
-        }
-        (sum / 6.0).sqrt()
+        // Weights 1/scᵢ need only y0 and y1, so they are ready before the estimate is.
+        let q: [f64; 6] = std::array::from_fn(|i| e[i] * (1.0 / (self.atol + self.rtol * a[i].abs().max(b[i].abs()))));
+        let sq = q.map(|x| x * x);
+        ((sq[0] + sq[1]) + (sq[2] + sq[3]) + (sq[4] + sq[5])) * (1.0 / 6.0)
     }
 
     /// Accepts or rejects a step of size `h` with error norm `err` and proposes the next size.
     /// A non-finite `err` is a rejection with the largest decrease.
     pub fn decide(&mut self, h: f64, err: f64) -> Decision {
-        if !err.is_finite() {
+        self.decide_squared(h, err * err)
+    }
+
+    /// [`Controller::decide`] given err².
+    pub fn decide_squared(&mut self, h: f64, err_sq: f64) -> Decision {
+        if !err_sq.is_finite() {
             self.rejected_last = true;
             return Decision::Reject { h_retry: h * FAC_MIN };
         }
-        let fac_err = err.powf(self.alpha);
-        if err <= 1.0 {
-            let q = fac_err / self.err_prev.powf(self.beta) / SAFETY;
-            let mut h_next = h / q.clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+        let ln_err = 0.5 * err_sq.ln();
+        if err_sq <= 1.0 {
+            // safety · err^(−α) · err_prev^β; err = 0 gives +∞, clamped to the largest increase.
+            let fac = SAFETY * (self.beta * self.ln_err_prev - self.alpha * ln_err).exp();
+            let mut h_next = h * fac.clamp(FAC_MIN, FAC_MAX);
             if self.rejected_last {
                 h_next = h_next.min(h);
             }
-            self.err_prev = err.max(1e-4);
+            self.ln_err_prev = ln_err.max(LN_ERR_FLOOR);
             self.rejected_last = false;
             Decision::Accept { h_next: h_next.min(self.h_max) }
         } else {
             self.rejected_last = true;
-            Decision::Reject { h_retry: h * FAC_MIN.max(SAFETY / fac_err) }
+            Decision::Reject { h_retry: h * FAC_MIN.max(SAFETY * (-self.alpha * ln_err).exp()) }
         }
     }
 
@@ -123,18 +145,18 @@ impl Controller {
 
     /// Checks the settings, naming the one out of range.
     pub fn validate(&self) -> Result<(), OdeError> {
-        let bad = |m: String| Err(OdeError::InvalidSettings(m));
+        let bad = |parameter, value, expected| Err(OdeError::InvalidSettings { parameter, value, expected });
         if !(self.rtol > 0.0 && self.rtol.is_finite()) {
-            return bad(format!("rtol = {}; expected a finite number > 0 (e.g. 1e-9)", self.rtol));
+            return bad("rtol", self.rtol, "a finite number > 0 (e.g. 1e-9)");
         }
         if !(self.atol >= 0.0 && self.atol.is_finite()) {
-            return bad(format!("atol = {}; expected a finite number >= 0", self.atol));
+            return bad("atol", self.atol, "a finite number >= 0");
         }
         if !(self.h_min >= 0.0 && self.h_min.is_finite()) {
-            return bad(format!("h_min = {} m; expected a finite number >= 0", self.h_min));
+            return bad("h_min (m)", self.h_min, "a finite number >= 0");
         }
         if self.h_max.is_nan() || self.h_max <= self.h_min {
-            return bad(format!("h_max = {} m; expected a number > h_min = {} m", self.h_max, self.h_min));
+            return bad("h_max (m)", self.h_max, "a number greater than h_min");
         }
         Ok(())
     }
@@ -184,8 +206,9 @@ mod tests {
             panic!("both accept")
         };
         // PI: 0.9·0.5^(−0.17)·0.5^(0.04) vs I: 0.9·0.5^(−0.2).
-        assert!((hi - 0.9 * 0.5f64.powf(-0.2)).abs() < 1e-14);
-        assert!((hp - 0.9 * 0.5f64.powf(-0.17) * 0.5f64.powf(0.04)).abs() < 1e-14);
+        // ln/exp instead of powf: equal to rounding.
+        assert!((hi / (0.9 * 0.5f64.powf(-0.2)) - 1.0).abs() < 1e-7);
+        assert!((hp / (0.9 * 0.5f64.powf(-0.17) * 0.5f64.powf(0.04)) - 1.0).abs() < 1e-7);
     }
 
     #[test]

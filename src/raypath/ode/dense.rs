@@ -18,50 +18,58 @@
 //! code (CONTD5).
 
 use super::system::RayY;
+use glam::DVec3;
 
-/// The five coefficient states of a step's interpolant.
+/// The interpolant of one step: the end states, the end derivatives, the step and c5 (zero for
+/// the cubic Hermite interpolant). c2…c4 are formed when evaluated, so building a step costs
+/// nothing beyond what the step computed anyway.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Dense {
-    pub c: [RayY; 5],
+    pub y0: RayY,
+    pub f0: RayY,
+    pub y1: RayY,
+    pub f1: RayY,
+    pub h: f64,
+    pub c5: RayY,
 }
 
 impl Dense {
     /// The constant interpolant (a zero-length step).
     pub fn constant(y: RayY) -> Dense {
-        Dense { c: [y, RayY::default(), RayY::default(), RayY::default(), RayY::default()] }
+        Dense { y0: y, y1: y, ..Dense::default() }
     }
 
-    /// Hermite form with the extra coefficient `c5` (zero for the cubic Hermite interpolant).
-    /// `f0`, `f1` are dy/ds at the two ends, `h` the step.
-    pub fn with_c5(y0: RayY, f0: RayY, y1: RayY, f1: RayY, h: f64, c5: RayY) -> Dense {
-        let c2 = y1 - y0;
-        let c3 = f0 * h - c2;
-        let c4 = c2 - f1 * h - c3;
-        Dense { c: [y0, c2, c3, c4, c5] }
-    }
-
-    /// The cubic Hermite interpolant.
+    /// The cubic Hermite interpolant of (y0, f0) and (y1, f1) over a step h.
     pub fn hermite(y0: RayY, f0: RayY, y1: RayY, f1: RayY, h: f64) -> Dense {
-        Dense::with_c5(y0, f0, y1, f1, h, RayY::default())
+        Dense { y0, f0, y1, f1, h, c5: RayY::default() }
     }
 
     /// The state at fraction `theta` of the step (clamped to [0, 1]).
     #[inline]
     pub fn at(&self, theta: f64) -> RayY {
-        let t = theta.clamp(0.0, 1.0);
-        let u = 1.0 - t;
-        let [c1, c2, c3, c4, c5] = self.c;
-        c1 + (c2 + (c3 + (c4 + c5 * u) * t) * u) * t
+        let (t, u) = clamp(theta);
+        let c2 = self.y1 - self.y0;
+        let c3 = self.f0 * self.h - c2;
+        let c4 = c2 - self.f1 * self.h - c3;
+        self.y0 + (c2 + (c3 + (c4 + self.c5 * u) * t) * u) * t
     }
 
     /// The position at fraction `theta` (clamped to [0, 1]).
     #[inline]
-    pub fn position_at(&self, theta: f64) -> glam::DVec3 {
-        let t = theta.clamp(0.0, 1.0);
-        let u = 1.0 - t;
-        let [c1, c2, c3, c4, c5] = self.c.map(|c| c.r);
-        c1 + (c2 + (c3 + (c4 + c5 * u) * t) * u) * t
+    pub fn position_at(&self, theta: f64) -> DVec3 {
+        let (t, u) = clamp(theta);
+        let c2 = self.y1.r - self.y0.r;
+        let c3 = self.f0.r * self.h - c2;
+        let c4 = c2 - self.f1.r * self.h - c3;
+        self.y0.r + (c2 + (c3 + (c4 + self.c5.r * u) * t) * u) * t
     }
+}
+
+/// θ clamped to [0, 1] (NaN to 0) and 1 − θ.
+#[inline]
+fn clamp(theta: f64) -> (f64, f64) {
+    let t = if theta > 0.0 { theta.min(1.0) } else { 0.0 };
+    (t, 1.0 - t)
 }
 
 #[cfg(test)]

@@ -93,15 +93,17 @@ pub fn trial<F: IndexSample>(field: &F, y0: &RayY, f0: &RayY, h: f64, evals: &mu
         *evals += 1;
         eval(field, &y)
     };
+    // Each sum adds the newest stage last, to a part formed while that stage was evaluated:
+    // the chain from one field sample to the next is one multiply and one add.
     let (k2, _) = stage(*y0 + k1 * (h * A21))?;
-    let (k3, _) = stage(*y0 + (k1 * A31 + k2 * A32) * h)?;
-    let (k4, _) = stage(*y0 + (k1 * A41 + k2 * A42 + k3 * A43) * h)?;
-    let (k5, _) = stage(*y0 + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h)?;
-    let (k6, _) = stage(*y0 + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h)?;
-    let y1 = *y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
+    let (k3, _) = stage((*y0 + k1 * (h * A31)) + k2 * (h * A32))?;
+    let (k4, _) = stage((*y0 + (k1 * A41 + k2 * A42) * h) + k3 * (h * A43))?;
+    let (k5, _) = stage((*y0 + (k1 * A51 + k2 * A52 + k3 * A53) * h) + k4 * (h * A54))?;
+    let (k6, _) = stage((*y0 + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64) * h) + k5 * (h * A65))?;
+    let y1 = (*y0 + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5) * h) + k6 * (h * B6);
     let (k7, n1) = stage(y1)?;
-    let err = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-    let c5 = (k1 * D1 + k3 * D3 + k4 * D4 + k5 * D5 + k6 * D6 + k7 * D7) * h;
+    let err = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6) * h + k7 * (h * E7);
+    let c5 = (k1 * D1 + k3 * D3 + k4 * D4 + k5 * D5 + k6 * D6) * h + k7 * (h * D7);
     Ok(Trial { y1, f1: k7, n1, err, c5 })
 }
 

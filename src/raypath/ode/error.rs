@@ -5,14 +5,14 @@ use glam::DVec3;
 use std::fmt;
 
 /// A failure of the ray integrator. Nothing here is ever silently turned into NaN.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum OdeError {
     /// The field gave n ≤ 0, a non-finite n or a non-finite ∇n at a point the step needed.
     BadIndex { at: DVec3, n: f64, grad_n: DVec3 },
     /// A state with non-finite components (or a zero direction) was handed in.
     BadState { r: DVec3, v: DVec3 },
-    /// Integrator settings out of range; the message names the parameter.
-    InvalidSettings(String),
+    /// An integrator setting out of range: which, the value found, what is expected.
+    InvalidSettings { parameter: &'static str, value: f64, expected: &'static str },
     /// A step limit that is negative or NaN.
     InvalidStepLimit { h_limit: f64 },
     /// The controller asked for a step below h_min (or below what s can resolve).
@@ -38,7 +38,9 @@ impl fmt::Display for OdeError {
                  components and a nonzero direction",
                 r.x, r.y, r.z, v.x, v.y, v.z
             ),
-            OdeError::InvalidSettings(m) => write!(f, "ray integrator settings: {m}"),
+            OdeError::InvalidSettings { parameter, value, expected } => {
+                write!(f, "ray integrator settings: {parameter} = {value}; expected {expected}")
+            }
             OdeError::InvalidStepLimit { h_limit } => {
                 write!(f, "step limit h_limit = {h_limit} m; expected a number >= 0")
             }
@@ -68,7 +70,9 @@ impl From<OdeError> for crate::error::Error {
     /// integrator failing (exit code 1).
     fn from(e: OdeError) -> Self {
         match e {
-            OdeError::BadIndex { .. } | OdeError::InvalidSettings(_) => crate::error::Error::input(None, e.to_string()),
+            OdeError::BadIndex { .. } | OdeError::InvalidSettings { .. } => {
+                crate::error::Error::input(None, e.to_string())
+            }
             _ => crate::error::Error::internal(e.to_string()),
         }
     }

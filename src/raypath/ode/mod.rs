@@ -74,13 +74,17 @@ impl Method {
         match *self {
             Method::DormandPrince { rtol, atol, pi, h0, h_min, h_max } => {
                 if let Some(h) = h0.filter(|h| !(*h > 0.0 && h.is_finite())) {
-                    return Err(OdeError::InvalidSettings(format!("h0 = {h} m; expected a finite step > 0")));
+                    return Err(OdeError::InvalidSettings {
+                        parameter: "h0 (m)",
+                        value: h,
+                        expected: "a finite step > 0",
+                    });
                 }
                 Controller::new(rtol, atol, pi, h_min, h_max).validate()
             }
-            Method::Rk4 { h_m } | Method::Euler { h_m } if !(h_m > 0.0 && h_m.is_finite()) => Err(
-                OdeError::InvalidSettings(format!("{} step h_m = {h_m} m; expected a finite step > 0", self.name())),
-            ),
+            Method::Rk4 { h_m } | Method::Euler { h_m } if !(h_m > 0.0 && h_m.is_finite()) => {
+                Err(OdeError::InvalidSettings { parameter: "h_m (m)", value: h_m, expected: "a finite step > 0" })
+            }
             Method::Rk4 { .. } | Method::Euler { .. } => Ok(()),
         }
     }
@@ -100,24 +104,39 @@ impl OdeState {
     }
 }
 
-/// One accepted step from arc length `s0` to `s0 + h`, with its interpolant.
+/// One accepted step from arc length `s0` to `s0 + h`, with its interpolant: `dense` holds
+/// the end states y0, y1 (m, and ray vectors), their derivatives f0, f1 (f.r is the unit
+/// tangent dr/ds, f.v = ∇n) and the step h.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Step {
     pub s0: f64,
-    pub h: f64,
-    pub y0: RayY,
-    pub y1: RayY,
     /// The step was cut to the caller's `h_limit` (it ends exactly there).
     pub reached_limit: bool,
-    /// Dense-output coefficients ([`Dense`]).
     pub dense: Dense,
 }
 
 impl Step {
     /// The zero-length step at `state`.
     pub fn zero(state: &OdeState) -> Step {
-        let y = state.y;
-        Step { s0: state.s, h: 0.0, y0: y, y1: y, reached_limit: true, dense: Dense::constant(y) }
+        Step { s0: state.s, reached_limit: true, dense: Dense::constant(state.y) }
+    }
+
+    /// The step length h (m of arc).
+    #[inline]
+    pub fn h(&self) -> f64 {
+        self.dense.h
+    }
+
+    /// The state at the start.
+    #[inline]
+    pub fn y0(&self) -> RayY {
+        self.dense.y0
+    }
+
+    /// The state at the end.
+    #[inline]
+    pub fn y1(&self) -> RayY {
+        self.dense.y1
     }
 
     /// The state at fraction θ ∈ [0, 1] of the step (clamped), by dense output.
@@ -140,7 +159,7 @@ impl Step {
     /// Arc length and state at fraction θ, for restarting from inside the step.
     pub fn state_at(&self, theta: f64) -> OdeState {
         let t = theta.clamp(0.0, 1.0);
-        OdeState { s: self.s0 + t * self.h, y: self.at(t) }
+        OdeState { s: self.s0 + t * self.h(), y: self.at(t) }
     }
 }
 
@@ -265,8 +284,7 @@ impl Integrator {
             system::project(&mut y1, &mut f1, n1);
         }
         self.end = Some(EndSlope { y: y1, f: f1 });
-        let step =
-            Step { s0: state.s, h, y0, y1, reached_limit: h == h_limit, dense: Dense::with_c5(y0, f0, y1, f1, h, c5) };
+        let step = Step { s0: state.s, reached_limit: h == h_limit, dense: Dense { y0, f0, y1, f1, h, c5 } };
         *state = OdeState { s: state.s + h, y: y1 };
         Ok(step)
     }
@@ -333,7 +351,8 @@ impl Integrator {
         h_limit: f64,
     ) -> Result<(RayY, RayY, f64, f64, RayY), OdeError> {
         let mut h = match (self.h_next, h0) {
-            (Some(h), _) | (None, Some(h)) => h,
+            (Some(h), _) => h,
+            (None, Some(h)) => h.min(self.controller.h_max),
             (None, None) => self.controller.initial_step(field, y0, f0, &mut self.counters.rhs_evals),
         };
         let mut last_bad = None;
@@ -347,8 +366,8 @@ impl Integrator {
             self.budget(s0)?;
             let decision = match dopri5::trial(field, y0, f0, h_try, &mut self.counters.rhs_evals) {
                 Ok(t) => {
-                    let err = self.controller.error_norm(&t.err, y0, &t.y1);
-                    match self.controller.decide(h_try, err) {
+                    let err_sq = self.controller.error_norm_squared(&t.err, y0, &t.y1);
+                    match self.controller.decide_squared(h_try, err_sq) {
                         controller::Decision::Accept { h_next } => {
                             // A step cut to h_limit says nothing against the uncut proposal.
                             self.h_next = Some(if capped && h_next >= h_try { h_next.max(h) } else { h_next });

@@ -75,6 +75,7 @@ impl RayY {
     }
 
     /// The components in a fixed order (x, y, z, v_x, v_y, v_z).
+    #[inline]
     pub fn to_array(&self) -> [f64; 6] {
         [self.r.x, self.r.y, self.r.z, self.v.x, self.v.y, self.v.z]
     }
@@ -104,21 +105,20 @@ impl Mul<f64> for RayY {
     }
 }
 
-/// n and ∇n at `p`, checked: n must be finite and positive, ∇n finite.
+/// n and ∇n at `p`, checked: n must be finite and positive, ∇n finite. (One test for all
+/// four: t = n + Σ∂n is finite only if each term is; components so large that their sum
+/// overflows are refused too.)
 #[inline]
 pub fn sample<F: IndexSample>(field: &F, p: DVec3) -> Result<(f64, DVec3), OdeError> {
     let (n, grad_n) = field.n_grad(p);
-    if n > 0.0 && n.is_finite() && grad_n.is_finite() {
-        Ok((n, grad_n))
-    } else {
-        Err(OdeError::BadIndex { at: p, n, grad_n })
-    }
+    let t = n + grad_n.x + grad_n.y + grad_n.z;
+    if n > 0.0 && t.is_finite() { Ok((n, grad_n)) } else { Err(OdeError::BadIndex { at: p, n, grad_n }) }
 }
 
 /// The right-hand side f(y) = (v/n, ∇n) given n and ∇n at y.r.
 #[inline]
 pub fn rhs(y: &RayY, n: f64, grad_n: DVec3) -> RayY {
-    RayY { r: y.v / n, v: grad_n }
+    RayY { r: y.v * (1.0 / n), v: grad_n }
 }
 
 /// f(y), sampling the field at y.r; returns f and n(y.r).

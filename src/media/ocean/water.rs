@@ -1,0 +1,54 @@
+//! Pure (sea) water: absorption and scattering.
+//!
+//! - Absorption a_w(λ): Pope & Fry (1997) over 380–727.5 nm, Smith & Baker (1981) outside it
+//!   (200–800 nm), each held at its last value beyond.
+//! - Scattering b_w(λ) = 0.0029 (λ/500)^−4.32 m⁻¹ (sea water; Morel 1974 as used by Mobley 1994,
+//!   Table 3.8 and Eq. 3.39), with the pure-water phase function 0.06225 (1 + 0.835 cos²ψ).
+//!
+//! # References
+//! - Pope & Fry, "Absorption spectrum (380–700 nm) of pure water. II. Integrating cavity
+//!   measurements", Appl. Opt. 36 (1997), 8710–8723.
+//! - Smith & Baker, "Optical properties of the clearest natural waters (200–800 nm)", Appl. Opt.
+//!   20 (1981), 177–184.
+//! - Morel, "Optical properties of pure water and pure sea water" (1974); Mobley, *Light and
+//!   Water* (1994), §3.6.
+
+use super::tables::{clamped, column, numeric_rows};
+use crate::spectrum::Tabulated;
+use std::path::Path;
+
+pub const POPE_FRY: &str = "pope_fry_1997_water_absorption.csv";
+pub const SMITH_BAKER: &str = "smith_baker_1981_water_absorption.csv";
+
+/// The two absorption tables.
+#[derive(Clone, Debug)]
+pub struct WaterAbsorption {
+    pope_fry: Tabulated,
+    smith_baker: Tabulated,
+}
+
+impl WaterAbsorption {
+    pub fn read(dir: &Path) -> Result<WaterAbsorption, String> {
+        let load = |name: &str| {
+            let path = dir.join(name);
+            let rows = numeric_rows(&path, 2)?;
+            column(&path, &rows, 1)
+        };
+        Ok(WaterAbsorption { pope_fry: load(POPE_FRY)?, smith_baker: load(SMITH_BAKER)? })
+    }
+
+    /// a_w(λ), m⁻¹.
+    pub fn at(&self, wavelength_nm: f64) -> f64 {
+        let (lo, hi) = self.pope_fry.domain_nm();
+        if (lo..=hi).contains(&wavelength_nm) {
+            self.pope_fry.eval(wavelength_nm)
+        } else {
+            clamped(&self.smith_baker, wavelength_nm)
+        }
+    }
+}
+
+/// b_w(λ) = 0.0029 (λ/500)^−4.32, m⁻¹.
+pub fn scattering(wavelength_nm: f64) -> f64 {
+    0.0029 * (wavelength_nm / 500.0).powf(-4.32)
+}

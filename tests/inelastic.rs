@@ -1,0 +1,360 @@
+//! Inelastic scattering: the redistribution samplers against their densities, the second
+//! roulette against closed forms, and the energy and photon balances.
+
+mod common;
+
+use common::scene;
+use morgana::media::inelastic::{Fa7, GaussianEmission, RamanShift};
+use morgana::photon::{MapKind, shoot};
+use morgana::rng::{Rng, Stream};
+use morgana::testing::chi2::{chi2_1d, gauss_legendre};
+use std::path::PathBuf;
+
+fn ocean_data() -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ocean");
+    assert!(d.join("hawes_1992_cdom_fluorescence_FA7.csv").is_file(), "shared ocean data missing at {}", d.display());
+    d
+}
+
+#[test]
+fn gaussian_emission_sampler_draws_its_density() {
+    let g = GaussianEmission::new(685.0, 10.6).unwrap();
+    // The density integrates to one (closed form: a normalised Gaussian).
+    let total = gauss_legendre(&|l| g.density(l), 585.0, 785.0, 40);
+    assert!((total - 1.0).abs() < 1e-9, "∫h = {total}");
+    let mut rng = Rng::for_task(1, Stream::Test, 0);
+    let p = chi2_1d(
+        (640.0, 730.0),
+        45,
+        200_000,
+        || Some(g.sample(&mut rng)).filter(|l| (640.0..=730.0).contains(l)),
+        |l| g.density(l),
+    );
+    assert!(p > 1e-3, "p = {p}");
+}
+
+#[test]
+fn raman_sampler_draws_its_density_and_shifts_488_to_about_584() {
+    let r = RamanShift::walrafen();
+    let lex = 488.0;
+    let total = gauss_legendre(&|l| r.density(lex, l), 520.0, 680.0, 80);
+    assert!((total - 1.0).abs() < 1e-6, "∫f_R dλ = {total}");
+    // Mean emission wavenumber = κ' − Σ w_j Δκ_j = 20491.8 − 3383.75 cm⁻¹ → about 584.5 nm.
+    let mean_shift = 0.41 * 3250.0 + 0.39 * 3425.0 + 0.10 * 3530.0 + 0.10 * 3625.0;
+    let mut rng = Rng::for_task(2, Stream::Test, 0);
+    let n = 200_000;
+    let mut sum_k = 0.0;
+    for _ in 0..n {
+        sum_k += 1e7 / r.sample(lex, &mut rng).unwrap();
+    }
+    let k_mean = sum_k / n as f64;
+    assert!((k_mean - (1e7 / lex - mean_shift)).abs() < 2.0, "mean emission wavenumber {k_mean}");
+    let mut rng = Rng::for_task(3, Stream::Test, 0);
+    let p = chi2_1d(
+        (550.0, 630.0),
+        40,
+        200_000,
+        || r.sample(lex, &mut rng).filter(|l| (550.0..=630.0).contains(l)),
+        |l| r.density(lex, l),
+    );
+    assert!(p > 1e-3, "p = {p}");
+    let single = RamanShift::single(3357.0, 400.0).unwrap();
+    let total = gauss_legendre(&|l| single.density(lex, l), 500.0, 720.0, 80);
+    assert!((total - 1.0).abs() < 1e-6, "single band ∫ = {total}");
+}
+
+/// η_Y of Hawes' FA7 by the formula of the shared CSV, with A₀ linear between the table's rows:
+/// an implementation independent of the library's.
+fn fa7_formula(rows: &[(f64, f64)], lex: f64, lem: f64) -> f64 {
+    let j = rows.windows(2).position(|w| (w[0].0..=w[1].0).contains(&lex));
+    let Some(j) = j else { return 0.0 };
+    let (x0, a) = rows[j];
+    let (x1, b) = rows[j + 1];
+    let a0 = a + (b - a) * (lex - x0) / (x1 - x0);
+    let z = (1.0 / lem - 0.470 / lex - 8.077e-4) / (0.6 * (0.407 / lex - 4.57e-4));
+    a0 * (-z * z).exp()
+}
+
+fn fa7_rows() -> Vec<(f64, f64)> {
+    let text = std::fs::read_to_string(ocean_data().join("hawes_1992_cdom_fluorescence_FA7.csv")).unwrap();
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .filter_map(|l| {
+            let mut c = l.split(',');
+            Some((c.next()?.trim().parse().ok()?, c.next()?.trim().parse().ok()?))
+        })
+        .collect()
+}
+
+#[test]
+fn fa7_reproduces_its_table_yield_and_spectrum() {
+    let fa7 = Fa7::from_csv(&ocean_data().join("hawes_1992_cdom_fluorescence_FA7.csv")).unwrap();
+    let rows = fa7_rows();
+    assert_eq!(rows.len(), 13);
+    let mut max_gamma = 0.0f64;
+    for &(lex, a0) in &rows[..rows.len() - 1] {
+        // Γ(λ') = ∫ η_Y dλ by quadrature of the formula, at every row of the table.
+        let gamma = gauss_legendre(&|l| fa7_formula(&rows, lex, l), 250.0, 1200.0, 400);
+        let got = fa7.quantum_yield(lex);
+        assert!((got / gamma - 1.0).abs() < 1e-3, "λ' = {lex}: Γ = {got}, quadrature {gamma}");
+        // The peak of η_Y is A₀ (the exponent vanishes at 1/λ = A₁/λ' + B₁).
+        let peak = 1.0 / (0.470 / lex + 8.077e-4);
+        assert!((fa7.eta(lex, peak) / a0 - 1.0).abs() < 1e-12, "A₀({lex})");
+        max_gamma = max_gamma.max(got);
+    }
+    // Hawes' yields for marine CDOM peak at 0.005–0.025 (Gutierrez et al. 2005, §4; Hawes 1992).
+    assert!((0.005..=0.025).contains(&max_gamma), "largest Γ = {max_gamma}");
+    // Sampling at table rows reproduces η_Y/Γ (chi-square against the formula).
+    for (k, lex) in [350.0, 450.0, 510.0].into_iter().enumerate() {
+        let gamma = gauss_legendre(&|l| fa7_formula(&rows, lex, l), 250.0, 1200.0, 400);
+        let mut rng = Rng::for_task(10 + k as u64, Stream::Test, 0);
+        let p = chi2_1d(
+            (380.0, 700.0),
+            64,
+            200_000,
+            || fa7.sample(lex, &mut rng).filter(|l| (380.0..=700.0).contains(l)),
+            |l| fa7_formula(&rows, lex, l) / gamma,
+        );
+        assert!(p > 1e-3, "λ' = {lex}: p = {p}");
+    }
+}
+
+/// A point source of 450 nm light inside a black sphere of radius 1 m filled with a medium
+/// that only absorbs, through one fluorescent component (σ = 1 m⁻¹ below 500 nm, 0 above) with
+/// yield Φ = 0.4 and Gaussian emission at 600 nm (σ 12 nm), so re-emitted light is never
+/// re-absorbed.
+fn fluorescent_sphere(accounting: &str) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 0.5]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 40.0
+width = 2
+height = 2
+
+[output]
+bands = 30
+min_nm = 400.0
+max_nm = 700.0
+
+[world]
+medium = "dye"
+
+[[medium]]
+name = "dye"
+sigma_a = 0.0
+sigma_s = 0.0
+inelastic = [{{ process = "fluorescence", sigma_a = {{ nm = [400, 500, 510, 700], values = [1, 1, 0, 0] }}, yield = 0.4, emission = {{ type = "gaussian", peak_nm = 600, sigma_nm = 12 }}, accounting = "{accounting}" }}]
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+material = "black"
+
+[[light]]
+type = "point"
+position = [0.0, 0.0, 0.0]
+spectrum = {{ nm = [400.0, 449.9, 450.0, 450.1, 700.0], values = [0.0, 0.0, 1.0, 0.0, 0.0] }}
+power_w = 10.0
+"#
+    )
+}
+
+/// In a non-scattering fluorescent medium the re-emitted power is absorbed × Φ × ⟨λ'/λ⟩
+/// (photon-number accounting) or absorbed × Φ (energy), and its spectrum is the emission band.
+fn check_fluorescent_sphere(accounting: &str) {
+    let s = scene(&fluorescent_sphere(accounting));
+    assert!(s.plan.inelastic_scattering.on, "{}", s.plan.inelastic_scattering.why);
+    let n = 200_000u64;
+    let (sink, st) = shoot(&s, MapKind::Global, n, 11, &|_| {});
+    let t = &st.inelastic[0];
+    // Absorbed by the component: all power × (1 − e^{−σR}), binomial error.
+    let pa = 1.0 - (-1.0f64).exp();
+    let se = 10.0 * (pa * (1.0 - pa) / n as f64).sqrt();
+    assert!((t.absorbed_w - 10.0 * pa).abs() < 4.0 * se, "absorbed {} vs {}", t.absorbed_w, 10.0 * pa);
+    // Re-emitted: a binomial share Φ of the absorbed photons.
+    let pe = pa * 0.4;
+    let se = 10.0 * (pe * (1.0 - pe) / n as f64).sqrt();
+    assert!((t.excited_w - 10.0 * pe).abs() < 4.0 * se, "excited {} vs {}", t.excited_w, 10.0 * pe);
+    let g = GaussianEmission::new(600.0, 12.0).unwrap();
+    let ratio = gauss_legendre(&|l| g.density(l) * 450.0 / l, 500.0, 700.0, 50);
+    let factor = if accounting == "energy" { 1.0 } else { ratio };
+    assert!(
+        (t.emitted_w / t.excited_w - factor).abs() < 2e-3 * factor,
+        "out/in {} vs {factor}",
+        t.emitted_w / t.excited_w
+    );
+    // Photon count: every re-emission is one event.
+    assert_eq!(t.events, st.reemitted);
+    assert!(((t.events as f64) * 10.0 / n as f64 - t.excited_w).abs() < 1e-9);
+    // Energy balance of the pass.
+    let out = st.absorbed_surface_w + st.absorbed_medium_w + st.escaped_w + st.truncated_w;
+    let inp = 10.0 + t.emitted_w - t.excited_w;
+    assert!((out - inp).abs() < 1e-9 * inp, "balance: in {inp}, out {out}");
+    // The spectrum of the re-emitted photons reaching the wall is the emission band.
+    let mut it = sink.surface.iter().filter(|p| p.wavelength_nm > 500.0).map(|p| p.wavelength_nm);
+    let count = sink.surface.iter().filter(|p| p.wavelength_nm > 500.0).count();
+    assert_eq!(count as u64, t.events, "every re-emitted photon reaches the wall once");
+    let mass = gauss_legendre(&|l| g.density(l), 560.0, 640.0, 20);
+    let p = chi2_1d(
+        (560.0, 640.0),
+        32,
+        count,
+        || it.next().filter(|l| (560.0..=640.0).contains(l)),
+        |l| g.density(l) / 1.0,
+    );
+    assert!(p > 1e-3, "emission spectrum p = {p} (mass in window {mass})");
+    // Energy per re-emitted photon in the photon-number mode is (10/n) λ'/λ, λ' within
+    // 450 ± 0.1 nm (the source's band), so to 0.1/450 = 2.2e-4 relative.
+    for p in sink.surface.iter().filter(|p| p.wavelength_nm > 500.0).take(100) {
+        let want = 10.0 / n as f64 * if accounting == "energy" { 1.0 } else { 450.0 / p.wavelength_nm };
+        assert!((p.power_w / want - 1.0).abs() < 2.3e-4, "photon power {} vs {want}", p.power_w);
+    }
+}
+
+#[test]
+fn fluorescent_sphere_conserves_photon_number() {
+    check_fluorescent_sphere("photon_number");
+}
+
+#[test]
+fn fluorescent_sphere_conserves_energy_yield() {
+    check_fluorescent_sphere("energy");
+}
+
+#[test]
+fn media_without_inelastic_components_plan_no_inelastic_scattering() {
+    let s = scene(&fluorescent_sphere("energy").replace(
+        "inelastic = [{ process = \"fluorescence\", sigma_a = { nm = [400, 500, 510, 700], values = [1, 1, 0, 0] }, yield = 0.4, emission = { type = \"gaussian\", peak_nm = 600, sigma_nm = 12 }, accounting = \"energy\" }]",
+        "",
+    ));
+    assert!(!s.plan.inelastic_scattering.on);
+    let (_, st) = shoot(&s, MapKind::Global, 10_000, 1, &|_| {});
+    assert!(st.inelastic.is_empty() && st.reemitted == 0);
+}
+
+/// The fluorescent sphere seen from inside: a broadband source (400–490 nm, 10 W) at the centre,
+/// energy accounting, and a camera ray at distance 0.3 m from the source running to the wall.
+/// The emitted radiance in band b is, in closed form up to a 1D quadrature,
+/// L_b = Φ H_b / (4π) · Φ_e / (4π) · ∫₀^T e^{−r(t)} / r(t)² dt, r(t) = √(t² + 0.09), T = √0.91,
+/// H_b = ∫_b h dλ / Δλ_b (isotropic re-emission, σ = 1 m⁻¹ at the excitation, no re-absorption).
+fn sphere_seen_from_inside(integrator: &str) -> (Vec<f64>, Vec<f64>) {
+    let toml = fluorescent_sphere("energy")
+        .replace(
+            "position = [0.0, 0.0, 0.5]\nlook_at = [0.0, 0.0, 0.0]\nfov_deg = 40.0\nwidth = 2\nheight = 2",
+            "position = [0.0, 0.3, 0.0]\nlook_at = [1.0, 0.3, 0.0]\nfov_deg = 0.01\nwidth = 1\nheight = 1",
+        )
+        .replace(
+            "spectrum = { nm = [400.0, 449.9, 450.0, 450.1, 700.0], values = [0.0, 0.0, 1.0, 0.0, 0.0] }",
+            "spectrum = { nm = [400.0, 490.0, 490.1, 700.0], values = [1.0, 1.0, 0.0, 0.0] }",
+        )
+        .replace("[world]", &format!("[integrator]\n{integrator}\n\n[world]"));
+    let s = scene(&toml);
+    let r = common::render_with(&s, 2);
+    let got: Vec<f64> = r.image.data.iter().map(|v| *v as f64).collect();
+    let g = GaussianEmission::new(600.0, 12.0).unwrap();
+    let t_end = 0.91f64.sqrt();
+    let path = gauss_legendre(&|t: f64| (-(t * t + 0.09).sqrt()).exp() / (t * t + 0.09), 0.0, t_end, 20);
+    let expected = (0..30)
+        .map(|b| {
+            let lo = 400.0 + 10.0 * b as f64;
+            let h = gauss_legendre(&|l| g.density(l), lo, lo + 10.0, 4) / 10.0;
+            0.4 * h / (4.0 * std::f64::consts::PI) * 10.0 / (4.0 * std::f64::consts::PI) * path
+        })
+        .collect();
+    (got, expected)
+}
+
+fn emission_band_sum(v: &[f64]) -> f64 {
+    v[16..24].iter().sum()
+}
+
+#[test]
+fn volume_map_sees_fluorescence_as_the_closed_form() {
+    let (got, want) = sphere_seen_from_inside(
+        "photons = 400000\nvolume_k = 100\nvolume_max_radius = 0.2\nmarch_step = 0.01\nspp = 16\nseed = 2",
+    );
+    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
+    eprintln!("volume map: {g} vs closed form {w} (ratio {})", g / w);
+    assert!((g / w - 1.0).abs() < 0.05, "volume map {g}, closed form {w}");
+}
+
+#[test]
+fn path_tracer_sees_fluorescence_as_the_closed_form() {
+    let (got, want) = sphere_seen_from_inside("method = \"path\"\nspp = 200000\nseed = 3");
+    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
+    eprintln!("path tracer: {g} vs closed form {w} (ratio {})", g / w);
+    assert!((g / w - 1.0).abs() < 0.03, "path tracer {g}, closed form {w}");
+}
+
+/// Raman scattering seen from inside a sphere (σ_a = 0.05 m⁻¹, Raman b = 0.5 m⁻¹, energy
+/// accounting, a 412–422 nm source at the centre): the volume map and the path tracer, two
+/// independent estimators, agree on the Raman-shifted light around 486 nm.
+#[test]
+fn raman_light_agrees_between_the_volume_map_and_the_path_tracer() {
+    let toml = |integrator: &str| {
+        format!(
+            r#"
+[camera]
+position = [0.0, 0.3, 0.0]
+look_at = [1.0, 0.3, 0.0]
+fov_deg = 0.01
+width = 1
+height = 1
+
+[output]
+bands = 20
+min_nm = 400.0
+max_nm = 600.0
+
+[integrator]
+{integrator}
+
+[world]
+medium = "water"
+
+[[medium]]
+name = "water"
+sigma_a = 0.05
+sigma_s = 0.0
+inelastic = [{{ process = "raman", sigma_s = 0.5, band = "walrafen", accounting = "energy" }}]
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+material = "black"
+
+[[light]]
+type = "point"
+position = [0.0, 0.0, 0.0]
+spectrum = {{ nm = [400.0, 411.9, 412.0, 422.0, 422.1, 600.0], values = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0] }}
+power_w = 10.0
+"#
+        )
+    };
+    let band = |v: &[f32]| v[7..10].iter().map(|x| *x as f64).sum::<f64>();
+    let pm = render_with_scene(&toml(
+        "photons = 400000\nvolume_k = 100\nvolume_max_radius = 0.2\nmarch_step = 0.01\nspp = 16\nseed = 4",
+    ));
+    let pt = render_with_scene(&toml("method = \"path\"\nspp = 300000\nseed = 5"));
+    let (a, b) = (band(&pm), band(&pt));
+    eprintln!("Raman 470–500 nm: volume map {a}, path tracer {b} (ratio {})", a / b);
+    assert!(a > 0.0 && (a / b - 1.0).abs() < 0.05, "volume map {a}, path tracer {b}");
+}
+
+fn render_with_scene(toml: &str) -> Vec<f32> {
+    common::render_with(&scene(toml), 2).image.data
+}
