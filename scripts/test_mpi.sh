@@ -3,9 +3,12 @@
 # and without the `mpi` feature and checks, on this machine (`mpirun --oversubscribe`), that
 #   1. 1, 2 and 3 ranks (and the MPI build run without mpirun, and the static schedule) give the
 #      same EXR bytes as the non-MPI build, for a scene with global + caustic maps and final
-#      gathering and for one with a volume map; report.json lists the ranks and their photons;
-#   2. errors are collective: a missing scene and a too-small --max-map-memory end every rank
-#      with exit code 2, one message and no output;
+#      gathering, one with a volume map and one with curved paths (the hot-road mirage: index
+#      field, sun projection map, curved eye paths); report.json lists the ranks and their photons;
+#   2. errors are collective: a missing scene, a too-small --max-map-memory and ranks that do
+#      not see the same scene (another command line; another copy of a file the scene names,
+#      where `unshare -m` can bind-mount one for a single rank) end every rank with one message
+#      and no output;
 #   3. a rank killed (SIGKILL) during the photon pass or the eye pass makes mpirun fail and leaves
 #      the output directory empty.
 # Needs OpenMPI and libclang (scripts/setup_mpi.sh). Takes a few minutes, mostly the two builds.
@@ -14,7 +17,9 @@ cd "$(dirname "$0")/.."
 
 command -v mpirun >/dev/null || { echo "test_mpi.sh: mpirun not found; run scripts/setup_mpi.sh" >&2; exit 1; }
 step() { printf '\n== %s ==\n' "$*"; }
-fail() { echo "test_mpi.sh: FAIL: $*" >&2; exit 1; }
+fail() { echo "test_mpi.sh: FAIL: $*" >&2; echo "mpi: $passed passed, 1 failed"; exit 1; }
+passed=0
+ok() { passed=$((passed + 1)); echo "$*"; }
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/morgana-mpi-test.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
@@ -41,6 +46,8 @@ shrink() { # scene width height spp gather_rays
 }
 shrink src/scene/default.toml 48 40 2 4 > "$work/box.toml"
 shrink examples/fog_box.toml 40 32 2 4 > "$work/fog.toml"
+# The mirage's atmosphere file by its absolute path (the copy lives in $work).
+shrink examples/mirage_hot_road.toml 40 20 1 4 | sed "s#\.\./atmospheres/#$PWD/atmospheres/#" > "$work/mirage.toml"
 shrink src/scene/default.toml 192 160 8 16 > "$work/slow.toml"
 
 check_report() { # report.json ranks emitted
@@ -62,7 +69,7 @@ EOF
 }
 
 step "same image bytes for 1, 2 and 3 ranks as without MPI"
-for scene in box fog; do
+for scene in box fog mirage; do
   out="$work/out-$scene"
   "$work/morgana-local" render "$work/$scene.toml" --out "$out/local" --photons 20000 --seed 7 --threads 2 --quiet >/dev/null
   ref="$(ls "$out/local"/*.exr)"
@@ -77,7 +84,7 @@ for scene in box fog; do
     got="$out/$run/$(basename "$ref")"
     cmp -s "$ref" "$got" || fail "$scene: $run EXR differs from the non-MPI build"
     check_report "$out/$run/report.json" "$n" 20000 || fail "$scene: $run report.json"
-    echo "$scene: $run: EXR identical ($(stat -c %s "$got") bytes), report lists $n rank(s)"
+    ok "$scene: $run: EXR identical ($(stat -c %s "$got") bytes), report lists $n rank(s)"
   done
 done
 
@@ -111,7 +118,40 @@ set -e
 [ "$rc" -ne 0 ] && [ "$rc" -ne 137 ] || fail "map memory: mpirun exit code $rc"
 [ "$(grep -c -- "--max-map-memory" "$work/err2.log")" -eq 1 ] || { cat "$work/err2.log"; fail "map memory: not one message"; }
 [ ! -e "$work/err2" ] || [ -z "$(ls -A "$work/err2")" ] || fail "map memory: output written"
-echo "missing scene and --max-map-memory 64k: exit codes nonzero, one message each, no output"
+ok "missing scene and --max-map-memory 64k: exit codes nonzero, one message each, no output"
+
+# mismatch NAME EXPECTED PREFIX... -- EXTRA...: rank 0 renders the mirage as given, rank 1 through
+# the PREFIX command and with the EXTRA arguments; the run must stop with one message naming
+# rank 1 and EXPECTED, and no output.
+mismatch() {
+  local name="$1" expected="$2" out="$work/mismatch-$1" log="$work/mismatch-$1.log"
+  shift 2
+  local prefix=()
+  while [ "$1" != "--" ]; do prefix+=("$1"); shift; done
+  shift
+  local args=(render "$work/mirage.toml" --out "$out" --quiet --photons 20000 --threads 1)
+  set +e
+  "${LIMIT[@]}" "${MPIRUN[@]}" -np 1 "$work/morgana-mpi" "${args[@]}" : \
+    -np 1 "${prefix[@]}" "$work/morgana-mpi" "${args[@]}" "$@" >"$log" 2>&1
+  local rc=$?
+  set -e
+  [ "$rc" -ne 0 ] && [ "$rc" -ne 137 ] || { cat "$log"; fail "mismatch $name: mpirun exit code $rc"; }
+  [ "$(grep -c "do not see the same scene" "$log")" -eq 1 ] || { cat "$log"; fail "mismatch $name: not one message"; }
+  grep -q "rank 1 .*$expected" "$log" || { cat "$log"; fail "mismatch $name: the message does not name rank 1 and $expected"; }
+  [ ! -e "$out" ] || [ -z "$(ls -A "$out")" ] || fail "mismatch $name: output written"
+  ok "mismatch $name: exit $rc, no output: $(grep -o "rank 1 .*" "$log" | head -n 1)"
+}
+mismatch command-line "the morgana version or the command line" env -- --seed 8
+# A stale copy of the atmosphere file on "one node": rank 1 sees another file at the same path.
+sed 's/^dT_k = 30.0/dT_k = 29.0/' atmospheres/hot_road.toml >"$work/hot_road_stale.toml"
+if unshare -m true 2>/dev/null; then
+  printf '#!/bin/sh\nmount --bind "%s" "%s" && exec "$@"\n' "$work/hot_road_stale.toml" \
+    "$PWD/atmospheres/hot_road.toml" >"$work/stale.sh"
+  chmod +x "$work/stale.sh"
+  mismatch stale-file "hot_road.toml" unshare -m "$work/stale.sh" --
+else
+  echo "mismatch stale-file: skipped (unshare -m is not permitted here)"
+fi
 
 step "a killed rank fails the job and leaves no output"
 descendants() { local c; for c in $(pgrep -P "$1" || true); do echo "$c"; descendants "$c"; done; }
@@ -137,9 +177,10 @@ kill_during() {
   ! grep -q "^wrote" "$log" || fail "kill during '$marker': outputs reported written"
   [ ! -e "$out" ] || [ -z "$(ls -A "$out")" ] || { ls -A "$out"; fail "kill during '$marker': files left in $out"; }
   grep -q "exited on signal 9" "$log" || { cat "$log"; fail "kill: mpirun did not name the killed rank"; }
-  echo "killed rank 1 (pid $victim) during '$marker': mpirun exit $rc, no output; mpirun: $(grep -o "process rank 1 .*" "$log" | head -n 1)"
+  ok "killed rank 1 (pid $victim) during '$marker': mpirun exit $rc, no output; mpirun: $(grep -o "process rank 1 .*" "$log" | head -n 1)"
 }
 kill_during "global photons" 3000000 photon
 kill_during "eye pass" 20000 eye
 
 step "all MPI checks passed"
+echo "mpi: $passed passed, 0 failed"
