@@ -3,7 +3,7 @@
 
     python3 scripts/mpi_model.py target/bench_mpi
 
-1. Measured: per phase, 1 rank against 2 ranks (one thread each), minimum over repetitions.
+1. Measured: per phase, 1 rank against 2 ranks (one thread each), median over repetitions.
 2. Eye-pass schedules: dynamic (guided self-scheduling) against static interleaved blocks.
 3. Model: predicted speedup on P nodes (one rank of one thread each, as measured here) from the
    1-rank phase times and the message sizes of the run:
@@ -29,6 +29,7 @@ import csv
 import json
 import math
 import os
+import statistics
 import sys
 from collections import defaultdict
 
@@ -46,41 +47,66 @@ def load(root):
             rep = json.load(open(os.path.join(d, "report.json")))
             rep["_wall"] = float(row["total_seconds"])
             rep["_load"] = float(row["load1"])
+            rep["_cpu"] = float(row.get("cpu_seconds") or "nan")
             runs[(row["scene"], row["config"])].append(rep)
     return runs
 
 
-def groups(rep):
-    """Phase seconds grouped for the model (rank 0's view)."""
+def grouped(phases, key, total):
+    """Phase times (`key`: "seconds" for wall, "cpu_seconds" for CPU) grouped for the model;
+    `total` the run's total (wall, or CPU), from which "other" is what no phase covers."""
     g = defaultdict(float)
-    for p in rep["phases"]:
-        name = p["phase"]
+    for p in phases:
+        name, v = p["phase"], p.get(key, math.nan)
         if name.endswith("photon tracing"):
-            g["photon tracing"] += p["seconds"]
+            g["photon tracing"] += v
         elif name.endswith("map gather"):
-            g["map gather"] += p["seconds"]
+            g["map gather"] += v
         elif name.endswith("map build") or name == "irradiance cache build":
-            g["kd-tree builds"] += p["seconds"]
+            g["kd-tree builds"] += v
         elif name == "irradiance precompute":
-            g["irradiance precompute"] += p["seconds"]
+            g["irradiance precompute"] += v
         elif name == "irradiance gather":
-            g["irradiance gather"] += p["seconds"]
+            g["irradiance gather"] += v
         elif name == "eye pass":
-            g["eye pass"] += p["seconds"]
-    g["other (scene, colour, init)"] = rep["total_seconds"] - sum(p["seconds"] for p in rep["phases"]) + sum(
-        p["seconds"] for p in rep["phases"] if p["phase"] in ("colour conversion", "sensors")
-    )
-    g["total"] = rep["total_seconds"]
+            g["eye pass"] += v
+    covered = sum(p.get(key, math.nan) for p in phases if p["phase"] not in ("colour conversion", "sensors"))
+    g["other (scene, colour, init)"] = max(total - covered, 0.0)
+    g["total"] = total
     return g
 
 
-def best(reps):
-    """Minimum over repetitions of each group."""
-    out = {}
-    for g in map(groups, reps):
+def groups(rep):
+    """Wall seconds per group (rank 0's view)."""
+    return grouped(rep["phases"], "seconds", rep["total_seconds"])
+
+
+def cpu_groups(rep, rank=0):
+    """CPU seconds per group on `rank`; its total is the whole run's CPU time (mpirun and all
+    ranks, /usr/bin/time) for a 1-rank run, else the sum of the rank's phases (no "other")."""
+    phases = rep["distributed"]["per_rank"][rank]["phases"]
+    if rep["distributed"]["ranks"] == 1:
+        return grouped(phases, "cpu_seconds", rep["_cpu"])
+    return grouped(phases, "cpu_seconds", sum(p.get("cpu_seconds", math.nan) for p in phases))
+
+
+def median_of(gs):
+    vals = defaultdict(list)
+    for g in gs:
         for k, v in g.items():
-            out[k] = min(out.get(k, math.inf), v)
-    return out
+            vals[k].append(v)
+    return {k: statistics.median(v) for k, v in vals.items()}
+
+
+def best(reps):
+    """Median over repetitions of each wall-time group (the machine is shared: the median
+    resists one disturbed run either way)."""
+    return median_of(map(groups, reps))
+
+
+def best_cpu(reps, rank=0):
+    """Median over repetitions of each CPU-time group on `rank`."""
+    return median_of(cpu_groups(r, rank) for r in reps)
 
 
 ORDER = ["photon tracing", "map gather", "kd-tree builds", "irradiance precompute", "irradiance gather",
@@ -149,74 +175,99 @@ def limit(g, s, a, b):
     return g["total"] / serial
 
 
-def main(root):
-    runs = load(root)
-    scenes = sorted({s for s, _ in runs}, key=lambda s: ["photons", "eye"].index(s) if s in ("photons", "eye") else 9)
-    loads = [r["_load"] for reps in runs.values() for r in reps]
-    print(f"Load average before the runs: {min(loads):.2f}–{max(loads):.2f} (2 cores).\n")
-    for sc in scenes:
-        one, two = best(runs[(sc, "np1")]), best(runs[(sc, "np2")])
-        thr = best(runs[(sc, "np1-2threads")]) if (sc, "np1-2threads") in runs else None
-        s = sizes(runs[(sc, "np1")][0])
-        print(f"### Scene `{sc}`: {s['stored']:,} stored photons, {runs[(sc, 'np1')][0]['width']}×{s['rows']} pixels\n")
-        print("| phase | 1 rank (s) | 2 ranks (s) | speedup | 1 rank × 2 threads (s) |")
-        print("|---|---:|---:|---:|---:|")
-        for k in ORDER:
-            if one.get(k, 0) < 1e-4 and two.get(k, 0) < 1e-4:
-                continue
-            sp = one[k] / two[k] if two.get(k, 0) > 0 else float("nan")
-            t2 = f"{thr[k]:.3f}" if thr else "–"
-            print(f"| {k} | {one[k]:.3f} | {two[k]:.3f} | {sp:.2f} | {t2} |")
-        rep2 = runs[(sc, "np2")][0]["distributed"]
-        print(f"\nBytes received over both ranks (2 ranks): maps {rep2['map_allgather_bytes']:,}, irradiance "
-              f"{rep2['irradiance_allgather_bytes']:,}, tiles {rep2['tile_bytes']:,}.\n")
+def has_cpu(reps):
+    return all("cpu_seconds" in p for r in reps for p in r["phases"]) and all(r["_cpu"] == r["_cpu"] for r in reps)
+
+
+def model_inputs(reps):
+    """The 1-rank phase times the model starts from: CPU seconds where measured (a rank of one
+    thread: its wall time on a core of its own, whatever else loads the machine), else wall."""
+    return (best_cpu(reps), "CPU") if has_cpu(reps) else (best(reps), "wall")
+
+
+def measured_table(runs, sc):
+    one, two = best(runs[(sc, "np1")]), best(runs[(sc, "np2")])
+    s = sizes(runs[(sc, "np1")][0])
+    print(f"### Scene `{sc}`: {s['stored']:,} stored photons, {runs[(sc, 'np1')][0]['width']}×{s['rows']} pixels\n")
+    cpu = has_cpu(runs[(sc, "np1")]) and has_cpu(runs[(sc, "np2")])
+    c1 = best_cpu(runs[(sc, "np1")]) if cpu else {}
+    c2 = [best_cpu(runs[(sc, "np2")], r) for r in (0, 1)] if cpu else []
+    print("| phase | wall, 1 rank (s) | wall, 2 ranks (s) | wall speedup | CPU, 1 rank (s) | CPU, 2 ranks: rank 0 / rank 1 (s) | work speedup |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    for k in ORDER:
+        if one.get(k, 0) < 1e-4 and two.get(k, 0) < 1e-4:
+            continue
+        sp = one[k] / two[k] if two.get(k, 0) > 0 else math.nan
+        if cpu and k not in ("other (scene, colour, init)", "total"):
+            worst = max(c2[0][k], c2[1][k])
+            ws = f"{c1[k] / worst:.2f}" if worst > 0 else "–"
+            cells = f"{c1[k]:.2f} | {c2[0][k]:.2f} / {c2[1][k]:.2f} | {ws}"
+        elif cpu and k == "total":
+            t2 = statistics.median(r["_cpu"] for r in runs[(sc, "np2")])
+            cells = f"{c1[k]:.2f} | {t2:.2f} (both, whole run) | –"
+        else:
+            cells = "– | – | –"
+        print(f"| {k} | {one[k]:.3f} | {two[k]:.3f} | {sp:.2f} | {cells} |")
+    rep2 = runs[(sc, "np2")][0]["distributed"]
+    print(f"\nBytes received over both ranks (2 ranks): maps {rep2['map_allgather_bytes']:,}, irradiance "
+          f"{rep2['irradiance_allgather_bytes']:,}, tiles {rep2['tile_bytes']:,}.\n")
+
+
+def schedule_table(runs, scenes):
     print("### Eye-pass schedules (2 ranks)\n")
-    print("| scene | schedule | eye pass (s) | rank compute (s) | imbalance max/mean | worker wait (s) |")
+    print("| scene | schedule | eye pass wall (s) | rank compute wall (s) | imbalance max/mean | worker wait (s) |")
     print("|---|---|---:|---:|---:|---:|")
     for sc in scenes:
         for cfg, name in (("np2", "dynamic"), ("np2-static", "static")):
             if (sc, cfg) not in runs:
                 continue
             reps = runs[(sc, cfg)]
-            r = min(reps, key=lambda x: best([x])["eye pass"])
+            r = sorted(reps, key=lambda x: best([x])["eye pass"])[len(reps) // 2]  # the median run
             comp = [p["eye"]["compute_seconds"] for p in r["distributed"]["per_rank"]]
             wait = sum(p["eye"]["wait_seconds"] for p in r["distributed"]["per_rank"][1:])
             imb = max(comp) / (sum(comp) / len(comp))
             print(f"| {sc} | {name} | {best([r])['eye pass']:.3f} | {' / '.join(f'{c:.2f}' for c in comp)} "
                   f"| {imb:.3f} | {wait:.3f} |")
+
+
+def model_table(runs, scenes):
     print("\n### Model: predicted speedup on P nodes\n")
-    print("Nodes of one thread (the 1-rank runs' phase times) unless marked \"2 threads\" (the 1 rank × 2")
-    print("threads runs: a node like this machine). Speedup against one such node.\n")
+    print("Nodes of one rank with one thread; speedup against one such node. Inputs: the 1-rank runs'")
+    print("median phase times (CPU seconds where measured, see above), the runs' message sizes.\n")
     print("| workload | network | P = 2 | P = 6 | P = 16 | P = 64 | limit P → ∞ |")
     print("|---|---|---:|---:|---:|---:|---:|")
+    rows = []
     for sc in scenes:
-        g, s = best(runs[(sc, "np1")]), sizes(runs[(sc, "np1")][0])
-        t1 = model(g, s, 1, 0, 1)
-        measured = g["total"] / best(runs[(sc, "np2")])["total"]
-        a, b = SHM
-        print(f"| {sc} | shared memory (measured: {measured:.2f}) | {t1 / model(g, s, 2, a, b):.2f} | | | | |")
-        for net, (a, b) in NETWORKS.items():
-            cells = " | ".join(f"{t1 / model(g, s, p, a, b):.2f}" for p in NODES)
-            print(f"| {sc} | {net} | {cells} | {limit(g, s, a, b):.1f} |")
-        if (sc, "np1-2threads") in runs:
-            g2 = best(runs[(sc, "np1-2threads")])
-            t2 = model(g2, s, 1, 0, 1)
-            for net, (a, b) in NETWORKS.items():
-                cells = " | ".join(f"{t2 / model(g2, s, p, a, b):.2f}" for p in NODES)
-                print(f"| {sc}, 2 threads | {net} | {cells} | {limit(g2, s, a, b):.1f} |")
-    extra = []
+        g, basis = model_inputs(runs[(sc, "np1")])
+        rows.append((f"{sc} (measured, {basis} inputs)", g, sizes(runs[(sc, "np1")][0])))
     if ("photons", "np1") in runs:
-        g, s = best(runs[("photons", "np1")]), sizes(runs[("photons", "np1")][0])
-        extra.append(("photons × 25: 10⁸ emitted photons (extrapolated)", *scaled(g, s, photons=25)))
+        g, _ = model_inputs(runs[("photons", "np1")])
+        s = sizes(runs[("photons", "np1")][0])
+        rows.append(("photons × 25: 10⁸ emitted photons (extrapolated)", *scaled(g, s, photons=25)))
     if ("eye", "np1") in runs:
-        g, s = best(runs[("eye", "np1")]), sizes(runs[("eye", "np1")][0])
-        extra.append(("eye × 400: 768×768 pixels, 25× the samples (extrapolated)", *scaled(g, s, eye=400, pixels=16)))
-    for name, g, s in extra:
+        g, _ = model_inputs(runs[("eye", "np1")])
+        s = sizes(runs[("eye", "np1")][0])
+        rows.append(("eye × 400: 768×768 pixels, 25× the samples (extrapolated)", *scaled(g, s, eye=400, pixels=16)))
+    for name, g, s in rows:
         t1 = model(g, s, 1, 0, 1)
+        a, b = SHM
+        print(f"| {name}, T(1) = {t1:.1f} s | shared memory | {t1 / model(g, s, 2, a, b):.2f} | | | | |")
         for net, (a, b) in NETWORKS.items():
             cells = " | ".join(f"{t1 / model(g, s, p, a, b):.2f}" for p in NODES)
-            print(f"| {name}, T(1) = {t1:.0f} s | {net} | {cells} | {limit(g, s, a, b):.0f} |")
+            print(f"| {name} | {net} | {cells} | {limit(g, s, a, b):.1f} |")
     print("\nLucifer (Gutierrez et al. 2005, §6): 4.2–4.8 on 6 nodes (Pentium 4, network not stated).")
+
+
+def main(root):
+    runs = load(root)
+    scenes = sorted({s for s, _ in runs}, key=lambda s: ["photons", "eye"].index(s) if s in ("photons", "eye") else 9)
+    loads = [r["_load"] for reps in runs.values() for r in reps]
+    print(f"Load average before the runs: {min(loads):.2f}–{max(loads):.2f} (2 cores). Wall times count the")
+    print("time a rank was not scheduled; CPU times (user + system of the rank's process) count its work.\n")
+    for sc in scenes:
+        measured_table(runs, sc)
+    schedule_table(runs, scenes)
+    model_table(runs, scenes)
 
 
 if __name__ == "__main__":

@@ -23,11 +23,11 @@
 
 use super::World;
 use super::budget::Budget;
+use super::clock::{Span, Took};
 use super::split::{dealt, dealt_index};
 use crate::error::Result;
 use crate::photon_map::{Estimator, IrradianceCache, KdTree, Photon, PhotonMap, PhotonRecord};
 use glam::DVec3;
-use std::time::Instant;
 
 /// Where a map's photons live.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -49,11 +49,11 @@ pub struct Gathered {
     /// Bytes this rank received from the others.
     pub received_bytes: u64,
     /// Estimating this rank's share (irradiance cache; zero for photon maps).
-    pub compute_seconds: f64,
+    pub compute: Took,
     /// Combining bounds and counts and encoding (photon maps), the budget check, the all-gather.
-    pub gather_seconds: f64,
+    pub gather: Took,
     /// Building the kd-tree (the same on every rank).
-    pub build_seconds: f64,
+    pub build: Took,
 }
 
 /// The photon map of every rank's `records` (this rank's, in batch order), the same on every
@@ -64,7 +64,7 @@ pub fn photon_map(
     name: &str,
     records: &[PhotonRecord],
 ) -> Result<(PhotonMap, Gathered)> {
-    let t = Instant::now();
+    let t = Span::start();
     let (lo, hi) = global_bounds(world, records);
     let origin = PhotonMap::origin_for(lo, hi);
     let encoded = PhotonMap::encode(records, origin);
@@ -78,11 +78,11 @@ pub fn photon_map(
         1 => (encoded, 0),
         _ => gather_photons(world, encoded, &offsets, items as usize),
     };
-    let gather_seconds = t.elapsed().as_secs_f64();
-    let t = Instant::now();
+    let gather = t.took();
+    let t = Span::start();
     let map = PhotonMap::from_photons(origin, photons);
-    let build_seconds = t.elapsed().as_secs_f64();
-    Ok((map, Gathered { items, received_bytes: received, compute_seconds: 0.0, gather_seconds, build_seconds }))
+    let build = t.took();
+    Ok((map, Gathered { items, received_bytes: received, compute: Took::default(), gather, build }))
 }
 
 /// Every rank's photons in rank order: this rank's copied in place, the others' decoded from
@@ -127,15 +127,15 @@ pub fn irradiance(
     let n = IrradianceCache::points(est.map.len(), stride) as u64;
     let bands = est.bands.count;
     let bytes = IrradianceCache::bytes_for(n as usize, bands) as u64;
-    let t = Instant::now();
+    let t = Span::start();
     budget.reserve(world, &format!("the irradiance cache ({n} points, {bands} bands)"), bytes)?;
-    let reserve_seconds = t.elapsed().as_secs_f64();
-    let t = Instant::now();
+    let reserve = t.took();
+    let t = Span::start();
     let size = world.size();
     let mine: Vec<u32> = dealt(n, IRRADIANCE_BLOCK, world.rank(), size).flatten().map(|i| i as u32).collect();
     let local: Vec<u8> = IrradianceCache::estimate(est, stride, &mine).iter().flat_map(|v| v.to_le_bytes()).collect();
-    let estimate_seconds = t.elapsed().as_secs_f64();
-    let t = Instant::now();
+    let compute = t.took();
+    let t = Span::start();
     let point_bytes = (4 * bands).max(1);
     let mut values = vec![0f32; n as usize * bands];
     let received = world.all_gather_pieces(&local, point_bytes, &mut |rank, offset, piece| {
@@ -146,16 +146,12 @@ pub fn irradiance(
             }
         }
     });
-    let gather_seconds = reserve_seconds + t.elapsed().as_secs_f64();
-    let t = Instant::now();
+    let gathered = t.took();
+    let gather =
+        Took { seconds: reserve.seconds + gathered.seconds, cpu_seconds: reserve.cpu_seconds + gathered.cpu_seconds };
+    let t = Span::start();
     let cache = IrradianceCache::from_values(est, stride, values);
-    let build_seconds = t.elapsed().as_secs_f64();
-    let g = Gathered {
-        items: n,
-        received_bytes: received,
-        compute_seconds: estimate_seconds,
-        gather_seconds,
-        build_seconds,
-    };
+    let build = t.took();
+    let g = Gathered { items: n, received_bytes: received, compute, gather, build };
     Ok((cache, g))
 }

@@ -20,6 +20,7 @@
 
 pub mod assemble;
 pub mod budget;
+pub mod clock;
 pub mod eye;
 pub mod fault;
 pub mod fingerprint;

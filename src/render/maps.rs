@@ -2,13 +2,13 @@
 //! precompute irradiance for final gathering — on one rank or many ([`crate::distributed`]).
 
 use super::progress;
-use super::stats::{MapReport, PhaseTime, Phases};
+use super::stats::{MapReport, Phases};
+use crate::distributed::clock::Span;
 use crate::distributed::{self, Rank, assemble, photons::Shot};
 use crate::error::Result;
 use crate::photon::MapKind;
 use crate::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
 use crate::scene::Scene;
-use std::time::Instant;
 
 /// Every stride-th global photon gets a precomputed irradiance estimate (Christensen uses 4).
 pub const IRRADIANCE_STRIDE: usize = 4;
@@ -68,9 +68,9 @@ pub fn build(
         let (cache, gathered) = assemble::irradiance(rank.world, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
         rank.report.irradiance_received_bytes += gathered.received_bytes;
         maps.irradiance = Some(cache);
-        add(phases, "irradiance precompute", gathered.compute_seconds);
-        add(phases, "irradiance gather", gathered.gather_seconds);
-        add(phases, "irradiance cache build", gathered.build_seconds);
+        phases.push("irradiance precompute", gathered.compute);
+        phases.push("irradiance gather", gathered.gather);
+        phases.push("irradiance cache build", gathered.build);
     }
     Ok(maps)
 }
@@ -92,7 +92,7 @@ fn shoot(
         rank.world.size(),
         &format!("{name} photons: {batches} batches over {} ranks", rank.world.size()),
     );
-    let t = Instant::now();
+    let t = Span::start();
     let (_, mine) = distributed::photons::my_share(rank.world, emitted);
     let pb = progress::bar(quiet, mine, &format!("{name} photons"));
     let shot = distributed::photons::shoot(rank.world, scene, kind, emitted, name, &|n| pb.inc(n));
@@ -113,8 +113,8 @@ fn build_map(
     phases: &mut Phases,
 ) -> Result<(PhotonMap, MapReport)> {
     let (map, gathered) = assemble::photon_map(rank.world, &mut rank.budget, name, records)?;
-    add(phases, &format!("{name} map gather"), gathered.gather_seconds);
-    let build_s = add(phases, &format!("{name} map build"), gathered.build_seconds);
+    phases.push(&format!("{name} map gather"), gathered.gather);
+    let build_s = phases.push(&format!("{name} map build"), gathered.build);
     rank.report.map_received_bytes += gathered.received_bytes;
     let report = MapReport {
         map: name.to_string(),
@@ -126,10 +126,4 @@ fn build_map(
         stats: shot.stats.clone(),
     };
     Ok((map, report))
-}
-
-/// Records `seconds` under `phase` and returns it.
-fn add(phases: &mut Phases, phase: &str, seconds: f64) -> f64 {
-    phases.0.push(PhaseTime { phase: phase.to_string(), seconds });
-    seconds
 }

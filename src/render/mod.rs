@@ -17,6 +17,7 @@ pub use camera::Camera;
 pub use lanes::Lanes;
 pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 
+use crate::distributed::clock::Span;
 use crate::distributed::{self, DistributedReport, Rank, World};
 use crate::error::Result;
 use crate::output::SpectralImage;
@@ -26,7 +27,6 @@ use crate::scene::{Method, Scene};
 use crate::spectrum::colour::BandsToColour;
 use eye::{EyeTracer, Scratch};
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
@@ -72,7 +72,7 @@ pub fn render_on(
         stats.irradiance_points = c.len() as u64;
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
-    let t = Instant::now();
+    let t = Span::start();
     let (data, work, curved) = eye_pass(&rank, scene, &maps, quiet);
     stats.phases.add("eye pass", t);
     rank.report.eye = work;
@@ -84,10 +84,10 @@ pub fn render_on(
         stats.eye_curved.add(&r.eye_curved);
     }
     stats.distributed = Some(DistributedReport::new(world.kind(), dist.schedule, ranks));
-    let t = Instant::now();
+    let t = Span::start();
     let image = to_image(scene, data);
     stats.phases.add("colour conversion", t);
-    let t = Instant::now();
+    let t = Span::start();
     let sensors = crate::sensor::evaluate_all(scene, &maps);
     let profiles = crate::sensor::evaluate_profiles(scene, &maps);
     if !sensors.is_empty() || !profiles.is_empty() {

@@ -1,25 +1,33 @@
 //! What a render measured: wall time per phase, photons per map, rays traced.
 
+use crate::distributed::clock::{Span, Took};
 use crate::photon::PhotonStats;
 use serde::{Deserialize, Serialize};
-use std::time::Instant;
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PhaseTime {
     pub phase: String,
+    /// Wall time.
     pub seconds: f64,
+    /// CPU time of this process over the phase (see [`crate::distributed::clock`]).
+    #[serde(default)]
+    pub cpu_seconds: f64,
 }
 
-/// Wall time per phase, in the order the phases ran.
+/// Wall (and CPU) time per phase, in the order the phases ran.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Phases(pub Vec<PhaseTime>);
 
 impl Phases {
-    /// Records the time since `start` under `phase` and returns it in seconds.
-    pub fn add(&mut self, phase: &str, start: Instant) -> f64 {
-        let seconds = start.elapsed().as_secs_f64();
-        self.0.push(PhaseTime { phase: phase.to_string(), seconds });
-        seconds
+    /// Records the time since `start` under `phase` and returns its wall time in seconds.
+    pub fn add(&mut self, phase: &str, start: Span) -> f64 {
+        self.push(phase, start.took())
+    }
+
+    /// Records `took` under `phase` and returns its wall time in seconds.
+    pub fn push(&mut self, phase: &str, took: Took) -> f64 {
+        self.0.push(PhaseTime { phase: phase.to_string(), seconds: took.seconds, cpu_seconds: took.cpu_seconds });
+        took.seconds
     }
 }
 
