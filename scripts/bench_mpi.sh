@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measurements for README "Distributed rendering (MPI)": 1 rank vs 2 ranks (one thread each) on
-# this machine, per phase, for a photon-pass-heavy and an eye-pass-heavy scene; the static
+# this machine, per phase, for a photon-pass-heavy, an eye-pass-heavy and a curved-path scene; the static
 # against the dynamic eye-pass schedule; then the cluster model (scripts/mpi_model.py) from the
 # measured phase times and message sizes.
 #
@@ -36,7 +36,12 @@ scene() { # name width height spp gather_rays
 scene photons 64 64 1 4
 # eye: 200k + 200k photons, 192×192 pixels, 8 samples, 16 final-gather rays.
 scene eye 192 192 8 16
-declare -A PHOTONS=([photons]=2000000 [eye]=200000)
+# curved: the hot-road mirage (examples/mirage_hot_road.toml, Lucifer's Fig. 4 scene) at 64×32
+# pixels, 1 sample, 100k photons: every photon and eye ray integrates a curved path.
+sed -e "s/^width = .*/width = 64/" -e "s/^height = .*/height = 32/" -e "s/^spp = .*/spp = 1/" \
+    -e "s#\.\./atmospheres/#$PWD/atmospheres/#" -e 's/^name = "mirage_hot_road"/name = "curved"/' \
+    examples/mirage_hot_road.toml >"$out/curved.toml"
+declare -A PHOTONS=([photons]=2000000 [eye]=200000 [curved]=100000)
 
 echo "scene,config,rep,ranks,threads,load1,total_seconds,cpu_seconds" >"$out/runs.csv"
 run() { # scene config rep ranks threads [extra args]
@@ -58,7 +63,7 @@ run() { # scene config rep ranks threads [extra args]
 }
 
 for r in $(seq 1 "$reps"); do
-  for s in photons eye; do
+  for s in photons eye curved; do
     run "$s" np1 "$r" 1 1
     run "$s" np2 "$r" 2 1
     run "$s" np2-static "$r" 2 1 --schedule static
