@@ -355,7 +355,7 @@ fn glass_refracts_relative_to_the_medium_around_it() {
         };
         let m = s.material_of(hit.prim).expect("glass");
         let n_out = prop.n_outside(hit.prim, 550.0, hit.point);
-        let t = m.sample_specular_in(dir, hit.normal, 550.0, 0.999_999, n_out).expect("specular");
+        let t = m.sample_specular_in(dir, hit.normal, 550.0, [0.999_999, 0.5, 0.5], n_out).expect("specular");
         assert!(t.transmitted);
         assert_eq!((t.dir - dir).length() > 1e-6, bends, "outside n = {outside}: {} vs {}", t.dir, dir);
     }

@@ -4,18 +4,23 @@
 //! direction of travel arriving at the surface, `n` the shape's front-side geometric normal (in
 //! either orientation relative to `dir`). Sampling returns the direction of travel leaving it.
 
+mod beckmann;
 mod dielectric;
 mod fresnel;
 mod ior;
 mod lambertian;
 mod mirror;
+mod rough_dielectric;
 
+pub use beckmann::{Beckmann, COX_MUNK_MAX_WIND_M_S};
 pub use dielectric::{Dielectric, fresnel_sample};
 pub use fresnel::{fresnel_dielectric, reflect, refract};
 pub use ior::{GLASS_NAMES, Ior, named_glass};
 pub use lambertian::Lambertian;
 pub use mirror::Mirror;
+pub use rough_dielectric::RoughDielectric;
 
+use crate::rng::Rng;
 use glam::DVec3;
 
 /// A surface's scattering.
@@ -24,6 +29,7 @@ pub enum Material {
     Lambertian(Lambertian),
     Mirror(Mirror),
     Dielectric(Dielectric),
+    RoughDielectric(RoughDielectric),
 }
 
 /// A specular direction chosen at a surface and the factor it multiplies the carried power or
@@ -52,14 +58,34 @@ impl Material {
     pub fn is_dispersive(&self) -> bool {
         match self {
             Material::Dielectric(d) => d.ior.is_dispersive(),
+            Material::RoughDielectric(d) => d.ior.is_dispersive(),
             _ => false,
         }
     }
 
+    /// Glass-like boundaries a path passes through when it is not reflected.
+    pub fn is_refractive(&self) -> bool {
+        matches!(self, Material::Dielectric(_) | Material::RoughDielectric(_))
+    }
+
+    /// The random numbers [`Material::sample_specular_in`] uses: `u[0]` chooses between
+    /// reflection and refraction; rough surfaces also draw a facet from `u[1..3]` (smooth ones
+    /// draw nothing more, so their random sequence is unchanged).
+    pub fn specular_u(&self, rng: &mut Rng) -> [f64; 3] {
+        let u0 = rng.uniform();
+        match self {
+            Material::RoughDielectric(_) => {
+                let [u1, u2] = rng.uniform2();
+                [u0, u1, u2]
+            }
+            _ => [u0, 0.5, 0.5],
+        }
+    }
+
     /// The specular direction for a path arriving along `dir` at a surface with normal `n`, at
-    /// `wavelength_nm`, using `u` to choose between reflection and refraction; `None` for
-    /// diffuse materials.
-    pub fn sample_specular(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, u: f64) -> Option<SpecularSample> {
+    /// `wavelength_nm`, using `u` (see [`Material::specular_u`]); `None` for diffuse materials.
+    /// A zero weight means the path ends there (a rough surface's shadowed facets).
+    pub fn sample_specular(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, u: [f64; 3]) -> Option<SpecularSample> {
         self.sample_specular_in(dir, n, wavelength_nm, u, 1.0)
     }
 
@@ -70,13 +96,14 @@ impl Material {
         dir: DVec3,
         n: DVec3,
         wavelength_nm: f64,
-        u: f64,
+        u: [f64; 3],
         n_outside: f64,
     ) -> Option<SpecularSample> {
         match self {
             Material::Lambertian(_) => None,
             Material::Mirror(m) => Some(m.sample(dir, n, wavelength_nm)),
-            Material::Dielectric(d) => Some(d.sample_in(dir, n, wavelength_nm, u, n_outside)),
+            Material::Dielectric(d) => Some(d.sample_in(dir, n, wavelength_nm, u[0], n_outside)),
+            Material::RoughDielectric(d) => Some(d.sample_in(dir, n, wavelength_nm, u, n_outside)),
         }
     }
 

@@ -258,8 +258,12 @@ fn surface(
         return Some(prop.leave(hit, Lambertian::sample(dir, hit.normal, rng.uniform2()), lambda, medium));
     }
     let n_out = prop.n_outside(hit.prim, f.lambda, hit.point);
-    let s = material.sample_specular_in(dir, hit.normal, f.lambda, rng.uniform(), n_out)?;
-    if rng.uniform() >= s.weight {
+    let s = material.sample_specular_in(dir, hit.normal, f.lambda, material.specular_u(rng), n_out)?;
+    if s.weight > 1.0 {
+        // A rough surface's throughput can exceed 1 for one facet (it is 1 on average at
+        // most): the photon carries it, as a roulette cannot.
+        f.power_w *= s.weight;
+    } else if rng.uniform() >= s.weight {
         st.absorbed_surface_w += f.power_w;
         return None;
     }

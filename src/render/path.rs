@@ -267,7 +267,10 @@ impl<'a> PathTracer<'a> {
             }
             _ => {
                 let n_out = self.prop.n_outside(hit.prim, w.lambda, hit.point);
-                let s = material.sample_specular_in(dir, hit.normal, w.lambda, rng.uniform(), n_out)?;
+                let s = material.sample_specular_in(dir, hit.normal, w.lambda, material.specular_u(rng), n_out)?;
+                if s.weight == 0.0 {
+                    return None;
+                }
                 w.beta *= s.weight;
                 w.emission = Emission::Full;
                 let next = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };

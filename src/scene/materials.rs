@@ -3,7 +3,9 @@
 use super::context::{Ctx, R};
 use super::raw::RawMaterial;
 use super::spectrum_spec::{SpectrumLibrary, Use};
-use crate::material::{Dielectric, Ior, Lambertian, Material, Mirror, named_glass};
+use crate::material::{
+    Beckmann, COX_MUNK_MAX_WIND_M_S, Dielectric, Ior, Lambertian, Material, Mirror, RoughDielectric, named_glass,
+};
 use crate::present_fields;
 use crate::spectrum::Bands;
 use toml::{Spanned, Value};
@@ -28,9 +30,12 @@ pub fn material(
     let kind = ctx.choice(
         ctx.require(&m.kind, "type", &span, &what)?,
         &format!("{what}: type"),
-        &["lambertian", "mirror", "dielectric"],
+        &["lambertian", "mirror", "dielectric", "rough_dielectric"],
     )?;
-    let present = present_fields!(m; reflectance, ior, ior_model, a, b_um2, c_um4, sellmeier_b, sellmeier_c_um2);
+    let all = present_fields!(m; reflectance, ior, ior_model, a, b_um2, c_um4, sellmeier_b, sellmeier_c_um2, wind_speed_m_s, rms_slope);
+    let rough_fields = ["wind_speed_m_s", "rms_slope"];
+    let present: Vec<_> =
+        all.iter().filter(|(k, _)| kind != "rough_dielectric" || !rough_fields.contains(k)).cloned().collect();
     let range = (bands.min_nm, bands.max_nm);
     let material = match kind {
         "lambertian" | "mirror" => {
@@ -43,9 +48,47 @@ pub fn material(
                 Material::Lambertian(Lambertian { reflectance })
             }
         }
-        _ => Material::Dielectric(Dielectric { ior: ior(ctx, m, &span, &what, &present, bands)? }),
+        "dielectric" => Material::Dielectric(Dielectric { ior: ior(ctx, m, &span, &what, &present, bands)? }),
+        _ => Material::RoughDielectric(RoughDielectric {
+            ior: ior(ctx, m, &span, &what, &present, bands)?,
+            facets: facets(ctx, m, &span, &what)?,
+        }),
     };
     Ok(NamedMaterial { name, material })
+}
+
+/// The facets of a rough dielectric: `wind_speed_m_s = W` (the Cox–Munk sea, α² = 0.003 +
+/// 5.12·10⁻³ W) or `rms_slope = α` (Beckmann), exactly one.
+fn facets(ctx: &Ctx, m: &RawMaterial, span: &std::ops::Range<usize>, what: &str) -> R<Beckmann> {
+    match (&m.wind_speed_m_s, &m.rms_slope) {
+        (Some(w), None) => {
+            let v = *w.get_ref();
+            if !(v.is_finite() && (0.0..=COX_MUNK_MAX_WIND_M_S).contains(&v)) {
+                return Err(ctx.err(
+                    &w.span(),
+                    format!(
+                        "{what}: wind_speed_m_s = {v}; expected a wind speed in [0, {COX_MUNK_MAX_WIND_M_S}] m/s (Cox & Munk fitted 1–14 m/s)"
+                    ),
+                ));
+            }
+            Ok(Beckmann::cox_munk(v))
+        }
+        (None, Some(a)) => {
+            let v = *a.get_ref();
+            if !(v.is_finite() && v > 0.0 && v <= 1.0) {
+                return Err(ctx.err(&a.span(), format!("{what}: rms_slope = {v}; expected a slope in (0, 1]")));
+            }
+            Ok(Beckmann { alpha: v })
+        }
+        (Some(_), Some(r)) => Err(ctx.err(
+            &r.span(),
+            format!("{what} (rough_dielectric): give wind_speed_m_s (Cox–Munk sea) or rms_slope, not both"),
+        )),
+        (None, None) => Err(ctx.err(
+            span,
+            format!("{what} (rough_dielectric): needs wind_speed_m_s (Cox–Munk sea, m/s) or rms_slope (Beckmann α)"),
+        )),
+    }
 }
 
 /// `ior = 1.5` or `ior = "N-BK7"`, or `ior_model = "cauchy"` with `a`, `b_um2` (and `c_um4`), or

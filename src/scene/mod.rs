@@ -131,8 +131,7 @@ impl Scene {
     /// Whether a path passes through primitive `prim` when it is not reflected (glass and
     /// index-matched boundaries) rather than stopping at it.
     pub fn is_passable(&self, prim: u32) -> bool {
-        matches!(self.material_of(prim), None | Some(Material::Dielectric(_)))
-            && self.prims[prim as usize].light.is_none()
+        self.material_of(prim).is_none_or(Material::is_refractive) && self.prims[prim as usize].light.is_none()
     }
 
     /// The medium a path enters when it passes through primitive `prim` travelling along `dir`.
@@ -434,7 +433,7 @@ fn build_shapes(
                         format!("{}: give a material, or an interior medium for an index-matched boundary", group.name),
                     ));
                 }
-                Some(Material::Dielectric(_)) => None,
+                Some(m) if m.is_refractive() => None,
                 Some(_) => global,
             },
         };

@@ -144,6 +144,8 @@ pub struct RawMaterial {
     pub c_um4: S<f64>,
     pub sellmeier_b: S<[f64; 3]>,
     pub sellmeier_c_um2: S<[f64; 3]>,
+    pub wind_speed_m_s: S<f64>,
+    pub rms_slope: S<f64>,
 }
 
 #[derive(Debug, Deserialize)]
