@@ -94,6 +94,9 @@ enum Command {
     /// Astronomical refraction: trace rays from an observer out of an atmosphere and print the
     /// true altitude and refraction for each apparent altitude.
     Refraction(morgana::atmosphere::refraction::cli::RefractionArgs),
+    /// Follow one ray through a scene's media (curved where their index fields bend it) without
+    /// scattering: each surface, boundary and the escape, with path length and direction.
+    Trace(morgana::raypath::trace_cli::TraceArgs),
 }
 
 fn main() {
@@ -114,6 +117,7 @@ fn main() {
         Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
         Command::Accuracy(args) => morgana::raypath::accuracy::run_cli(&args).map(|s| print!("{s}")),
         Command::Refraction(args) => morgana::atmosphere::refraction::cli::run(&args).map(|s| print!("{s}")),
+        Command::Trace(args) => morgana::raypath::trace_cli::run(&args).map(|s| print!("{s}")),
     };
     if let Err(e) = result {
         eprintln!("morgana: {e}");

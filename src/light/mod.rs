@@ -114,7 +114,10 @@ impl Light {
             Light::Area(l) => l.emit(rng),
             Light::Point(l) => (l.position, l.emit_dir(rng.uniform2()), DVec3::ZERO),
             Light::Spot(l) => (l.position, l.emit_dir(rng.uniform(), rng.uniform2()), DVec3::ZERO),
-            Light::Directional(l) => (l.emit_origin(rng.uniform2()), l.sample_dir(rng.uniform2()), l.dir),
+            Light::Directional(l) => {
+                let (o, d) = l.emit(rng.uniform2(), rng.uniform2());
+                (o, d, l.dir)
+            }
             Light::Luminaire(l) => l.emit(rng),
             Light::Sky(l) => {
                 let (o, d) = l.emit(rng.uniform2(), rng.uniform2());

@@ -24,6 +24,7 @@ pub mod accuracy;
 mod arc;
 pub mod curved;
 pub mod ode;
+pub mod trace_cli;
 mod work;
 
 pub use work::{CurvedWork, CurvedWorkTotals};

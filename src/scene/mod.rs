@@ -74,6 +74,9 @@ pub struct Scene {
     pub light_media: Vec<Option<u32>>,
     pub shapes: Vec<Shape>,
     pub prims: Vec<Prim>,
+    /// Per primitive: the label of the record it came from (`shape "ground"`, `shape #3`,
+    /// `light "lamp"`), for messages.
+    pub prim_names: Vec<String>,
     pub light_names: Vec<String>,
     pub lights: Vec<Light>,
     pub bvh: Bvh,
@@ -199,7 +202,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let earth = build_earth(ctx, raw)?;
     let (medium_names, media, global_medium) = build_media(ctx, &lib, raw, &bands, &earth)?;
     let names = Names { materials: &material_names, media: &medium_names };
-    let (mut shapes, mut prims) = build_shapes(ctx, raw, &names, &materials, global_medium)?;
+    let (mut shapes, mut prims, mut prim_names) = build_shapes(ctx, raw, &names, &materials, global_medium)?;
     let geometry_bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let mut lights = Vec::new();
     let mut light_names = Vec::new();
@@ -213,6 +216,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
             };
             shapes.push(a.shape.clone());
             prims.push(Prim { material, light: Some(i as u32), interior: global_medium, exterior: global_medium });
+            prim_names.push(format!("light \"{}\"", l.name));
         }
         warnings.extend(l.notes);
         light_names.push(l.name);
@@ -244,6 +248,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         light_media: Vec::new(),
         shapes,
         prims,
+        prim_names,
         light_names,
         lights,
         bvh,
@@ -415,8 +420,8 @@ fn build_shapes(
     names: &Names,
     materials: &[Material],
     global: Option<u32>,
-) -> Result<(Vec<Shape>, Vec<Prim>)> {
-    let (mut shapes, mut prims) = (Vec::new(), Vec::new());
+) -> Result<(Vec<Shape>, Vec<Prim>, Vec<String>)> {
+    let (mut shapes, mut prims, mut labels) = (Vec::new(), Vec::new(), Vec::new());
     for (i, rec) in raw.shape.iter().enumerate() {
         let group = shapes::shape(ctx, rec, i)?;
         let material = match &group.material {
@@ -447,9 +452,10 @@ fn build_shapes(
         for shape in group.shapes {
             shapes.push(shape);
             prims.push(Prim { material, light: None, interior, exterior });
+            labels.push(group.name.clone());
         }
     }
-    Ok((shapes, prims))
+    Ok((shapes, prims, labels))
 }
 
 /// The reserved medium name for empty space.

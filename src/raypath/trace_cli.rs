@@ -1,0 +1,360 @@
+//! `morgana trace`: one ray followed through a scene's media — curved where their index fields
+//! bend it — without scattering, to see where a pixel's ray goes (which surface a mirage pixel
+//! shows, how low a ray dips before it turns, which part of the sky it escapes to).
+//!
+//! The ray starts at `--from` in the medium found there ([`Scene::medium_at`]) with the
+//! direction `--dir` or toward `--toward`, at one wavelength. [`Propagator::next_event_with`]
+//! moves it from event to event; a visitor records every chord it is handed (one per
+//! integrator step in clear air away from geometry, finer near surfaces). At a boundary between
+//! media without a material ([`Propagator::cross`]) the trace goes on along the refracted ray —
+//! reflected only under total internal reflection — and stops at the first surface with a
+//! material or a light, at escape, or after `--events` events. Elevations are measured from the
+//! scene's xz-plane (+y up, as the sky light measures them).
+//!
+//! Each surface line gives the path length `s` along the arc from the start, as the propagator
+//! measures it (the integrator's arc length). `--csv` writes the chord points
+//! `s_m,x,y,z,dx,dy,dz,n`: the length of the polyline through the points up to there, the
+//! chord's start point and unit direction and n there; each surface point and the end point
+//! of the path. A chord of length L on an arc of curvature κ = |∇n⊥|/n is shorter than the arc by
+//! about κ²L³/24, so `s_m` falls short of the arc length by the sum of these.
+
+use super::{Chord, Event, Propagator, RayState};
+use crate::atmosphere::Earth;
+use crate::error::{Error, Result};
+use crate::media::index::IndexField;
+use crate::output::atomic::Staged;
+use crate::scene::{Scene, load_scene_file};
+use glam::DVec3;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// `morgana trace SCENE --from x,y,z (--toward x,y,z | --dir x,y,z)`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct TraceArgs {
+    /// Scene file (TOML).
+    pub scene: PathBuf,
+    /// Start point, m: x,y,z.
+    #[arg(long, value_parser = parse_xyz, allow_hyphen_values = true)]
+    pub from: [f64; 3],
+    /// A point the ray starts toward, m: x,y,z (or give --dir).
+    #[arg(long, value_parser = parse_xyz, allow_hyphen_values = true, conflicts_with = "dir")]
+    pub toward: Option<[f64; 3]>,
+    /// Start direction x,y,z (need not be unit length).
+    #[arg(long, value_parser = parse_xyz, allow_hyphen_values = true)]
+    pub dir: Option<[f64; 3]>,
+    /// Wavelength, nm (within the scene's wavelength range).
+    #[arg(long, default_value_t = 550.0)]
+    pub wavelength_nm: f64,
+    /// Write the path's chord points (s_m,x,y,z,dx,dy,dz,n) to this CSV.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Most events to follow (surfaces, boundaries, escape).
+    #[arg(long, default_value_t = 32)]
+    pub events: usize,
+    /// Longest path to follow, m (a ray trapped in a duct would circle the Earth; the world of an
+    /// Earth-scale scene reaches ~2·10⁷ m from the camera).
+    #[arg(long, default_value_t = 1.0e8)]
+    pub max_length_m: f64,
+}
+
+/// One recorded point of the path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathPoint {
+    /// Path length from the start, m.
+    pub s_m: f64,
+    pub position: DVec3,
+    /// Unit direction of travel there.
+    pub dir: DVec3,
+    /// Refractive index there.
+    pub n: f64,
+}
+
+/// How a trace ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum End {
+    /// At a surface with a material or a light (named).
+    Surface(String),
+    /// Out of the world, along this direction.
+    Escape(DVec3),
+    /// The integrator failed at this point.
+    Lost(DVec3),
+    /// `--events` events were followed.
+    EventLimit,
+    /// The path reached `--max-length-m`.
+    LengthLimit,
+}
+
+/// A followed ray: its points, one line per event, and how it ended.
+#[derive(Clone, Debug)]
+pub struct Traced {
+    pub points: Vec<PathPoint>,
+    pub lines: Vec<String>,
+    pub end: End,
+    /// What the integrator did along the path.
+    pub work: super::CurvedWorkTotals,
+}
+
+/// Runs the command; the text to print.
+pub fn run(args: &TraceArgs) -> Result<String> {
+    let scene = load_scene_file(&args.scene)?;
+    let from = finite_point(args.from, "--from")?;
+    let dir = start_direction(args, from)?;
+    check_wavelength(&scene, args.wavelength_nm)?;
+    if args.events == 0 {
+        return Err(Error::input(None, "--events 0: give at least 1 event to follow"));
+    }
+    if !(args.max_length_m.is_finite() && args.max_length_m > 0.0) {
+        return Err(Error::input(
+            None,
+            format!("--max-length-m {}: expected a positive finite length in metres", args.max_length_m),
+        ));
+    }
+    let staged = match &args.csv {
+        Some(p) => Some(Staged::new(p).map_err(|e| Error::input(None, format!("--csv {}: {e}", p.display())))?),
+        None => None,
+    };
+    let limits = Limits { events: args.events, length_m: args.max_length_m };
+    let traced = trace(&scene, from, dir, args.wavelength_nm, limits);
+    let mut out = header(&scene, from, dir, args.wavelength_nm);
+    for l in &traced.lines {
+        out.push_str(l);
+        out.push('\n');
+    }
+    let (earth, heights) = scene_earth(&scene);
+    let _ = writeln!(out, "heights are {heights}");
+    out.push_str(&summary(&traced, &earth));
+    let w = &traced.work;
+    let _ = writeln!(
+        out,
+        "integrator: {} steps accepted, {} rejected, {} samples of n and ∇n, {} chords",
+        w.ode_steps, w.ode_rejected, w.rhs_evals, w.chords
+    );
+    if let (Some(staged), Some(path)) = (staged, &args.csv) {
+        let fail = |e: std::io::Error| Error::internal(format!("cannot write {}: {e}", path.display()));
+        std::fs::write(&staged.temp, csv_text(&traced.points)).map_err(fail)?;
+        staged.commit().map_err(fail)?;
+        let _ = writeln!(out, "wrote {} ({} points)", path.display(), traced.points.len());
+    }
+    Ok(out)
+}
+
+/// How far a trace goes at most.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// Events (surfaces, boundaries, escape).
+    pub events: usize,
+    /// Path length, m.
+    pub length_m: f64,
+}
+
+/// Follows the ray from `from` along unit `dir` at `wavelength_nm` within `limits`.
+pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits: Limits) -> Traced {
+    let prop = Propagator::new(scene);
+    let mut state = RayState { position: from, dir, wavelength_nm: Some(wavelength_nm), medium: scene.medium_at(from) };
+    let (mut points, mut lines) = (Vec::new(), Vec::new());
+    // `s0`: the polyline's length at the start of this leg; `arc`: the path length along the
+    // arc through the last surface, as the propagator measures it.
+    let (mut s0, mut arc) = (0.0, 0.0);
+    for k in 1..=limits.events {
+        let start = points.len();
+        let mut s = s0;
+        let mut tip = None;
+        let event = prop.next_event_with(&state, &mut |c: &Chord| {
+            let n = prop.n_at(c.medium, wavelength_nm, c.origin);
+            points.push(PathPoint { s_m: s, position: c.origin, dir: c.dir, n });
+            let stop = (s + c.length > limits.length_m).then(|| (limits.length_m - s).max(0.0));
+            let length = stop.unwrap_or(c.length);
+            s += length;
+            tip = Some(PathPoint { s_m: s, position: c.origin + length * c.dir, dir: c.dir, n });
+            stop
+        });
+        if points.len() == start {
+            // No chord was handed over (vacuum): the path is the straight segment itself.
+            let n = prop.n_at(state.medium, wavelength_nm, state.position);
+            points.push(PathPoint { s_m: s0, position: state.position, dir: state.dir, n });
+        }
+        let medium_name = |m: Option<u32>| medium_label(scene, m);
+        match event {
+            Event::Surface { hit, dir: d, path_length, medium } => {
+                arc += path_length;
+                // The hit is located on the arc, a little past the last chord's origin.
+                let last = points[points.len() - 1];
+                s0 = last.s_m + (hit.point - last.position).length();
+                let n = prop.n_at(medium, wavelength_nm, hit.point);
+                points.push(PathPoint { s_m: s0, position: hit.point, dir: d, n });
+                let name = &scene.prim_names[hit.prim as usize];
+                let pr = &scene.prims[hit.prim as usize];
+                let at = format!("s = {arc:.6} m at {} going {}", xyz(hit.point), heading(d));
+                if pr.material.is_some() || pr.light.is_some() {
+                    let what = match pr.material {
+                        Some(m) => format!("material \"{}\"", scene.material_names[m as usize]),
+                        None => "an emitter".to_string(),
+                    };
+                    lines.push(format!("{k:>3}  surface   {at}: {name} ({what}); the trace stops here"));
+                    return Traced { points, lines, end: End::Surface(name.clone()), work: prop.work.totals() };
+                }
+                let (nd, across) = prop.cross(&hit, d, medium, wavelength_nm, 1.0);
+                let n_across = prop.n_at(across, wavelength_nm, hit.point);
+                let into = scene.medium_across(hit.prim, d, hit.normal);
+                let how = if across != into {
+                    format!("totally reflected back into {}", medium_name(across))
+                } else if nd == d {
+                    format!("straight on into {} (n = {n_across:.8})", medium_name(across))
+                } else {
+                    format!("refracted into {} (n = {n_across:.8})", medium_name(across))
+                };
+                lines.push(format!("{k:>3}  boundary  {at}: {name}, from {} (n = {n:.8}), {how}", medium_name(medium)));
+                state = prop.leave(&hit, nd, Some(wavelength_nm), across);
+            }
+            Event::Escape { dir: d } => {
+                if let Some(t) = tip {
+                    s0 = t.s_m;
+                    points.push(PathPoint { dir: d, n: prop.n_at(state.medium, wavelength_nm, t.position), ..t });
+                }
+                let sees = sees(scene, d, wavelength_nm);
+                lines.push(format!("{k:>3}  escape    after {s0:.3} m of chords, going {}: {sees}", heading(d)));
+                return Traced { points, lines, end: End::Escape(d), work: prop.work.totals() };
+            }
+            Event::Lost { position } => {
+                lines.push(format!("{k:>3}  lost      at {}: the integrator failed there", xyz(position)));
+                return Traced { points, lines, end: End::Lost(position), work: prop.work.totals() };
+            }
+            Event::Medium { position, dir: d, medium, .. } => {
+                // Only the length limit stops a path inside a medium.
+                let n = prop.n_at(Some(medium), wavelength_nm, position);
+                points.push(PathPoint { s_m: limits.length_m, position, dir: d, n });
+                lines.push(format!(
+                    "{k:>3}  stopped   at s = {:.3} m (--max-length-m) at {} going {}, still in {}",
+                    limits.length_m,
+                    xyz(position),
+                    heading(d),
+                    medium_label(scene, Some(medium))
+                ));
+                return Traced { points, lines, end: End::LengthLimit, work: prop.work.totals() };
+            }
+        }
+    }
+    lines.push(format!("stopped after {} events (--events)", limits.events));
+    Traced { points, lines, end: End::EventLimit, work: prop.work.totals() }
+}
+
+/// Which lights at infinity a ray escaping along `d` sees.
+fn sees(scene: &Scene, d: DVec3, wavelength_nm: f64) -> String {
+    let names: Vec<String> = scene
+        .lights
+        .iter()
+        .zip(&scene.light_names)
+        .filter(|(l, _)| l.escape_radiance(d, wavelength_nm) > 0.0)
+        .map(|(_, n)| format!("light \"{n}\""))
+        .collect();
+    if names.is_empty() { "sees no light".to_string() } else { format!("sees {}", names.join(", ")) }
+}
+
+fn medium_label(scene: &Scene, m: Option<u32>) -> String {
+    m.map_or_else(|| "vacuum".to_string(), |i| format!("\"{}\"", scene.medium_names[i as usize]))
+}
+
+fn header(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64) -> String {
+    let m = scene.medium_at(from);
+    let n = Propagator::new(scene).n_at(m, wavelength_nm, from);
+    format!(
+        "trace {}: {wavelength_nm} nm from {} going {} in {} (n = {n:.8}); elevations above the scene's xz-plane\n",
+        scene.label(),
+        xyz(from),
+        heading(dir),
+        medium_label(scene, m)
+    )
+}
+
+/// The Earth heights are measured from: that of the first medium whose index is an atmosphere
+/// (its file's, or the scene's `[world] earth`), else flat ground y = 0.
+pub fn scene_earth(scene: &Scene) -> (Earth, String) {
+    let atmosphere = scene.media.iter().zip(&scene.medium_names).find_map(|(m, name)| match &m.index {
+        Some(IndexField::Atmosphere(a)) => Some((a.earth, name)),
+        _ => None,
+    });
+    match atmosphere {
+        Some((e, name)) => (e, format!("above the Earth of the atmosphere in \"{name}\"")),
+        None => (Earth::flat_y(), "y (no atmosphere in the scene)".to_string()),
+    }
+}
+
+/// The lowest point of the path above the ground, and the number of points.
+fn summary(t: &Traced, earth: &Earth) -> String {
+    let lowest = t.points.iter().map(|p| (earth.height(p.position), p)).min_by(|a, b| a.0.total_cmp(&b.0));
+    let Some((h, p)) = lowest else { return String::new() };
+    format!("lowest point: height {h:.4} m at s = {:.3} m, {}; {} points\n", p.s_m, xyz(p.position), t.points.len())
+}
+
+/// The CSV of the path's points.
+pub fn csv_text(points: &[PathPoint]) -> String {
+    let mut text = String::from("s_m,x,y,z,dx,dy,dz,n\n");
+    for p in points {
+        let (r, d) = (p.position, p.dir);
+        let _ = writeln!(
+            text,
+            "{:.6},{:.6},{:.6},{:.6},{:.12},{:.12},{:.12},{:.12}",
+            p.s_m, r.x, r.y, r.z, d.x, d.y, d.z, p.n
+        );
+    }
+    text
+}
+
+fn xyz(p: DVec3) -> String {
+    format!("({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)
+}
+
+/// A direction and its elevation above the xz-plane, in degrees.
+fn heading(d: DVec3) -> String {
+    let elev = d.y.clamp(-1.0, 1.0).asin().to_degrees();
+    format!("({:.6}, {:.6}, {:.6}) at elevation {elev:.5}°", d.x, d.y, d.z)
+}
+
+fn finite_point(v: [f64; 3], flag: &str) -> Result<DVec3> {
+    let p = DVec3::from(v);
+    if p.is_finite() {
+        Ok(p)
+    } else {
+        Err(Error::input(None, format!("{flag}: found {}, expected three finite numbers", xyz(p))))
+    }
+}
+
+/// The unit start direction from `--dir` or `--toward`.
+fn start_direction(args: &TraceArgs, from: DVec3) -> Result<DVec3> {
+    let (d, flag) = match (args.dir, args.toward) {
+        (Some(d), None) => (finite_point(d, "--dir")?, "--dir"),
+        (None, Some(t)) => (finite_point(t, "--toward")? - from, "--toward"),
+        _ => return Err(Error::input(None, "give the start direction: --toward x,y,z or --dir x,y,z (one of them)")),
+    };
+    let len = d.length();
+    if !(len.is_finite() && len > 1e-12 * (1.0 + from.length())) {
+        let why = if flag == "--dir" { "a zero direction" } else { "the start point itself" };
+        return Err(Error::input(None, format!("{flag}: {why}; expected a direction of non-zero length")));
+    }
+    Ok(d / len)
+}
+
+fn check_wavelength(scene: &Scene, nm: f64) -> Result<()> {
+    let (lo, hi) = (scene.bands.min_nm, scene.bands.max_nm);
+    if nm.is_finite() && (lo..=hi).contains(&nm) {
+        return Ok(());
+    }
+    Err(Error::input(
+        None,
+        format!(
+            "--wavelength-nm {nm}: expected a wavelength within the scene's range {lo}–{hi} nm (its media are checked there)"
+        ),
+    ))
+}
+
+fn parse_xyz(s: &str) -> std::result::Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| format!("{e}"))?;
+    match v.as_slice() {
+        [x, y, z] => Ok([*x, *y, *z]),
+        _ => Err(format!("expected three numbers x,y,z, found \"{s}\"")),
+    }
+}
