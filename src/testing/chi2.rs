@@ -146,9 +146,16 @@ pub fn gauss_legendre(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> 
     sum * 0.5 * h
 }
 
+/// Nodes and weights of the 16-point Gauss–Legendre rule on [−1, 1], computed once (the
+/// renderer's optical depths through round-Earth air call the rule millions of times).
+fn gauss_legendre_16() -> &'static ([f64; 16], [f64; 16]) {
+    static RULE: std::sync::OnceLock<([f64; 16], [f64; 16])> = std::sync::OnceLock::new();
+    RULE.get_or_init(gauss_legendre_16_newton)
+}
+
 /// Nodes and weights of the 16-point Gauss–Legendre rule on [−1, 1], by Newton iteration on
 /// P16 (Press et al., *Numerical Recipes*, §4.6).
-fn gauss_legendre_16() -> ([f64; 16], [f64; 16]) {
+fn gauss_legendre_16_newton() -> ([f64; 16], [f64; 16]) {
     const N: usize = 16;
     let (mut x, mut w) = ([0.0; N], [0.0; N]);
     for i in 0..N / 2 {
