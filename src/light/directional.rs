@@ -153,15 +153,18 @@ impl DirectionalLight {
     /// the sun's rays from each point of its disc all reach the target — instead of spreading
     /// by ±θ_m·L around it (±50 km from a plane 11 000 km upstream in an Earth-sized scene).
     pub fn emit(&self, u_pos: [f64; 2], u_dir: [f64; 2]) -> (DVec3, DVec3) {
-        let origin = self.emit_origin(u_pos);
         let dir = self.sample_dir(u_dir);
+        (self.aimed_origin(self.emit_origin(u_pos), dir), dir)
+    }
+
+    /// Where a ray of direction `dir` starts on the emitting plane so that it crosses the aim
+    /// plane (L along the axis) where the axial ray from `origin` does: the ray origin′ + ω·x
+    /// meets it at origin + axis·L when origin′ = origin + (axis − ω/(ω·axis))·L.
+    pub fn aimed_origin(&self, origin: DVec3, dir: DVec3) -> DVec3 {
         if self.sin_max == 0.0 {
-            return (origin, dir);
+            return origin;
         }
-        // The ray origin + ω·x/(ω·axis) crosses the aim plane (at L along the axis) where the
-        // axial ray from `origin` does when origin is moved by (axis − ω/(ω·axis))·L.
-        let l = self.aim_distance();
-        (origin + (self.dir - dir / dir.dot(self.dir)) * l, dir)
+        origin + (self.dir - dir / dir.dot(self.dir)) * self.aim_distance()
     }
 
     /// Distance along the axis from the emitting plane to the depth photons are aimed at: the

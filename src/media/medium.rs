@@ -97,6 +97,21 @@ impl Medium {
         }
     }
 
+    /// True when the medium scatters light somewhere (elastically or by an inelastic
+    /// component): only then is there in-scattered light to estimate, and photons to store.
+    pub fn scatters(&self) -> bool {
+        use crate::spectrum::Spectrum;
+        let zero = |s: &Spectrum| matches!(s, Spectrum::Constant(v) if *v == 0.0);
+        if !self.inelastic.is_empty() {
+            return true;
+        }
+        match &self.coefficients {
+            Coefficients::AbsorptionScattering { sigma_s, .. } => !zero(sigma_s),
+            Coefficients::ExtinctionAlbedo { sigma_t, albedo } => !zero(sigma_t) && !zero(albedo),
+            Coefficients::AbsorptionMixture { .. } => true,
+        }
+    }
+
     /// True when light curves in this medium (its index field has a gradient somewhere).
     pub fn bends_light(&self) -> bool {
         self.index.as_ref().is_some_and(|f| !f.is_uniform())

@@ -1,8 +1,43 @@
 //! report.json: what ran, how long each phase took, how many photons and rays.
 
+use crate::light::Light;
 use crate::render::RenderStats;
 use crate::scene::{EffectPlan, IntegratorSettings, Scene, WavelengthSampling};
 use serde::Serialize;
+
+/// One light as the run simulated it: its power, and for a light at infinity the beam its
+/// photons fill (the box's shadow, or the projection map's cells where paths curve).
+#[derive(Serialize)]
+pub struct LightReport {
+    pub name: String,
+    #[serde(rename = "type")]
+    pub kind: &'static str,
+    /// Power emitted into the scene's wavelength range, W.
+    pub power_w: f64,
+    /// Cross-section of a directional light's (or the sun's) beam, m².
+    pub beam_area_m2: Option<f64>,
+    /// Cells of its projection map (`None`: the straight shadow of the target, or the whole scene).
+    pub projection_map_cells: Option<usize>,
+}
+
+impl LightReport {
+    fn of(name: &str, light: &Light) -> LightReport {
+        let kind = match light {
+            Light::Area(_) => "area",
+            Light::Point(_) => "point",
+            Light::Spot(_) => "spot",
+            Light::Directional(d) if d.sin_max > 0.0 => "sun",
+            Light::Directional(_) => "directional",
+            Light::Luminaire(_) => "luminaire",
+            Light::Sky(_) => "sky",
+        };
+        let (beam_area_m2, projection_map_cells) = match light {
+            Light::Directional(d) => (Some(d.beam_area()), d.cells.as_ref().map(|c| c.cells.len())),
+            _ => (None, None),
+        };
+        LightReport { name: name.to_string(), kind, power_w: light.power_w(), beam_area_m2, projection_map_cells }
+    }
+}
 
 #[derive(Serialize)]
 pub struct Wavelengths {
@@ -25,6 +60,9 @@ pub struct Report<'a> {
     pub rgb_units: &'static str,
     pub integrator: &'a IntegratorSettings,
     pub effects: &'a EffectPlan,
+    pub lights: Vec<LightReport>,
+    /// Notes the scene's validation printed (e.g. a beam no curved path reaches).
+    pub warnings: &'a [String],
     pub total_seconds: f64,
     #[serde(flatten)]
     pub stats: &'a RenderStats,
@@ -56,6 +94,8 @@ impl<'a> Report<'a> {
             rgb_units: "linear sRGB (D65), Y in cd m^-2",
             integrator: &scene.integrator,
             effects: &scene.plan,
+            lights: scene.lights.iter().zip(&scene.light_names).map(|(l, n)| LightReport::of(n, l)).collect(),
+            warnings: &scene.warnings,
             total_seconds,
             stats,
             outputs,

@@ -10,7 +10,8 @@
 //! 2. *mark*: a grid of [`GRID`]×[`GRID`] cells over a window around the aimed point (the
 //!    shadow's size, grown until no marked cell touches its border) is tested by tracing rays
 //!    from every grid vertex — along the axis and, for a disc of finite size (the sun), toward
-//!    the four edges of the disc — to their first surface; a ray that passes through the box
+//!    the four edges of the disc, each from where such a photon starts
+//!    ([`DirectionalLight::aimed_origin`]) — to their first surface; a ray that passes through the box
 //!    (grown by one cell's width) marks the cells around its vertex;
 //! 3. the marked cells, grown by one ring, are where photons start ([`BeamCells`]), and the
 //!    light's power is E times their area.
@@ -108,7 +109,9 @@ fn mark(
         .filter_map(|k| {
             let (i, j) = (k % (GRID + 1), k / (GRID + 1));
             let p = light.plane_point(origin[0] + i as f64 * size[0], origin[1] + j as f64 * size[1]);
-            let reaches = dirs.iter().any(|d| trace(prop, p, *d, medium, &grown, grown.centre()).0);
+            // Each direction from where its photons start (aimed through the same beam point).
+            let reaches =
+                dirs.iter().any(|d| trace(prop, light.aimed_origin(p, *d), *d, medium, &grown, grown.centre()).0);
             reaches.then_some([i as u32, j as u32])
         })
         .collect();

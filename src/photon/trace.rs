@@ -153,11 +153,11 @@ pub fn trace(
                     st.missed += 1;
                     return;
                 }
-                if store_volume {
+                let m = &scene.media[medium as usize];
+                if store_volume && (m.scatters() || !scene.sensors.is_empty()) {
                     out.volume.push(f.record(position, dir, DVec3::ZERO));
                     st.stored_volume += 1;
                 }
-                let m = &scene.media[medium as usize];
                 let wo = if rng.uniform() < m.albedo(f.lambda) {
                     m.phase.sample(f.lambda, dir, rng.uniform2()).0
                 } else if m.inelastic.is_empty() {

@@ -541,6 +541,12 @@ impl<'a> EyeTracer<'a> {
         let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
         let m = &self.scene.media[id as usize];
         let lanes = at.lanes;
+        if !m.scatters() {
+            // A medium that only absorbs sends nothing toward the eye: its transmittance, in one
+            // piece (no steps, no roulette on a deep optical depth).
+            self.attenuate(m, c, 0.0, c.length, lanes, along, rng);
+            return;
+        }
         let est = match at.mode {
             Mode::Camera => self.volume.as_ref(),
             Mode::Gather => self.volume_all.as_ref(),

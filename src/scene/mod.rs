@@ -509,8 +509,13 @@ fn decide_plan(scene: &Scene) -> EffectPlan {
         })
         .map(|m| &scene.media[m])
         .collect();
-    let facts =
-        plan::SceneFacts { used_materials: used, used_media, sampling: scene.sampling, bands: scene.bands.count };
+    let facts = plan::SceneFacts {
+        used_materials: used,
+        used_media,
+        sampling: scene.sampling,
+        bands: scene.bands.count,
+        photon_sensors: !scene.sensors.is_empty(),
+    };
     EffectPlan::decide(&facts, &scene.integrator)
 }
 

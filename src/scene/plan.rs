@@ -48,6 +48,8 @@ pub struct SceneFacts<'a> {
     pub used_media: Vec<&'a Medium>,
     pub sampling: WavelengthSampling,
     pub bands: usize,
+    /// The scene has sensors that count photons at every interaction (ocean profiles).
+    pub photon_sensors: bool,
 }
 
 impl EffectPlan {
@@ -112,7 +114,7 @@ impl EffectPlan {
             final_gather,
             dispersion_splitting,
             participating_media: media_decision(&facts.used_media),
-            volume_map: volume_map_decision(&facts.used_media, s),
+            volume_map: volume_map_decision(&facts.used_media, facts.photon_sensors, s),
             curved_paths: curved_decision(&facts.used_media, s),
             inelastic_scattering: inelastic_decision(&facts.used_media),
         }
@@ -225,8 +227,18 @@ fn inelastic_decision(media: &[&Medium]) -> Decision {
     }
 }
 
-fn volume_map_decision(media: &[&Medium], s: &IntegratorSettings) -> Decision {
-    match (media.iter().find(|m| !m.is_clear()), s.direct, s.photons) {
+fn volume_map_decision(media: &[&Medium], photon_sensors: bool, s: &IntegratorSettings) -> Decision {
+    if let Some(m) = media.iter().find(|m| !m.is_clear() && !m.scatters())
+        && !media.iter().any(|m| m.scatters())
+        && !photon_sensors
+    {
+        return Decision::off(format!(
+            "\"{}\" only absorbs (σ_s = 0): nothing is scattered toward the eye, so no photon is stored in it",
+            m.name
+        ));
+    }
+    let stores = |m: &&&Medium| m.scatters() || (photon_sensors && !m.is_clear());
+    match (media.iter().find(stores), s.direct, s.photons) {
         (None, _, _) => Decision::off("no participating medium to store photons in"),
         (Some(_), _, 0) => Decision::off("[integrator] photons = 0"),
         (Some(m), DirectLighting::PhotonMap, _) => Decision::on(format!(
