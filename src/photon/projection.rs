@@ -7,8 +7,10 @@
 //! 1. *aim*: the curved ray from the shadow's centre is traced and its point of closest approach
 //!    to the box's centre measured; the start point is moved by the miss, in the beam plane, and
 //!    traced again (bending is nearly a translation over the box, so a few rounds converge);
-//! 2. *mark*: a grid of [`GRID`]×[`GRID`] cells over a window around the aimed point (the
-//!    shadow's size, grown until no marked cell touches its border) is tested by tracing rays
+//!    for a disc (the sun) the axis and the disc's four edges are aimed each on its own, from
+//!    where their photons start, since they cross the air elsewhere and bend differently;
+//! 2. *mark*: a grid of [`GRID`]×[`GRID`] cells over a window around the aimed points (the
+//!    shadow's size plus their spread, grown until no marked cell touches its border) is tested by tracing rays
 //!    from every grid vertex — along the axis and, for a disc of finite size (the sun), toward
 //!    the four edges of the disc, each from where such a photon starts
 //!    ([`DirectionalLight::aimed_origin`]) — to their first surface; a ray that passes through the box
@@ -44,8 +46,15 @@ pub fn build(scene: &Scene, light: &DirectionalLight, medium: Option<u32>) -> Op
     let frame = Frame::from_normal(light.dir);
     let half = [0.5 * (light.beam[0][1] - light.beam[0][0]), 0.5 * (light.beam[1][1] - light.beam[1][0])];
     let centre = [0.5 * (light.beam[0][0] + light.beam[0][1]), 0.5 * (light.beam[1][0] + light.beam[1][1])];
-    let aimed = aim(&prop, light, &frame, medium, &target, centre);
-    let mut window = [half[0].max(1e-6) * 1.5, half[1].max(1e-6) * 1.5];
+    // Each direction of the disc is aimed on its own: rays from its edges cross the air
+    // elsewhere and bend differently (a low sun's lower limb is lifted more than its upper),
+    // so the window spans all their aimed points.
+    let aims: Vec<[f64; 2]> =
+        disc_dirs(light, &frame).iter().map(|d| aim(&prop, light, &frame, medium, &target, centre, *d)).collect();
+    let lo = aims.iter().fold([f64::INFINITY; 2], |a, p| [a[0].min(p[0]), a[1].min(p[1])]);
+    let hi = aims.iter().fold([f64::NEG_INFINITY; 2], |a, p| [a[0].max(p[0]), a[1].max(p[1])]);
+    let aimed = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+    let mut window = [half[0].max(1e-6) * 1.5 + 0.5 * (hi[0] - lo[0]), half[1].max(1e-6) * 1.5 + 0.5 * (hi[1] - lo[1])];
     for _ in 0..GROW_ROUNDS {
         let origin = [aimed[0] - window[0], aimed[1] - window[1]];
         let size = [2.0 * window[0] / GRID as f64, 2.0 * window[1] / GRID as f64];
@@ -63,7 +72,20 @@ pub fn build(scene: &Scene, light: &DirectionalLight, medium: Option<u32>) -> Op
     None
 }
 
-/// The beam point whose curved path passes closest to the target's centre.
+/// The axis and, for a disc of finite size, the four edges of the disc.
+fn disc_dirs(light: &DirectionalLight, frame: &Frame) -> Vec<DVec3> {
+    let cos_m = (1.0 - light.sin_max * light.sin_max).sqrt();
+    let mut dirs = vec![light.dir];
+    if light.sin_max > 0.0 {
+        for e in [frame.s, -frame.s, frame.t, -frame.t] {
+            dirs.push((cos_m * light.dir + light.sin_max * e).normalize());
+        }
+    }
+    dirs
+}
+
+/// The beam point whose curved path along `dir` (started where such a photon starts) passes
+/// closest to the target's centre.
 fn aim(
     prop: &Propagator,
     light: &DirectionalLight,
@@ -71,11 +93,13 @@ fn aim(
     medium: Option<u32>,
     target: &Aabb,
     start: [f64; 2],
+    dir: DVec3,
 ) -> [f64; 2] {
     let c = target.centre();
     let mut st = start;
     for _ in 0..AIM_ROUNDS {
-        let (_, closest) = trace(prop, light.plane_point(st[0], st[1]), light.dir, medium, target, c);
+        let from = light.aimed_origin(light.plane_point(st[0], st[1]), dir);
+        let (_, closest) = trace(prop, from, dir, medium, target, c);
         let Some(p) = closest else { return st };
         let miss = p - c;
         st = [st[0] - miss.dot(frame.s), st[1] - miss.dot(frame.t)];
@@ -97,13 +121,7 @@ fn mark(
 ) -> Vec<[u32; 2]> {
     let frame = Frame::from_normal(light.dir);
     let grown = target.padded(size[0].max(size[1]));
-    let cos_m = (1.0 - light.sin_max * light.sin_max).sqrt();
-    let mut dirs = vec![light.dir];
-    if light.sin_max > 0.0 {
-        for e in [frame.s, -frame.s, frame.t, -frame.t] {
-            dirs.push((cos_m * light.dir + light.sin_max * e).normalize());
-        }
-    }
+    let dirs = disc_dirs(light, &frame);
     let hits: Vec<[u32; 2]> = (0..(GRID + 1) * (GRID + 1))
         .into_par_iter()
         .filter_map(|k| {

@@ -199,7 +199,9 @@ fn media_decision(media: &[&Medium]) -> Decision {
             let names: Vec<String> = media
                 .iter()
                 .map(|m| {
-                    format!("\"{}\" ({})", m.name, if m.is_homogeneous() { "homogeneous" } else { "heterogeneous" })
+                    let kind = if m.is_homogeneous() { "homogeneous" } else { "heterogeneous" };
+                    let what = if m.scatters() { "" } else { ", absorbing only" };
+                    format!("\"{}\" ({kind}{what})", m.name)
                 })
                 .collect();
             Decision::on(format!("light is absorbed and scattered in {}", names.join(", ")))
