@@ -13,6 +13,7 @@
 //! units where they could be doubted (`wavelength_nm`, `power_w`).
 
 pub mod atmosphere;
+pub mod distributed;
 pub mod error;
 pub mod geometry;
 pub mod light;

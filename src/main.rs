@@ -2,8 +2,9 @@
 //! Exit codes: 0 success, 2 bad input, 1 internal failure.
 
 use clap::{Parser, Subcommand};
+use morgana::distributed::{self, MapMemory, Schedule, World};
 use morgana::error::{Error, Result};
-use morgana::render::{RenderOptions, render};
+use morgana::render::{RenderOptions, render_on};
 use morgana::scene::{Scene, default_scene, load_scene_file};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -36,6 +37,14 @@ enum Command {
         /// No progress bars.
         #[arg(long)]
         quiet: bool,
+        /// Photon-map memory each rank may hold, e.g. 8G or 512M (default: what its host has
+        /// available, shared by the ranks there). Every rank holds every map.
+        #[arg(long, value_parser = morgana::distributed::budget::parse_bytes)]
+        max_map_memory: Option<u64>,
+        /// How rank 0 hands out eye-pass rows under MPI: "dynamic" (guided self-scheduling) or
+        /// "static" (interleaved blocks). The image does not depend on it.
+        #[arg(long, default_value = "dynamic", value_parser = parse_schedule)]
+        schedule: Schedule,
     },
     /// Write a density grid (.mgrid, documented in src/media/density/grid.rs) of procedural fBm
     /// turbulence, for `density = { type = "grid", file = ... }`.
@@ -93,8 +102,10 @@ enum Command {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render { scene, out, photons, seed, threads, quiet } => {
-            run_render(scene.as_deref(), &out, photons, seed, threads, quiet)
+        Command::Render { scene, out, photons, seed, threads, quiet, max_map_memory, schedule } => {
+            let map_memory = max_map_memory.map_or(MapMemory::Available, MapMemory::Limit);
+            let dist = distributed::Options { map_memory, schedule };
+            run_render(scene.as_deref(), &out, photons, seed, threads, quiet, dist)
         }
         Command::Check { scene } => run_check(scene.as_deref()),
         Command::Grid { out, res, min, max, base, amplitude, frequency_per_m, octaves, seed } => {
@@ -131,10 +142,14 @@ fn load(path: Option<&Path>) -> Result<Scene> {
         Some(p) => load_scene_file(p),
         None => default_scene(),
     }?;
+    print_warnings(&scene);
+    Ok(scene)
+}
+
+fn print_warnings(scene: &Scene) {
     for w in &scene.warnings {
         eprintln!("morgana: note: {w}");
     }
-    Ok(scene)
 }
 
 fn run_tonemap(args: &morgana::tonemap::cli::TonemapArgs) -> Result<()> {
@@ -163,6 +178,9 @@ fn run_check(path: Option<&Path>) -> Result<()> {
     Ok(())
 }
 
+/// Renders on every rank of this run's world (one process, or an MPI job under `mpirun`); rank
+/// 0 writes the outputs. Errors are collective: every rank ends with the same exit code, and
+/// only rank 0 prints.
 fn run_render(
     path: Option<&Path>,
     out: &Path,
@@ -170,28 +188,47 @@ fn run_render(
     seed: Option<u64>,
     threads: Option<usize>,
     quiet: bool,
+    dist: distributed::Options,
 ) -> Result<()> {
     let start = Instant::now();
-    let mut scene = load(path)?;
-    scene.apply_overrides(photons, seed);
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = threads {
-        if t == 0 {
-            return Err(Error::input(None, "--threads must be at least 1"));
+    let world = World::start()?;
+    let result = (|| {
+        let mut builder = rayon::ThreadPoolBuilder::new();
+        if let Some(t) = threads {
+            if t == 0 {
+                return Err(Error::input(None, "--threads must be at least 1"));
+            }
+            builder = builder.num_threads(t);
         }
-        builder = builder.num_threads(t);
+        let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
+        let scene = distributed::scene::load(&world, path, photons, seed)?;
+        if world.is_root() {
+            print_warnings(&scene);
+            if world.size() > 1 && !quiet {
+                eprintln!("morgana: {} ranks ({}), eye pass {:?}", world.size(), world.kind(), dist.schedule);
+            }
+        }
+        let rendered = pool.install(|| render_on(&world, &scene, &RenderOptions { quiet }, &dist))?;
+        let Some(rendered) = rendered else { return Ok(()) };
+        let threads = pool.current_num_threads();
+        let outputs = morgana::output::write_outputs(&scene, &rendered, out, threads, start.elapsed().as_secs_f64())?;
+        for p in outputs {
+            println!("wrote {}", p.display());
+        }
+        Ok(())
+    })();
+    let root = world.is_root();
+    drop(world); // MPI_Finalize on every rank, also after an error
+    match result {
+        Err(e) if !root => std::process::exit(e.exit_code()),
+        r => r,
     }
-    let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
-    let rendered = pool.install(|| render(&scene, &RenderOptions { quiet }));
-    let outputs = morgana::output::write_outputs(
-        &scene,
-        &rendered,
-        out,
-        pool.current_num_threads(),
-        start.elapsed().as_secs_f64(),
-    )?;
-    for p in outputs {
-        println!("wrote {}", p.display());
+}
+
+fn parse_schedule(s: &str) -> std::result::Result<Schedule, String> {
+    match s {
+        "dynamic" => Ok(Schedule::Dynamic),
+        "static" => Ok(Schedule::Static),
+        _ => Err(format!("expected \"dynamic\" or \"static\", found \"{s}\"")),
     }
-    Ok(())
 }

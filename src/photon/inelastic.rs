@@ -11,10 +11,10 @@ use crate::media::inelastic::{Outcome, Process};
 use crate::rng::Rng;
 use crate::scene::Scene;
 use glam::DVec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One component's tally over a pass. Powers in W.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct InelasticTally {
     pub medium: String,
     pub component: String,

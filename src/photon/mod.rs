@@ -33,7 +33,34 @@ pub fn shoot(
     seed: u64,
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> (PhotonSink, PhotonStats) {
-    let mut stats = PhotonStats { emitted, inelastic: inelastic::tallies(scene), ..PhotonStats::default() };
+    shoot_batches(scene, kind, emitted, seed, 0..batch_count(emitted), on_batch)
+}
+
+/// How many batches a pass of `emitted` photons has (the last one may be short).
+pub fn batch_count(emitted: u64) -> u64 {
+    emitted.div_ceil(BATCH)
+}
+
+/// Photons in batch `b` of a pass of `emitted` photons.
+pub fn batch_photons(emitted: u64, b: u64) -> u64 {
+    BATCH.min(emitted.saturating_sub(b * BATCH))
+}
+
+/// Shoots only batches `batches` (within `0..batch_count(emitted)`) of a pass of `emitted`
+/// photons: each photon carries the power of the whole pass's share and each batch its own
+/// random stream, so the union of the photons of disjoint ranges covering every batch, in batch
+/// order, is what [`shoot`] returns. `stats.emitted` counts the photons of these batches.
+pub fn shoot_batches(
+    scene: &Scene,
+    kind: MapKind,
+    emitted: u64,
+    seed: u64,
+    batches: std::ops::Range<u64>,
+    on_batch: &(dyn Fn(u64) + Sync),
+) -> (PhotonSink, PhotonStats) {
+    let batches = batches.start.min(batch_count(emitted))..batches.end.min(batch_count(emitted));
+    let here = batches.clone().map(|b| batch_photons(emitted, b)).sum();
+    let mut stats = PhotonStats { emitted: here, inelastic: inelastic::tallies(scene), ..PhotonStats::default() };
     let Some(chooser) = LightChooser::new(&scene.lights) else { return (PhotonSink::default(), stats) };
     let targets = match kind {
         MapKind::Caustic => match CausticTargets::new(scene) {
@@ -49,11 +76,11 @@ pub fn shoot(
         MapKind::Caustic => Stream::CausticPhotons,
         MapKind::Global => Stream::GlobalPhotons,
     };
-    let results: Vec<(PhotonSink, PhotonStats)> = (0..emitted.div_ceil(BATCH))
+    let results: Vec<(PhotonSink, PhotonStats)> = batches
         .into_par_iter()
         .map(|b| {
             let mut rng = Rng::for_task(seed, stream, b);
-            let n = BATCH.min(emitted - b * BATCH);
+            let n = batch_photons(emitted, b);
             let mut out = PhotonSink::default();
             let mut st = PhotonStats::default();
             for _ in 0..n {

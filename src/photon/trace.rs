@@ -20,7 +20,7 @@ use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::Scene;
 use glam::DVec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Which map a pass fills, and so which hits it stores.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,7 +39,7 @@ pub const MAX_PHOTON_BOUNCES: usize = 4096;
 
 /// What happened to a pass's photons. Powers are in W; for the global pass
 /// emitted = absorbed at surfaces + absorbed in media + escaped + truncated.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PhotonStats {
     pub emitted: u64,
     /// Photons stored on surfaces.

@@ -39,29 +39,62 @@ pub struct IrradianceCache {
 impl IrradianceCache {
     /// Estimates irradiance at every `stride`-th photon of the estimator's map.
     pub fn build(est: &Estimator, stride: usize) -> IrradianceCache {
-        let map = est.map;
+        let all: Vec<u32> = (0..Self::points(est.map.len(), stride) as u32).collect();
+        Self::from_values(est, stride, Self::estimate(est, stride, &all))
+    }
+
+    /// How many cache points a map of `map_len` photons gets: one per `stride` photons.
+    pub fn points(map_len: usize, stride: usize) -> usize {
+        map_len.div_ceil(stride.max(1))
+    }
+
+    /// Bytes a cache of `points` points of `bands` bands holds once built (tree and values).
+    pub fn bytes_for(points: usize, bands: usize) -> usize {
+        KdTree::<CachePoint>::bytes_for(points) + points * bands * 4
+    }
+
+    /// Where cache point `point` sits: the position of photon `point × stride` and the normal on
+    /// the side the photon arrived from.
+    fn site(est: &Estimator, stride: usize, point: u32) -> (DVec3, DVec3) {
+        let p = est.map.record(point * stride.max(1) as u32);
+        let side = if p.dir.dot(p.normal) < 0.0 { p.normal } else { -p.normal };
+        (p.position, side)
+    }
+
+    /// The irradiance at cache points `points` (indices below [`IrradianceCache::points`]): the
+    /// estimator's band count of f32 values per point, in the order given. Any partition of the
+    /// points, estimated anywhere and put back in point order, gives the values
+    /// [`IrradianceCache::build`] computes.
+    pub fn estimate(est: &Estimator, stride: usize, points: &[u32]) -> Vec<f32> {
         let bands = est.bands.count;
-        let picked: Vec<u32> = (0..map.len() as u32).step_by(stride.max(1)).collect();
-        let computed: Vec<(DVec3, DVec3, BandValues)> = picked
+        let computed: Vec<BandValues> = points
             .par_iter()
             .map_init(Neighbours::default, |nb, &i| {
-                let p = map.record(i);
-                let side = if p.dir.dot(p.normal) < 0.0 { p.normal } else { -p.normal };
-                (p.position, side, est.irradiance(p.position, side, nb))
+                let (pos, side) = Self::site(est, stride, i);
+                est.irradiance(pos, side, nb)
             })
             .collect();
-        let origin = computed.first().map_or(DVec3::ZERO, |c| c.0);
-        let mut values = Vec::with_capacity(computed.len() * bands);
-        let points: Vec<CachePoint> = computed
+        computed.iter().flat_map(|e| e[..bands].iter().map(|v| *v as f32)).collect()
+    }
+
+    /// The cache from the values of every point in point order (as [`IrradianceCache::estimate`]
+    /// returns them for all points).
+    ///
+    /// # Panics
+    /// If `values` does not hold the band count of values for every point.
+    pub fn from_values(est: &Estimator, stride: usize, values: Vec<f32>) -> IrradianceCache {
+        let bands = est.bands.count;
+        let n = Self::points(est.map.len(), stride);
+        assert_eq!(values.len(), n * bands, "irradiance values: {n} points of {bands} bands expected");
+        let sites: Vec<(DVec3, DVec3)> = (0..n as u32).into_par_iter().map(|i| Self::site(est, stride, i)).collect();
+        let origin = sites.first().map_or(DVec3::ZERO, |c| c.0);
+        let points: Vec<CachePoint> = sites
             .iter()
             .enumerate()
-            .map(|(i, (pos, n, e))| {
-                values.extend(e[..bands].iter().map(|v| *v as f32));
-                CachePoint {
-                    pos: (*pos - origin).as_vec3().to_array(),
-                    normal: n.as_vec3().to_array(),
-                    index: i as u32,
-                }
+            .map(|(i, (pos, n))| CachePoint {
+                pos: (*pos - origin).as_vec3().to_array(),
+                normal: n.as_vec3().to_array(),
+                index: i as u32,
             })
             .collect();
         IrradianceCache { origin, tree: KdTree::build(points), bands, values, max_radius: est.max_radius }

@@ -128,15 +128,28 @@ impl<T: KdPoint> KdTree<T> {
     pub fn build_with_leaf_size(mut items: Vec<T>, leaf_size: usize) -> KdTree<T> {
         let n = items.len();
         assert!(n < u32::MAX as usize, "kd-tree holds fewer than 2^32 - 1 items");
+        let depth = Self::depth_for(n, leaf_size);
+        let mut nodes = vec![Split { value: 0.0, axis: 0 }; (1usize << depth) - 1];
+        let shape = Shape { n, depth };
+        shape.build_subtree(&mut items, &mut nodes, depth, 0);
+        KdTree { items, nodes, depth }
+    }
+
+    /// The height of a tree of `n` items with leaves of at most `leaf_size` (at least 2): the
+    /// least depth whose `2^depth` leaves hold at most `leaf_size` items each.
+    pub fn depth_for(n: usize, leaf_size: usize) -> u32 {
         let leaf_size = leaf_size.max(2);
         let mut depth = 0;
         while n.div_ceil(1 << depth) > leaf_size {
             depth += 1;
         }
-        let mut nodes = vec![Split { value: 0.0, axis: 0 }; (1usize << depth) - 1];
-        let shape = Shape { n, depth };
-        shape.build_subtree(&mut items, &mut nodes, depth, 0);
-        KdTree { items, nodes, depth }
+        depth
+    }
+
+    /// Bytes of a tree of `n` items with leaves of at most [`LEAF_SIZE`], as
+    /// [`KdTree::memory_bytes`] reports it once built, less the struct itself.
+    pub fn bytes_for(n: usize) -> usize {
+        n * size_of::<T>() + ((1usize << Self::depth_for(n, LEAF_SIZE)) - 1) * size_of::<Split>()
     }
     pub fn len(&self) -> usize {
         self.items.len()

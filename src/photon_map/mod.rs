@@ -41,14 +41,36 @@ impl PhotonMap {
     /// The origin is the centre of the records' bounding box, so stored positions resolve
     /// about `extent × 6e-8` (see [`Photon`]). Records whose position is not finite are dropped.
     pub fn build(records: &[PhotonRecord]) -> PhotonMap {
-        let finite = |r: &&PhotonRecord| r.position.is_finite();
-        let (lo, hi) = records
+        let (lo, hi) = Self::bounds(records);
+        let origin = Self::origin_for(lo, hi);
+        Self::from_photons(origin, Self::encode(records, origin))
+    }
+
+    /// The bounding box (min, max corners) of the records' finite positions; (+∞, −∞) when there
+    /// are none. Min and max are exact, so boxes of parts of a record set combine (by min and max)
+    /// into the box of the whole, whatever the split.
+    pub fn bounds(records: &[PhotonRecord]) -> (DVec3, DVec3) {
+        let empty = || (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        records
             .par_iter()
-            .filter(finite)
-            .fold(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), r| (lo.min(r.position), hi.max(r.position)))
-            .reduce(|| (DVec3::INFINITY, DVec3::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
-        let origin = if lo.x <= hi.x { (lo + hi) * 0.5 } else { DVec3::ZERO };
-        let photons: Vec<Photon> = records.par_iter().filter(finite).map(|r| Photon::encode(r, origin)).collect();
+            .filter(|r| r.position.is_finite())
+            .fold(empty, |(lo, hi), r| (lo.min(r.position), hi.max(r.position)))
+            .reduce(empty, |a, b| (a.0.min(b.0), a.1.max(b.1)))
+    }
+
+    /// The origin [`PhotonMap::build`] uses for a bounding box: its centre (zero for an empty box).
+    pub fn origin_for(lo: DVec3, hi: DVec3) -> DVec3 {
+        if lo.x <= hi.x { (lo + hi) * 0.5 } else { DVec3::ZERO }
+    }
+
+    /// The records with a finite position, encoded relative to `origin`, in their order.
+    pub fn encode(records: &[PhotonRecord], origin: DVec3) -> Vec<Photon> {
+        records.par_iter().filter(|r| r.position.is_finite()).map(|r| Photon::encode(r, origin)).collect()
+    }
+
+    /// The map of photons already encoded relative to `origin` (the kd-tree is built from them
+    /// in their order, so equal inputs give equal maps).
+    pub fn from_photons(origin: DVec3, photons: Vec<Photon>) -> PhotonMap {
         PhotonMap { origin, tree: KdTree::build(photons) }
     }
     pub fn len(&self) -> usize {

@@ -162,6 +162,46 @@ impl Photon {
     pub fn flags(&self) -> u32 {
         self.flags
     }
+
+    /// Bytes of [`Photon::to_le_bytes`].
+    pub const BYTES: usize = 32;
+
+    /// The photon as 32 little-endian bytes (fields in declaration order), for sending between
+    /// processes; [`Photon::from_le_bytes`] restores it bit for bit.
+    pub fn to_le_bytes(&self) -> [u8; Self::BYTES] {
+        let words = [
+            self.position[0].to_bits(),
+            self.position[1].to_bits(),
+            self.position[2].to_bits(),
+            self.power_w.to_bits(),
+            self.wavelength_nm.to_bits(),
+            u32::from(self.dir[0]) | (u32::from(self.dir[1]) << 16),
+            u32::from(self.normal[0]) | (u32::from(self.normal[1]) << 16),
+            self.flags,
+        ];
+        let mut out = [0u8; Self::BYTES];
+        for (chunk, w) in out.chunks_exact_mut(4).zip(words) {
+            chunk.copy_from_slice(&w.to_le_bytes());
+        }
+        out
+    }
+
+    /// Inverse of [`Photon::to_le_bytes`].
+    pub fn from_le_bytes(bytes: &[u8; Self::BYTES]) -> Photon {
+        let mut w = [0u32; 8];
+        for (word, chunk) in w.iter_mut().zip(bytes.chunks_exact(4)) {
+            *word = u32::from_le_bytes([chunk[0], chunk[1], chunk[2], chunk[3]]);
+        }
+        let halves = |x: u32| [(x & 0xFFFF) as u16, (x >> 16) as u16];
+        Photon {
+            position: [f32::from_bits(w[0]), f32::from_bits(w[1]), f32::from_bits(w[2])],
+            power_w: f32::from_bits(w[3]),
+            wavelength_nm: f32::from_bits(w[4]),
+            dir: halves(w[5]),
+            normal: halves(w[6]),
+            flags: w[7],
+        }
+    }
 }
 
 impl super::KdPoint for Photon {
@@ -300,6 +340,37 @@ mod tests {
                 assert!((d.length() - 1.0).abs() < 1e-12, "{a} {b}");
             }
         }
+    }
+
+    #[test]
+    fn byte_form_restores_every_bit() {
+        let mut rng = Rng::for_task(3, Stream::Test, 0);
+        for i in 0..10_000 {
+            let rec = PhotonRecord {
+                position: DVec3::new(rng.uniform(), -rng.uniform(), 1e3 * rng.uniform()),
+                dir: uniform_dir(&mut rng),
+                normal: if i % 2 == 0 { uniform_dir(&mut rng) } else { DVec3::ZERO },
+                wavelength_nm: 380.0 + 400.0 * rng.uniform(),
+                power_w: 1e-6 * rng.uniform(),
+                path: [PhotonPath::Direct, PhotonPath::Specular, PhotonPath::Diffuse][i % 3],
+            };
+            let p = Photon::encode(&rec, DVec3::new(0.5, -0.5, 500.0));
+            let back = Photon::from_le_bytes(&p.to_le_bytes());
+            assert_eq!(back.to_le_bytes(), p.to_le_bytes());
+            assert_eq!(back.position_rel(), p.position_rel());
+            assert_eq!((back.dir(), back.normal(), back.flags()), (p.dir(), p.normal(), p.flags()));
+            assert_eq!(
+                (back.power_w().to_bits(), back.wavelength_nm().to_bits()),
+                (p.power_w().to_bits(), p.wavelength_nm().to_bits())
+            );
+        }
+        // The layout is fixed: position x first, flags last, little-endian.
+        let mut bytes = [0u8; Photon::BYTES];
+        bytes[..4].copy_from_slice(&1.5f32.to_le_bytes());
+        bytes[28] = Photon::FLAG_SURFACE as u8;
+        let p = Photon::from_le_bytes(&bytes);
+        assert_eq!(p.position_rel().x, 1.5);
+        assert!(p.is_surface());
     }
 
     #[test]

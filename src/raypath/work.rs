@@ -3,7 +3,7 @@
 //! Each event adds its integrator's counters once (one atomic add per counter per event, not per
 //! step), so counting does not slow the stepping.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// Running totals shared by the threads of one pass.
@@ -18,7 +18,7 @@ pub struct CurvedWork {
 }
 
 /// A snapshot of [`CurvedWork`], as `report.json` records it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct CurvedWorkTotals {
     /// Events (surface, medium interaction, escape) reached along curved paths.
     pub curved_events: u64,

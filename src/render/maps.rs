@@ -1,12 +1,14 @@
 //! The photon pass as the renderer runs it: shoot, build the maps the effect plan asks for, and
-//! precompute irradiance for final gathering.
+//! precompute irradiance for final gathering — on one rank or many ([`crate::distributed`]).
 
 use super::progress;
 use super::stats::{MapReport, Phases};
-use crate::photon::{self, MapKind, PhotonStats};
+use crate::distributed::clock::Span;
+use crate::distributed::{self, Rank, assemble, photons::Shot};
+use crate::error::Result;
+use crate::photon::MapKind;
 use crate::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
 use crate::scene::Scene;
-use std::time::Instant;
 
 /// Every stride-th global photon gets a precomputed irradiance estimate (Christensen uses 4).
 pub const IRRADIANCE_STRIDE: usize = 4;
@@ -20,34 +22,41 @@ pub struct Maps {
     pub irradiance: Option<IrradianceCache>,
 }
 
-/// Runs the photon passes the plan asks for.
-pub fn build(scene: &Scene, quiet: bool, phases: &mut Phases, reports: &mut Vec<MapReport>) -> Maps {
+/// Runs the photon passes the plan asks for, on every rank of `rank`'s world: each rank shoots
+/// its share of the batches and every rank assembles the whole maps (see
+/// [`crate::distributed`]). Fails, on every rank, if a map would not fit in the rank's budget.
+pub fn build(
+    rank: &mut Rank,
+    scene: &Scene,
+    quiet: bool,
+    phases: &mut Phases,
+    reports: &mut Vec<MapReport>,
+) -> Result<Maps> {
     let s = &scene.integrator;
     let plan = &scene.plan;
     let mut maps = Maps::default();
     if plan.global_map.on || plan.volume_map.on {
-        let (sink, stats, trace_s) = shoot(scene, MapKind::Global, s.photons, "global", quiet, phases);
+        let shot = shoot(rank, scene, MapKind::Global, s.photons, "global", quiet, phases);
         if plan.global_map.on {
-            let (map, report) = build_map(&sink.surface, "global", s.photons, trace_s, &stats, phases);
+            let (map, report) = build_map(rank, &shot.sink.surface, "global", s.photons, &shot, phases)?;
             reports.push(report);
             maps.global = Some(map);
         }
         if plan.volume_map.on {
-            let (map, report) = build_map(&sink.volume, "volume", s.photons, trace_s, &stats, phases);
+            let (map, report) = build_map(rank, &shot.sink.volume, "volume", s.photons, &shot, phases)?;
             reports.push(report);
             maps.volume = Some(map);
         }
     }
     if plan.caustic_map.on {
-        let (sink, stats, trace_s) = shoot(scene, MapKind::Caustic, s.caustic_photons, "caustic", quiet, phases);
-        let (map, report) = build_map(&sink.surface, "caustic", s.caustic_photons, trace_s, &stats, phases);
+        let shot = shoot(rank, scene, MapKind::Caustic, s.caustic_photons, "caustic", quiet, phases);
+        let (map, report) = build_map(rank, &shot.sink.surface, "caustic", s.caustic_photons, &shot, phases)?;
         reports.push(report);
         maps.caustic = Some(map);
     }
     if plan.final_gather.on
         && let Some(global) = &maps.global
     {
-        let t = Instant::now();
         let est = Estimator {
             map: global,
             k: s.k,
@@ -56,47 +65,65 @@ pub fn build(scene: &Scene, quiet: bool, phases: &mut Phases, reports: &mut Vec<
             bands: scene.bands,
             paths: Paths::All,
         };
-        maps.irradiance = Some(IrradianceCache::build(&est, IRRADIANCE_STRIDE));
-        phases.add("irradiance precompute", t);
+        let (cache, gathered) = assemble::irradiance(rank.world, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
+        rank.report.irradiance_received_bytes += gathered.received_bytes;
+        maps.irradiance = Some(cache);
+        phases.push("irradiance precompute", gathered.compute);
+        phases.push("irradiance gather", gathered.gather);
+        phases.push("irradiance cache build", gathered.build);
     }
-    maps
+    Ok(maps)
 }
 
+/// This rank's share of a pass (statistics summed over ranks), with its time as "NAME photon
+/// tracing".
 fn shoot(
+    rank: &mut Rank,
     scene: &Scene,
     kind: MapKind,
     emitted: u64,
     name: &str,
     quiet: bool,
     phases: &mut Phases,
-) -> (photon::PhotonSink, PhotonStats, f64) {
-    let t = Instant::now();
-    let pb = progress::bar(quiet, emitted, &format!("{name} photons"));
-    let (sink, stats) = photon::shoot(scene, kind, emitted, scene.integrator.seed, &|n| pb.inc(n));
+) -> Shot {
+    let batches = crate::photon::batch_count(emitted);
+    progress::note(
+        quiet,
+        rank.world.size(),
+        &format!("{name} photons: {batches} batches over {} ranks", rank.world.size()),
+    );
+    let t = Span::start();
+    let (_, mine) = distributed::photons::my_share(rank.world, emitted);
+    let pb = progress::bar(quiet, mine, &format!("{name} photons"));
+    let shot = distributed::photons::shoot(rank.world, scene, kind, emitted, name, &|n| pb.inc(n));
     pb.finish_and_clear();
-    let seconds = phases.add(&format!("{name} photon tracing"), t);
-    (sink, stats, seconds)
+    phases.add(&format!("{name} photon tracing"), t);
+    rank.report.photons.push(shot.mine.clone());
+    shot
 }
 
+/// The map of every rank's `records`, timed as "NAME map gather" (bounds, encoding, budget check
+/// and all-gather) and "NAME map build" (the kd-tree).
 fn build_map(
+    rank: &mut Rank,
     records: &[PhotonRecord],
     name: &str,
     emitted: u64,
-    trace_s: f64,
-    stats: &PhotonStats,
+    shot: &Shot,
     phases: &mut Phases,
-) -> (PhotonMap, MapReport) {
-    let t = Instant::now();
-    let map = PhotonMap::build(records);
-    let build_s = phases.add(&format!("{name} map build"), t);
+) -> Result<(PhotonMap, MapReport)> {
+    let (map, gathered) = assemble::photon_map(rank.world, &mut rank.budget, name, records)?;
+    phases.push(&format!("{name} map gather"), gathered.gather);
+    let build_s = phases.push(&format!("{name} map build"), gathered.build);
+    rank.report.map_received_bytes += gathered.received_bytes;
     let report = MapReport {
         map: name.to_string(),
         emitted,
         stored: map.len() as u64,
         memory_bytes: map.memory_bytes() as u64,
-        trace_seconds: trace_s,
+        trace_seconds: shot.mine.trace_seconds,
         build_seconds: build_s,
-        stats: stats.clone(),
+        stats: shot.stats.clone(),
     };
-    (map, report)
+    Ok((map, report))
 }

@@ -2,7 +2,8 @@
 //!
 //! Pixels are independent tasks with their own random streams derived from (seed, pixel), and
 //! each pixel's samples are summed in a fixed order, so the image is identical for any number
-//! of threads.
+//! of threads — and of ranks: [`render_on`] runs the same passes split across the processes of
+//! a [`World`] ([`crate::distributed`]); [`render`] is that with one process.
 
 mod camera;
 pub mod eye;
@@ -16,6 +17,9 @@ pub use camera::Camera;
 pub use lanes::Lanes;
 pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 
+use crate::distributed::clock::Span;
+use crate::distributed::{self, DistributedReport, Rank, World};
+use crate::error::Result;
 use crate::output::SpectralImage;
 use crate::raypath::RayState;
 use crate::rng::{Rng, Stream};
@@ -23,7 +27,6 @@ use crate::scene::{Method, Scene};
 use crate::spectrum::colour::BandsToColour;
 use eye::{EyeTracer, Scratch};
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
@@ -44,67 +47,104 @@ pub struct Rendered {
 
 /// Renders `scene` on the current rayon thread pool.
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
+    match render_on(&World::local(), scene, opts, &distributed::Options::default()) {
+        Ok(Some(r)) => r,
+        // One rank is rank 0, and without a map-memory budget nothing can fail.
+        Ok(None) | Err(_) => unreachable!("a local render without a memory budget always returns its image"),
+    }
+}
+
+/// Renders `scene` on every rank of `world` (each on its current rayon pool): the photon passes
+/// and the eye pass are split across ranks (see [`crate::distributed`]) and the image, the same
+/// for any number of ranks, is returned on rank 0 (`None` on the others). Collective. Fails, on
+/// every rank, if the photon maps would not fit in `dist.map_memory`.
+pub fn render_on(
+    world: &World,
+    scene: &Scene,
+    opts: &RenderOptions,
+    dist: &distributed::Options,
+) -> Result<Option<Rendered>> {
+    let mut rank = Rank::new(world, *dist);
+    let quiet = opts.quiet || !world.is_root();
     let mut stats = RenderStats::default();
-    let maps = maps::build(scene, opts.quiet, &mut stats.phases, &mut stats.maps);
+    let maps = maps::build(&mut rank, scene, quiet, &mut stats.phases, &mut stats.maps)?;
     if let Some(c) = &maps.irradiance {
         stats.irradiance_points = c.len() as u64;
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
-    let t = Instant::now();
-    let (data, rays, curved) = eye_pass(scene, &maps, opts.quiet);
-    stats.rays = rays;
-    stats.eye_curved = curved;
+    let t = Span::start();
+    let (data, work, curved) = eye_pass(&rank, scene, &maps, quiet);
     stats.phases.add("eye pass", t);
-    let t = Instant::now();
+    rank.report.eye = work;
+    rank.report.eye_curved = curved;
+    let ranks = rank.gather_reports(&stats.phases);
+    let Some(data) = data else { return Ok(None) };
+    for r in &ranks {
+        stats.rays.add(&r.eye.rays);
+        stats.eye_curved.add(&r.eye_curved);
+    }
+    stats.distributed = Some(DistributedReport::new(world.kind(), dist.schedule, ranks));
+    let t = Span::start();
     let image = to_image(scene, data);
     stats.phases.add("colour conversion", t);
-    let t = Instant::now();
+    let t = Span::start();
     let sensors = crate::sensor::evaluate_all(scene, &maps);
     let profiles = crate::sensor::evaluate_profiles(scene, &maps);
     if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
-    Rendered { image, stats, sensors, profiles }
+    Ok(Some(Rendered { image, stats, sensors, profiles }))
 }
 
-/// Per-pixel band averages (row-major, `bands.count` per pixel), the rays traced and the
-/// integrator work along curved eye paths.
-fn eye_pass(scene: &Scene, maps: &maps::Maps, quiet: bool) -> (Vec<f32>, RayCounts, crate::raypath::CurvedWorkTotals) {
+/// This rank's part of the eye pass: the image's band averages (row-major, `bands.count` per
+/// pixel) on rank 0, this rank's work, and the integrator work along its curved eye paths.
+fn eye_pass(
+    rank: &Rank,
+    scene: &Scene,
+    maps: &maps::Maps,
+    quiet: bool,
+) -> (Option<Vec<f32>>, distributed::eye::EyeWork, crate::raypath::CurvedWorkTotals) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
     let tracer = Tracer::new(scene, maps);
+    let ranks = rank.world.size();
+    progress::note(quiet, ranks, &format!("eye pass: {h} rows over {ranks} ranks, {:?} leases", rank.options.schedule));
     let pb = progress::bar(quiet, h as u64, "eye pass");
-    let rows: Vec<(Vec<f32>, RayCounts)> = (0..h)
-        .into_par_iter()
-        .map_init(Scratch::default, |sc, y| {
-            let before = sc.rays;
-            let mut row = vec![0f32; w * nb];
-            for x in 0..w {
-                let px = pixel(scene, &tracer, x, y, sc);
-                for b in 0..nb {
-                    row[x * nb + b] = px[b] as f32;
+    let render_rows = |rows: std::ops::Range<usize>| -> (Vec<f32>, RayCounts) {
+        let done: Vec<(Vec<f32>, RayCounts)> = rows
+            .into_par_iter()
+            .map_init(Scratch::default, |sc, y| {
+                let before = sc.rays;
+                let mut row = vec![0f32; w * nb];
+                for x in 0..w {
+                    let px = pixel(scene, &tracer, x, y, sc);
+                    for b in 0..nb {
+                        row[x * nb + b] = px[b] as f32;
+                    }
                 }
-            }
-            pb.inc(1);
-            let mut rays = sc.rays;
-            rays.eye -= before.eye;
-            rays.shadow -= before.shadow;
-            rays.gather -= before.gather;
-            (row, rays)
-        })
-        .collect();
+                pb.inc(1);
+                let mut rays = sc.rays;
+                rays.eye -= before.eye;
+                rays.shadow -= before.shadow;
+                rays.gather -= before.gather;
+                (row, rays)
+            })
+            .collect();
+        let mut data = Vec::with_capacity(done.len() * w * nb);
+        let mut rays = RayCounts::default();
+        for (row, r) in done {
+            data.extend(row);
+            rays.add(&r);
+        }
+        (data, rays)
+    };
+    let out = distributed::eye::run(rank.world, rank.options.schedule, h, w * nb, &render_rows, &|n| pb.inc(n));
     pb.finish_and_clear();
-    let mut data = Vec::with_capacity(w * h * nb);
-    let mut rays = RayCounts::default();
-    for (row, r) in rows {
-        data.extend(row);
-        rays.add(&r);
-    }
     let curved = match &tracer {
         Tracer::PhotonMap(t) => t.curved_work(),
         Tracer::Path(t) => t.curved_work(),
     };
-    (data, rays, curved)
+    (out.data, out.work, curved)
 }
 
 /// The eye-pass algorithm the scene asks for.

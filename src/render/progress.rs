@@ -15,3 +15,11 @@ pub fn bar(quiet: bool, len: u64, label: &str) -> ProgressBar {
     pb.set_prefix(label.to_string());
     pb
 }
+
+/// A line on stderr as a phase of a multi-rank run starts (progress bars only show on a
+/// terminal; these lines also reach a log). Hidden when quiet or on one rank.
+pub fn note(quiet: bool, ranks: usize, what: &str) {
+    if !quiet && ranks > 1 {
+        eprintln!("morgana: {what}");
+    }
+}

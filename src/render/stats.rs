@@ -1,25 +1,33 @@
 //! What a render measured: wall time per phase, photons per map, rays traced.
 
+use crate::distributed::clock::{Span, Took};
 use crate::photon::PhotonStats;
-use serde::Serialize;
-use std::time::Instant;
+use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PhaseTime {
     pub phase: String,
+    /// Wall time.
     pub seconds: f64,
+    /// CPU time of this process over the phase (see [`crate::distributed::clock`]).
+    #[serde(default)]
+    pub cpu_seconds: f64,
 }
 
-/// Wall time per phase, in the order the phases ran.
+/// Wall (and CPU) time per phase, in the order the phases ran.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Phases(pub Vec<PhaseTime>);
 
 impl Phases {
-    /// Records the time since `start` under `phase` and returns it in seconds.
-    pub fn add(&mut self, phase: &str, start: Instant) -> f64 {
-        let seconds = start.elapsed().as_secs_f64();
-        self.0.push(PhaseTime { phase: phase.to_string(), seconds });
-        seconds
+    /// Records the time since `start` under `phase` and returns its wall time in seconds.
+    pub fn add(&mut self, phase: &str, start: Span) -> f64 {
+        self.push(phase, start.took())
+    }
+
+    /// Records `took` under `phase` and returns its wall time in seconds.
+    pub fn push(&mut self, phase: &str, took: Took) -> f64 {
+        self.0.push(PhaseTime { phase: phase.to_string(), seconds: took.seconds, cpu_seconds: took.cpu_seconds });
+        took.seconds
     }
 }
 
@@ -35,7 +43,7 @@ pub struct MapReport {
 }
 
 /// Rays traced in the eye pass, by purpose.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct RayCounts {
     /// Camera rays and the specular continuations of eye paths.
     pub eye: u64,
@@ -60,4 +68,7 @@ pub struct RenderStats {
     pub irradiance_memory_bytes: u64,
     /// Integrator work along the eye pass's curved paths.
     pub eye_curved: crate::raypath::CurvedWorkTotals,
+    /// Ranks, per-rank photon counts and phase times, bytes moved (see [`crate::distributed`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub distributed: Option<crate::distributed::DistributedReport>,
 }
