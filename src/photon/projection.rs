@@ -38,6 +38,10 @@ const MAX_BOUNDARIES: usize = 16;
 pub const GRID: usize = 64;
 /// Rounds of aiming, and of growing the window.
 const AIM_ROUNDS: usize = 6;
+/// Doublings of the step that lifts a blocked aiming ray off the surface it ran into, and
+/// bisections of its height after.
+const MAX_LIFTS: usize = 24;
+const BISECTIONS: usize = 48;
 const GROW_ROUNDS: usize = 4;
 
 /// The projection map of directional light `light` (emitting into `medium`), or `None` when it
@@ -101,18 +105,76 @@ fn aim(
     dir: DVec3,
 ) -> [f64; 2] {
     let c = target.centre();
+    let size = target.diagonal().length().max(1e-9);
+    let shot = |st: [f64; 2]| {
+        let from = light.aimed_origin(light.plane_point(st[0], st[1]), dir);
+        let (_, closest, end_normal) = trace(prop, from, dir, medium, target, c);
+        let miss = closest.map(|p| p - c);
+        // Blocked: the ray ended on a surface well before the target's depth.
+        let blocked = miss.and_then(|m| end_normal.filter(|_| m.dot(dir) < -size));
+        (miss, blocked)
+    };
     let mut st = start;
     for _ in 0..AIM_ROUNDS {
-        let from = light.aimed_origin(light.plane_point(st[0], st[1]), dir);
-        let (_, closest) = trace(prop, from, dir, medium, target, c);
-        let Some(p) = closest else { return st };
-        let miss = p - c;
+        let (Some(miss), blocked) = shot(st) else { return st };
+        if let Some(n) = blocked {
+            return aim_past(&shot, frame, dir, st, n, size);
+        }
         st = [st[0] - miss.dot(frame.s), st[1] - miss.dot(frame.t)];
-        if miss.length() < 1e-3 * target.diagonal().length().max(1e-9) {
+        if miss.length() < 1e-3 * size {
             break;
         }
     }
     st
+}
+
+/// Aiming when the ray runs into a surface first (a sun near or below the true horizon: the
+/// straight shadow meets the Earth). Near grazing the bending changes fast with height, so the
+/// miss is no guide: the start point is lifted away from that surface (normal `n`) by a doubling
+/// step until the ray gets past it, and the height is then found by bisection between blocked and
+/// passing above the target's centre.
+fn aim_past(
+    shot: &dyn Fn([f64; 2]) -> (Option<DVec3>, Option<DVec3>),
+    frame: &Frame,
+    dir: DVec3,
+    start: [f64; 2],
+    n: DVec3,
+    size: f64,
+) -> [f64; 2] {
+    let up = if n.dot(dir) < 0.0 { n } else { -n };
+    let (us, ut) = (up.dot(frame.s), up.dot(frame.t));
+    let norm = (us * us + ut * ut).sqrt();
+    if norm < 1e-12 {
+        return start;
+    }
+    let (us, ut) = (us / norm, ut / norm);
+    let at = |h: f64| [start[0] + h * us, start[1] + h * ut];
+    // How far above (+) or below (−) the target's centre the ray passes; blocked counts as below.
+    let height = |h: f64| match shot(at(h)) {
+        (Some(m), None) => Some(m.dot(frame.s) * us + m.dot(frame.t) * ut),
+        (Some(_), Some(_)) => Some(f64::NEG_INFINITY),
+        (None, _) => None,
+    };
+    let (mut lo, mut hi) = (0.0, size.max(100.0));
+    let mut lifts = 0;
+    while height(hi).is_some_and(|v| v < 0.0) {
+        lo = hi;
+        hi *= 2.0;
+        lifts += 1;
+        if lifts == MAX_LIFTS {
+            return start;
+        }
+    }
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        match height(mid) {
+            Some(v) if v.abs() < 1e-3 * size => return at(mid),
+            Some(v) if v < 0.0 => lo = mid,
+            Some(_) => hi = mid,
+            None => break,
+        }
+    }
+    at(hi)
 }
 
 /// Cells around the grid vertices whose axial rays pass through the target (grown by a cell).
@@ -167,9 +229,18 @@ fn grow(cells: &[[u32; 2]]) -> Vec<[u32; 2]> {
 }
 
 /// Follows a ray from `p` along `d` to its first surface: whether it passes through `box_`,
-/// and its point of closest approach to `c`.
-fn trace(prop: &Propagator, p: DVec3, d: DVec3, medium: Option<u32>, box_: &Aabb, c: DVec3) -> (bool, Option<DVec3>) {
+/// its point of closest approach to `c`, and the normal of the surface it ended on (if it
+/// missed the box).
+fn trace(
+    prop: &Propagator,
+    p: DVec3,
+    d: DVec3,
+    medium: Option<u32>,
+    box_: &Aabb,
+    c: DVec3,
+) -> (bool, Option<DVec3>, Option<DVec3>) {
     let mut through = false;
+    let mut end_normal = None;
     let mut closest: Option<(f64, DVec3)> = None;
     let mut state = RayState { position: p, dir: d, wavelength_nm: None, medium };
     let mut note = |q: DVec3| {
@@ -191,13 +262,14 @@ fn trace(prop: &Propagator, p: DVec3, d: DVec3, medium: Option<u32>, box_: &Aabb
         note(hit.point);
         let scene_prim = &prop_scene(prop).prims[hit.prim as usize];
         if through || scene_prim.material.is_some() || scene_prim.light.is_some() {
+            end_normal = (!through).then_some(hit.normal);
             break;
         }
         // A boundary between media (a fog bank's box): go on through it.
         let (d, across) = prop.cross(&hit, dir, medium, crate::raypath::curved::REFERENCE_WAVELENGTH_NM, 0.999_999);
         state = prop.leave(&hit, d, None, across);
     }
-    (through, closest.map(|(_, q)| q))
+    (through, closest.map(|(_, q)| q), end_normal)
 }
 
 fn prop_scene<'a>(prop: &'a Propagator) -> &'a Scene {
