@@ -188,13 +188,6 @@ impl DirectionalLight {
         (aim - plane).dot(self.dir)
     }
 
-    /// A uniform point on the beam's cross-section (or its projection map's cells), upstream of
-    /// the scene.
-    pub fn emit_origin(&self, u: [f64; 2]) -> DVec3 {
-        let [s, t] = self.emit_st(u);
-        self.plane_point(s, t)
-    }
-
     /// A uniform point (s, t) of the beam's cross-section or of its projection map's cells.
     fn emit_st(&self, u: [f64; 2]) -> [f64; 2] {
         match &self.cells {

@@ -85,8 +85,6 @@ impl Medium {
     /// True when the medium neither absorbs nor scatters at any wavelength (σ_t ≡ 0 as given,
     /// and no inelastic component): clear air that only bends light.
     pub fn is_clear(&self) -> bool {
-        use crate::spectrum::Spectrum;
-        let zero = |s: &Spectrum| matches!(s, Spectrum::Constant(v) if *v == 0.0);
         if !self.inelastic.is_empty() {
             return false;
         }
@@ -100,8 +98,6 @@ impl Medium {
     /// True when the medium scatters light somewhere (elastically or by an inelastic
     /// component): only then is there in-scattered light to estimate, and photons to store.
     pub fn scatters(&self) -> bool {
-        use crate::spectrum::Spectrum;
-        let zero = |s: &Spectrum| matches!(s, Spectrum::Constant(v) if *v == 0.0);
         if !self.inelastic.is_empty() {
             return true;
         }
@@ -112,8 +108,20 @@ impl Medium {
         }
     }
 
+    /// Whether photons interacting here are stored in the volume map: where the medium scatters
+    /// (there is in-scattered light to estimate), and in any participating medium when the
+    /// scene's sensors count photons at every interaction (`photon_sensors`).
+    pub fn keeps_photons(&self, photon_sensors: bool) -> bool {
+        self.scatters() || (photon_sensors && !self.is_clear())
+    }
+
     /// True when light curves in this medium (its index field has a gradient somewhere).
     pub fn bends_light(&self) -> bool {
         self.index.as_ref().is_some_and(|f| !f.is_uniform())
     }
+}
+
+/// A spectrum given as the constant 0 (the only way a coefficient is known to vanish everywhere).
+fn zero(s: &crate::spectrum::Spectrum) -> bool {
+    matches!(s, crate::spectrum::Spectrum::Constant(v) if *v == 0.0)
 }

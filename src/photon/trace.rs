@@ -154,7 +154,7 @@ pub fn trace(
                     return;
                 }
                 let m = &scene.media[medium as usize];
-                if store_volume && (m.scatters() || !scene.sensors.is_empty()) {
+                if store_volume && m.keeps_photons(!scene.sensors.is_empty()) {
                     out.volume.push(f.record(position, dir, DVec3::ZERO));
                     st.stored_volume += 1;
                 }

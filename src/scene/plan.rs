@@ -239,8 +239,7 @@ fn volume_map_decision(media: &[&Medium], photon_sensors: bool, s: &IntegratorSe
             m.name
         ));
     }
-    let stores = |m: &&&Medium| m.scatters() || (photon_sensors && !m.is_clear());
-    match (media.iter().find(stores), s.direct, s.photons) {
+    match (media.iter().find(|m| m.keeps_photons(photon_sensors)), s.direct, s.photons) {
         (None, _, _) => Decision::off("no participating medium to store photons in"),
         (Some(_), _, 0) => Decision::off("[integrator] photons = 0"),
         (Some(m), DirectLighting::PhotonMap, _) => Decision::on(format!(
