@@ -16,7 +16,10 @@ For every href/src in every .html file under --book:
 - anything else (absolute paths, unknown schemes, paths leaving the repository) is an error.
 
 A page's <base href="/"> (mdBook's 404 page) makes its relative links start at the book's root.
-Exit status 0 when every link resolves, 1 otherwise (each broken link is printed with its page).
+
+--markdown FILE ... also checks the relative links of Markdown files outside the book (the
+README): `[text](path)` and `![alt](path)` must name existing files (fragments are not checked
+there). Exit status 0 when every link resolves, 1 otherwise (each broken link is printed with its page).
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ from urllib.parse import unquote, urlsplit
 LINK_ATTRS = {"a": "href", "link": "href", "area": "href", "img": "src", "script": "src",
               "iframe": "src", "source": "src", "audio": "src", "video": "src", "embed": "src"}
 HOST = re.compile(r"^[A-Za-z0-9.-]+(:[0-9]+)?$")
+MD_LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 
 
 class Page(HTMLParser):
@@ -89,6 +93,7 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--book", required=True, type=Path, help="the built book (HTML output folder)")
     ap.add_argument("--repo", required=True, type=Path, help="the repository root")
+    ap.add_argument("--markdown", nargs="*", default=[], type=Path, help="Markdown files to check too")
     args = ap.parse_args()
     book, repo = args.book.resolve(), args.repo.resolve()
     pages = sorted(book.rglob("*.html"))
@@ -148,6 +153,27 @@ def main() -> int:
                     broken.append(f"{where}: no id '{fragment}' in {target.relative_to(repo)}")
                 continue
             broken.append(f"{where}: leaves the repository ({target})")
+
+    for md in args.markdown:
+        text = md.read_text(encoding="utf-8")
+        for m in MD_LINK.finditer(text):
+            url = m.group(1).strip()
+            line = text.count("\n", 0, m.start()) + 1
+            where = f"{md}:{line}: {url!r}"
+            parts = urlsplit(url)
+            if parts.scheme or url.startswith("//"):
+                problem = check_external(url if parts.scheme else "https:" + url)
+                if problem:
+                    broken.append(f"{where}: {problem}")
+                counts["external"] += 1
+                continue
+            if not parts.path:
+                continue
+            target = (md.resolve().parent / unquote(parts.path)).resolve()
+            if not inside(target, repo) or not target.exists():
+                broken.append(f"{where}: no such file in the repository")
+            else:
+                counts["repository"] += 1
 
     total = sum(counts.values())
     for b in broken:
