@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check every link in a built mdBook (HTML), stdlib only.
 
-    scripts/check_links.py --book target/book --repo .
+    scripts/check_links.py --book target/book --repo . [--markdown README.md] [--test-refs PAGE.md]
 
 For every href/src in every .html file under --book:
 
@@ -19,7 +19,13 @@ A page's <base href="/"> (mdBook's 404 page) makes its relative links start at t
 
 --markdown FILE ... also checks the relative links of Markdown files outside the book (the
 README): `[text](path)` and `![alt](path)` must name existing files (fragments are not checked
-there). Exit status 0 when every link resolves, 1 otherwise (each broken link is printed with its page).
+there).
+
+--test-refs FILE ... checks that every test a page names as `tests/x.rs::function` or
+`src/.../y.rs::function` (and `::function` after one of those in the same line) exists: the file
+is there and defines that function right after a #[test] attribute.
+
+Exit status 0 when everything resolves, 1 otherwise (each broken link is printed with its page).
 """
 
 from __future__ import annotations
@@ -34,6 +40,7 @@ from urllib.parse import unquote, urlsplit
 LINK_ATTRS = {"a": "href", "link": "href", "area": "href", "img": "src", "script": "src",
               "iframe": "src", "source": "src", "audio": "src", "video": "src", "embed": "src"}
 HOST = re.compile(r"^[A-Za-z0-9.-]+(:[0-9]+)?$")
+TEST_REF = re.compile(r"`((?:tests|src)/[\w/.-]+\.rs)?::(\w+)`")
 MD_LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 
 
@@ -94,6 +101,7 @@ def main() -> int:
     ap.add_argument("--book", required=True, type=Path, help="the built book (HTML output folder)")
     ap.add_argument("--repo", required=True, type=Path, help="the repository root")
     ap.add_argument("--markdown", nargs="*", default=[], type=Path, help="Markdown files to check too")
+    ap.add_argument("--test-refs", nargs="*", default=[], type=Path, help="pages whose test names to check")
     args = ap.parse_args()
     book, repo = args.book.resolve(), args.repo.resolve()
     pages = sorted(book.rglob("*.html"))
@@ -175,14 +183,35 @@ def main() -> int:
             else:
                 counts["repository"] += 1
 
-    total = sum(counts.values())
+    counts["tests"] = 0
+    sources: dict[Path, str] = {}
+    for md in args.test_refs:
+        for n, line in enumerate(md.read_text(encoding="utf-8").splitlines(), 1):
+            current = None
+            for m in TEST_REF.finditer(line):
+                if m.group(1):
+                    current = repo / m.group(1)
+                where = f"{md}:{n}: {m.group(0)}"
+                if current is None:
+                    broken.append(f"{where}: no file named before it on the line")
+                    continue
+                if not current.is_file():
+                    broken.append(f"{where}: {current.relative_to(repo)} does not exist")
+                    continue
+                text = sources.setdefault(current, current.read_text(encoding="utf-8"))
+                if not re.search(r"#\[test\](?:\s*#\[[^\]]*\])*\s*fn " + m.group(2) + r"\s*\(", text):
+                    broken.append(f"{where}: no test fn {m.group(2)} in {current.relative_to(repo)}")
+                    continue
+                counts["tests"] += 1
+
+    total = sum(counts.values()) - counts["tests"]
     for b in broken:
         print(f"check_links: broken: {b}", file=sys.stderr)
     print(
         f"check_links: {len(pages)} pages, {total} links checked "
         f"({counts['internal']} in the book, {counts['fragment']} fragments, "
-        f"{counts['repository']} into the repository, {counts['external']} external, syntax only); "
-        f"{len(broken)} broken"
+        f"{counts['repository']} into the repository, {counts['external']} external, syntax only), "
+        f"{counts['tests']} test names; {len(broken)} broken"
     )
     return 1 if broken else 0
 
