@@ -13,6 +13,7 @@
 //! units where they could be doubted (`wavelength_nm`, `power_w`).
 
 pub mod atmosphere;
+pub mod atomic;
 pub mod distributed;
 pub mod error;
 pub mod geometry;
@@ -20,9 +21,11 @@ pub mod light;
 pub mod luminaire;
 pub mod material;
 pub mod media;
+pub mod ode;
 pub mod output;
 pub mod photon;
 pub mod photon_map;
+pub mod quadrature;
 pub mod raster;
 pub mod raypath;
 pub mod render;

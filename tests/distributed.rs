@@ -14,7 +14,8 @@ use morgana::scene::{Scene, default_scene};
 
 fn small_scene(photons: u64) -> Scene {
     let mut s = default_scene().expect("default scene");
-    s.camera = morgana::render::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 24, 20);
+    s.camera =
+        morgana::geometry::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 24, 20);
     s.integrator.spp = 1;
     s.integrator.gather_rays = 2;
     s.apply_overrides(Some(photons), Some(11));

@@ -6,8 +6,8 @@ use common::scene;
 use glam::DVec3;
 use morgana::photon::{MapKind, shoot};
 use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap};
+use morgana::quadrature::gauss_legendre;
 use morgana::scene::Filter;
-use morgana::testing::chi2::gauss_legendre;
 use std::f64::consts::PI;
 
 const BLACK_SPHERE: &str = r#"

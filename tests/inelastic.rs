@@ -6,8 +6,9 @@ mod common;
 use common::scene;
 use morgana::media::inelastic::{Fa7, GaussianEmission, RamanShift};
 use morgana::photon::{MapKind, shoot};
+use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
-use morgana::testing::chi2::{chi2_1d, gauss_legendre};
+use morgana::testing::chi2::chi2_1d;
 use std::path::PathBuf;
 
 fn ocean_data() -> PathBuf {

@@ -9,11 +9,12 @@ use glam::DVec3;
 use morgana::light::Light;
 use morgana::photon::{MapKind, shoot};
 use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap};
+use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
 use morgana::scene::Filter;
 use morgana::spectrum::cie::cmf_1931_at_nm;
 use morgana::spectrum::colour::K_M;
-use morgana::testing::chi2::{chi2_sphere, gauss_legendre};
+use morgana::testing::chi2::chi2_sphere;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
@@ -242,7 +243,7 @@ fn a_sensor_reads_direct_illuminance_i_cos3_over_h2() {
     );
     let s = scene(&toml);
     let maps = morgana::render::maps::Maps::default();
-    let r = &morgana::sensor::evaluate_all(&s, &maps)[0];
+    let r = &morgana::render::sensors::evaluate_all(&s, &maps)[0];
     assert_eq!(r.columns[0].0, "E_lx");
     for (p, e) in r.points.iter().zip(&r.columns[0].1) {
         let want = illuminance(3.0, p.x, p.z);

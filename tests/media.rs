@@ -5,7 +5,7 @@ mod common;
 use common::{render_with, scene};
 use glam::DVec3;
 use morgana::photon::{MapKind, shoot};
-use morgana::testing::chi2::gauss_legendre;
+use morgana::quadrature::gauss_legendre;
 use std::f64::consts::PI;
 
 const LE: f64 = 2.0;

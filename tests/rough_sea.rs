@@ -7,7 +7,7 @@ use common::{mean_and_sem, render_with, scene, scene_error};
 use glam::DVec3;
 use morgana::material::{Beckmann, Ior, RoughDielectric};
 use morgana::photon::{MapKind, shoot};
-use morgana::testing::chi2::gauss_legendre;
+use morgana::quadrature::gauss_legendre;
 use std::f64::consts::PI;
 
 const WIND_M_S: f64 = 7.0;

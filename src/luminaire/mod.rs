@@ -176,7 +176,7 @@ pub fn inspect(file: &Path, png: Option<&Path>) -> Result<String> {
     let p = load_file(file)?;
     let mut text = summary(&p);
     if let Some(png) = png {
-        let staged = crate::output::atomic::Staged::new(png)
+        let staged = crate::atomic::Staged::new(png)
             .map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;
         write_polar_png(&p, &staged.temp)
             .map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;

@@ -165,7 +165,7 @@ pub fn filter_norm(filter: Filter) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::chi2::gauss_legendre;
+    use crate::quadrature::gauss_legendre;
 
     #[test]
     fn filter_normalisations_integrate_the_weights() {

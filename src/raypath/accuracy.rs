@@ -27,9 +27,9 @@
 
 pub mod plot;
 
-use super::ode::{Integrator, Method, OdeError, OdeState};
+use crate::atomic::Staged;
 use crate::error::{Error, Result};
-use crate::output::atomic::Staged;
+use crate::ode::{Integrator, Method, OdeError, OdeState};
 use glam::DVec3;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -217,9 +217,9 @@ fn measure_one(
     problem: &Problem,
     plan: &Plan,
     method: Method,
-) -> std::result::Result<(f64, f64, super::ode::Counters), OdeError> {
+) -> std::result::Result<(f64, f64, crate::ode::Counters), OdeError> {
     let field = problem.field();
-    let once = || -> std::result::Result<(OdeState, super::ode::Counters), OdeError> {
+    let once = || -> std::result::Result<(OdeState, crate::ode::Counters), OdeError> {
         let mut ode = Integrator::new(method)?.with_projection(plan.project).with_max_steps(u64::MAX);
         let mut state = OdeState::launch(&field, DVec3::ZERO, DVec3::X)?;
         ode.integrate_to(&field, &mut state, problem.length_m)?;

@@ -5,7 +5,7 @@
 //! - *straight*, where it is outside the field's gradient region: one chord to the nearest of
 //!   a surface, the region's boundary and the world sphere (no ODE runs there);
 //! - *curved*, inside the region: each accepted step of the integrator (the scene's
-//!   [`crate::raypath::ode::Method`]) is cut into chords within the arc tolerance
+//!   [`crate::ode::Method`]) is cut into chords within the arc tolerance
 //!   ([`super::arc`]); every chord is intersected with the scene and handed to the visitor, so a
 //!   surface crossing is found on the chord that crosses it and located on the arc to within the
 //!   tolerance; the arriving direction is the arc's tangent there (dense output). A leg ends when
@@ -16,10 +16,10 @@
 //! side the path leaves to.
 
 use super::arc::{ChordOnArc, chord_count};
-use super::ode::{Integrator, OdeState, Step};
 use super::{Chord, Event, Propagator, RayState};
 use crate::geometry::{Hit, Ray};
 use crate::media::index::{GradientRegion, IndexField};
+use crate::ode::{Integrator, OdeState, Step};
 use glam::DVec3;
 
 /// The wavelength at which a path that carries several follows a non-dispersive field (any

@@ -9,7 +9,7 @@
 //! - in a medium whose refractive index is constant (or has none) the path is one straight
 //!   chord per event and no ODE runs;
 //! - in a medium with a refractive-index field ([`crate::media::index`]) the path follows
-//!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`ode`]:
+//!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`crate::ode`]:
 //!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
 //!   arc tolerance ([`arc`]), and the same visitors and segment queries
 //!   ([`crate::geometry::Bvh::intersect`]) see those chords. Outside the field's
@@ -23,7 +23,6 @@
 pub mod accuracy;
 mod arc;
 pub mod curved;
-pub mod ode;
 pub mod trace_cli;
 mod work;
 

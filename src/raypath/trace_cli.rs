@@ -20,9 +20,9 @@
 
 use super::{Chord, Event, Propagator, RayState};
 use crate::atmosphere::Earth;
+use crate::atomic::Staged;
 use crate::error::{Error, Result};
 use crate::media::index::IndexField;
-use crate::output::atomic::Staged;
 use crate::scene::{Scene, load_scene_file};
 use glam::DVec3;
 use std::fmt::Write as _;

@@ -5,25 +5,24 @@
 //! of threads — and of ranks: [`render_on`] runs the same passes split across the processes of
 //! a [`World`] ([`crate::distributed`]); [`render`] is that with one process.
 
-mod camera;
 pub mod eye;
 mod lanes;
 pub mod maps;
 mod path;
 mod progress;
+pub mod sensors;
 pub mod stats;
 
-pub use camera::Camera;
 pub use lanes::Lanes;
 pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 
 use crate::distributed::clock::Span;
 use crate::distributed::{self, DistributedReport, Rank, World};
 use crate::error::Result;
-use crate::output::SpectralImage;
 use crate::raypath::RayState;
 use crate::rng::{Rng, Stream};
 use crate::scene::{Method, Scene};
+use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::BandsToColour;
 use eye::{EyeTracer, Scratch};
 use rayon::prelude::*;
@@ -88,8 +87,8 @@ pub fn render_on(
     let image = to_image(scene, data);
     stats.phases.add("colour conversion", t);
     let t = Span::start();
-    let sensors = crate::sensor::evaluate_all(scene, &maps);
-    let profiles = crate::sensor::evaluate_profiles(scene, &maps);
+    let sensors = sensors::evaluate_all(scene, &maps);
+    let profiles = sensors::evaluate_profiles(scene, &maps);
     if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }

@@ -26,11 +26,11 @@ pub use spectrum_spec::parse_two_column_csv;
 
 use crate::atmosphere::Earth;
 use crate::error::{Error, Location, Result};
+use crate::geometry::Camera;
 use crate::geometry::{Aabb, Bvh, Shape};
 use crate::light::{AreaLight, Light};
 use crate::material::Material;
 use crate::media::Medium;
-use crate::render::Camera;
 use crate::spectrum::Bands;
 use context::Ctx;
 use glam::DVec3;

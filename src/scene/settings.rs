@@ -3,9 +3,9 @@
 use super::context::{Ctx, R};
 use super::raw::{RawCamera, RawIntegrator, RawOutput};
 use crate::geometry::Aabb;
-use crate::output::png::Exposure;
-use crate::render::Camera;
+use crate::geometry::Camera;
 use crate::spectrum::{Bands, MAX_BANDS};
+use crate::tonemap::Exposure;
 use crate::tonemap::ToneSettings;
 use crate::tonemap::region::Region;
 use serde::Serialize;
@@ -62,7 +62,7 @@ pub enum Filter {
 pub struct CurvedSettings {
     /// The integrator of the ray equation.
     #[serde(skip)]
-    pub method: crate::raypath::ode::Method,
+    pub method: crate::ode::Method,
     /// "dopri5", "rk4" or "euler".
     pub ode: &'static str,
     /// Dormand–Prince tolerances (relative, and absolute in m and in units of n).
@@ -80,7 +80,7 @@ impl Default for CurvedSettings {
     fn default() -> Self {
         let (rtol, atol) = (1e-9, 1e-9);
         CurvedSettings {
-            method: crate::raypath::ode::Method::dormand_prince(rtol, atol),
+            method: crate::ode::Method::dormand_prince(rtol, atol),
             ode: "dopri5",
             rtol,
             atol,
@@ -311,7 +311,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
 
 /// `ode`, `ode_rtol`, `ode_atol`, `ode_step_m`, `ode_max_step_m`, `arc_tolerance_m`.
 fn curved(ctx: &Ctx, r: &RawIntegrator) -> R<CurvedSettings> {
-    use crate::raypath::ode::Method as Ode;
+    use crate::ode::Method as Ode;
     let mut c = CurvedSettings::default();
     let positive = |v: &Option<Spanned<f64>>, name: &str, d: f64| -> R<f64> {
         v.as_ref().map_or(Ok(d), |v| ctx.number(v, name, 0.0, f64::INFINITY, true))

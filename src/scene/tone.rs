@@ -19,8 +19,8 @@
 
 use super::context::{Ctx, R};
 use super::raw::RawOutput;
-use crate::output::png::Exposure;
-use crate::render::Camera;
+use crate::geometry::Camera;
+use crate::tonemap::Exposure;
 use crate::tonemap::region::Region;
 use crate::tonemap::{ToneOptions, ToneSettings};
 use std::ops::Range;

@@ -39,9 +39,9 @@
 
 use super::colour::{BandsToColour, absolute_xyz, cmf_sums, relative_xyz, xyz_to_linear_srgb};
 use super::{Bands, RgbSigmoid, Spectrum, Tabulated, named_illuminant};
-use crate::output::SpectralImage;
-use crate::output::atomic::Staged;
-use crate::output::exr::{emissive_channel_name, write_spectral_exr};
+use crate::atomic::Staged;
+use crate::spectrum::SpectralImage;
+use crate::spectrum::exr::{emissive_channel_name, write_spectral_exr};
 use crate::tonemap::chromatic::{Cat, adaptation_matrix};
 use crate::tonemap::exr_read::read_exr;
 use crate::tonemap::matrix::mul_vec;

@@ -11,6 +11,8 @@ pub mod check;
 pub mod cie;
 pub mod cie_data;
 pub mod colour;
+pub mod exr;
+mod image;
 mod rgb_sigmoid;
 mod sampler;
 pub mod solar;
@@ -19,6 +21,7 @@ mod tabulated;
 
 pub use bands::{Bands, MAX_BANDS};
 pub use blackbody::planck_radiance;
+pub use image::SpectralImage;
 pub use rgb_sigmoid::RgbSigmoid;
 pub use sampler::SpectrumSampler;
 pub use tabulated::Tabulated;

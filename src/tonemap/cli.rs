@@ -7,12 +7,12 @@
 
 use super::exposure::Exposure;
 use super::exr_read::read_exr;
-use super::png_out::write_rgb8;
 use super::region::Region;
 use super::settings::{OptionError, ToneOptions};
 use super::tonemap;
+use crate::atomic::Staged;
 use crate::error::{Error, Location, Result};
-use crate::output::atomic::Staged;
+use crate::raster::png::write_rgb8;
 use std::path::{Path, PathBuf};
 
 /// The command line of `morgana tonemap` (parsed by clap in `main`).

@@ -12,7 +12,7 @@
 //! mapping, as a luminance meter would read it.
 
 use super::exposure::percentile;
-use super::font::{HEIGHT, draw_text, text_width};
+use crate::raster::font::{HEIGHT, draw_text, text_width};
 
 /// (t, sRGB-encoded colour) stops of the ramp.
 const RAMP: [(f64, [f64; 3]); 7] = [

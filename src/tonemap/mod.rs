@@ -33,12 +33,11 @@ pub mod delta_e;
 pub mod exposure;
 pub mod exr_read;
 pub mod false_colour;
-pub mod font;
 pub mod foveal;
 pub mod matrix;
 pub mod mesopic;
 pub mod pattanaik;
-pub mod png_out;
+pub mod preview;
 pub mod region;
 pub mod reinhard;
 pub mod scene_image;
@@ -49,10 +48,11 @@ pub mod threshold;
 pub mod ward_histogram;
 pub mod white;
 
+pub use preview::Exposure;
 pub use scene_image::SceneImage;
 pub use settings::{Operator, ToneOptions, ToneSettings};
 
-use crate::output::SpectralImage;
+use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::{srgb_encode, xyz_to_linear_srgb};
 use chromatic::adaptation_matrix;
 use foveal::FovealImage;
@@ -229,6 +229,6 @@ pub fn write_png(
     settings: &ToneSettings,
 ) -> std::io::Result<Vec<String>> {
     let out = tonemap(&SceneImage::from_spectral(image), settings);
-    png_out::write_rgb8(path, out.width, out.height, &out.rgb)?;
+    crate::raster::png::write_rgb8(path, out.width, out.height, &out.rgb)?;
     Ok(out.notes)
 }

@@ -6,7 +6,7 @@
 //! radius R; the scene frame puts c at (0, −R, 0), so the observer is at (0, h₀, 0)). A ray
 //! leaves at apparent altitude a above the observer's horizontal plane and follows Fermat's ray
 //! equation d/ds(n dr/ds) = ∇n through the atmosphere's n(λ, x), integrated by Dormand–Prince
-//! RK5(4)7M ([`crate::raypath::ode`]) with a tight tolerance (rtol = atol = 10⁻¹², converged:
+//! RK5(4)7M ([`crate::ode`]) with a tight tolerance (rtol = atol = 10⁻¹², converged:
 //! tests/refraction.rs). Above the atmosphere's top n ≡ 1 and the path is straight, so the
 //! direction d on leaving is the star's true direction; the *true altitude* is its angle above
 //! the observer's horizontal plane, t = atan2(d·û, |d − (d·û)û|) (û the observer's vertical),

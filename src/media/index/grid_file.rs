@@ -14,11 +14,11 @@
 //! With `encoding f64le` the values are little-endian IEEE-754 doubles starting right after the
 //! newline of the `encoding` line; with `ascii` they are whitespace-separated numbers (any line
 //! breaks). Values must be finite; temperatures must be positive. [`write()`] writes this format
-//! (atomically, through [`crate::output::atomic::Staged`]).
+//! (atomically, through [`crate::atomic::Staged`]).
 
 use super::Lattice;
+use crate::atomic::Staged;
 use crate::error::{Error, Location, Result};
-use crate::output::atomic::Staged;
 use glam::DVec3;
 use std::path::Path;
 

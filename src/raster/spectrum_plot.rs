@@ -2,8 +2,8 @@
 //! PNG, drawn with [`crate::raster`]: one coloured line per series, axes with tick labels, a
 //! legend, and optional marker lines at given wavelengths.
 
-use crate::raster::{BLACK, Canvas, GREY, WHITE};
-use crate::sensor::viridis;
+use super::false_colour::viridis;
+use super::{BLACK, Canvas, GREY, WHITE};
 use std::io;
 use std::path::Path;
 

@@ -10,7 +10,7 @@
 //! a known arc length.
 //!
 //! ```
-//! use morgana::raypath::ode::{Integrator, Method, OdeState};
+//! use morgana::ode::{Integrator, Method, OdeState};
 //! use glam::DVec3;
 //! // n = 1 + 0.01·y: a ray launched along +x bends upward (toward larger n).
 //! let field = |p: DVec3| (1.0 + 0.01 * p.y, DVec3::new(0.0, 0.01, 0.0));

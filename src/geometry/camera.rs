@@ -1,6 +1,6 @@
 //! A pinhole camera.
 
-use crate::geometry::Ray;
+use super::Ray;
 use glam::DVec3;
 use serde::Serialize;
 

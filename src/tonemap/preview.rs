@@ -14,10 +14,9 @@
 //! - IEC 61966-2-1:1999, *sRGB* (transfer function and luminance row).
 //! - W3C (2003), *PNG Specification*, 2nd ed., §11.3.3.5 (sRGB chunk).
 
-use super::SpectralImage;
+use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::{linear_srgb_luminance, srgb_encode};
-use std::fs::File;
-use std::io::{self, BufWriter};
+use std::io;
 use std::path::Path;
 
 /// The luminance percentile that [`Exposure::Auto`] maps to display white.
@@ -48,22 +47,8 @@ pub fn write_png_preview(path: &Path, image: &SpectralImage, exposure: Exposure)
             ),
         ));
     }
-    let (Ok(w), Ok(h)) = (u32::try_from(image.width), u32::try_from(image.height)) else {
-        return Err(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            format!("a {}×{} image is too large for PNG (at most 2³²−1 per side)", image.width, image.height),
-        ));
-    };
     let bytes = encode_pixels(&image.rgb, exposure_scale(&image.rgb, exposure));
-    let file = File::create(path)?;
-    let mut encoder = png::Encoder::new(BufWriter::new(file), w, h);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(&bytes)?;
-    writer.finish()?;
-    Ok(())
+    crate::raster::png::write_rgb8(path, image.width, image.height, &bytes)
 }
 
 /// The factor s that multiplies linear sRGB before encoding.
@@ -139,7 +124,7 @@ mod tests {
         let img = image(vec![0.18, 0.18, 0.18, 1.0, 0.0, 0.5], 2, 1);
         let path = std::env::temp_dir().join(format!("morgana-png-{}.png", std::process::id()));
         write_png_preview(&path, &img, Exposure::Ev(0.0)).unwrap();
-        let decoder = png::Decoder::new(io::BufReader::new(File::open(&path).unwrap()));
+        let decoder = png::Decoder::new(io::BufReader::new(std::fs::File::open(&path).unwrap()));
         let mut reader = decoder.read_info().unwrap();
         let mut buf = vec![0; reader.output_buffer_size().unwrap()];
         let info = reader.next_frame(&mut buf).unwrap();

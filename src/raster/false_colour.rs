@@ -1,6 +1,6 @@
-//! False-colour maps of sensor readings: each grid cell a block of colour, the viridis scale
-//! from 0 to a rounded-up maximum, a colour bar with five labelled ticks and a title line with
-//! the reading's statistics (mean, min, max, uniformity U₀ = min/mean).
+//! False-colour maps of values on a grid (a sensor's reading): each grid cell a block of colour,
+//! the viridis scale from 0 to a rounded-up maximum, a colour bar with five labelled ticks, a
+//! title and a line of statistics (mean, min, max, uniformity U₀ = min/mean).
 //!
 //! Cell (i, j) is drawn with i to the right and j upward, so the plane is seen from the side its
 //! normal points to when u, v, n are right-handed.
@@ -9,9 +9,7 @@
 //! - S. van der Walt, N. Smith (2015), "mpl colormaps" — viridis, approximated here by linear
 //!   interpolation between nine of its samples.
 
-use super::Reading;
-use crate::luminaire::text::fmt_num;
-use crate::raster::{BLACK, Canvas, GREY, Rgb, WHITE};
+use super::{BLACK, Canvas, GREY, Rgb, WHITE};
 use std::io;
 use std::path::Path;
 
@@ -44,30 +42,59 @@ const MARGIN: i64 = 16;
 const TITLE: i64 = 40;
 const BAR: i64 = 110;
 
-/// Writes the map of the reading's first column.
-pub fn false_colour_png(r: &Reading, path: &Path) -> io::Result<()> {
-    let cell = ((560 / r.nx.max(1)).min(440 / r.ny.max(1)).max(1)) as i64;
-    let (map_w, map_h) = (cell * r.nx as i64, cell * r.ny as i64);
+/// A grid of values to draw: nx × ny, row-major with i fastest.
+pub struct GridMap<'a> {
+    /// Title, e.g. the sensor's name and quantity.
+    pub title: &'a str,
+    /// Unit of the values, e.g. "lx".
+    pub unit: &'a str,
+    pub nx: usize,
+    pub ny: usize,
+    pub values: &'a [f64],
+}
+
+/// Mean, minimum, maximum and uniformity U₀ = min/mean of values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stats {
+    pub mean: f64,
+    pub min: f64,
+    pub max: f64,
+    pub uniformity: f64,
+}
+
+impl Stats {
+    /// The statistics of `v` (mean 0 and U₀ = 0 for no values or a zero mean).
+    pub fn of(v: &[f64]) -> Stats {
+        let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
+        let min = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Stats { mean, min, max, uniformity: if mean > 0.0 { min / mean } else { 0.0 } }
+    }
+}
+
+/// Writes the false-colour map of `m` as a PNG (not atomically; callers stage the path).
+pub fn write_png(m: &GridMap, path: &Path) -> io::Result<()> {
+    let cell = ((560 / m.nx.max(1)).min(440 / m.ny.max(1)).max(1)) as i64;
+    let (map_w, map_h) = (cell * m.nx as i64, cell * m.ny as i64);
     let width = (2 * MARGIN + map_w + BAR) as usize;
     let height = (TITLE + map_h + 2 * MARGIN).max(TITLE + 220) as usize;
     let mut c = Canvas::new(width, height, WHITE);
-    let stats = r.stats();
+    let stats = Stats::of(m.values);
     let top = scale_top(stats.max);
-    let values = &r.columns[0].1;
-    for (k, v) in values.iter().enumerate() {
-        let (i, j) = ((k % r.nx) as i64, (k / r.nx) as i64);
+    for (k, v) in m.values.iter().enumerate() {
+        let (i, j) = ((k % m.nx) as i64, (k / m.nx) as i64);
         let y = TITLE + map_h - (j + 1) * cell;
         c.fill_rect(MARGIN + i * cell, y, cell, cell, viridis(v / top));
     }
-    title(&mut c, r, stats);
-    colour_bar(&mut c, MARGIN * 2 + map_w, TITLE, map_h.max(200), top, r.unit);
+    title(&mut c, m, stats);
+    colour_bar(&mut c, MARGIN * 2 + map_w, TITLE, map_h.max(200), top, m.unit);
     c.write_png(path)
 }
 
-fn title(c: &mut Canvas, r: &Reading, s: super::Stats) {
-    let name: String = r.name.chars().filter(|c| c.is_ascii()).take(30).collect();
-    let unit = r.unit.to_ascii_uppercase();
-    c.text(MARGIN, 8, &format!("{} {}", name, r.quantity), 2, BLACK);
+fn title(c: &mut Canvas, m: &GridMap, s: Stats) {
+    let title: String = m.title.chars().filter(|c| c.is_ascii()).take(42).collect();
+    let unit = m.unit.to_ascii_uppercase();
+    c.text(MARGIN, 8, &title, 2, BLACK);
     let line =
         format!("MEAN {} {unit}  MIN {}  MAX {}  U0 {:.2}", short(s.mean), short(s.min), short(s.max), s.uniformity);
     c.text(MARGIN, 26, &line, 1, BLACK);
@@ -93,7 +120,7 @@ fn short(x: f64) -> String {
         a if a >= 100.0 => format!("{x:.0}"),
         a if a >= 10.0 => format!("{x:.1}"),
         a if a >= 1.0 => format!("{x:.2}"),
-        _ => fmt_num(format!("{x:.3}").parse::<f64>().unwrap_or(x)),
+        _ => format!("{}", format!("{x:.3}").parse::<f64>().unwrap_or(x)),
     }
 }
 
@@ -114,7 +141,6 @@ pub fn scale_top(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
 
     #[test]
     fn scale_tops_and_short_numbers() {
@@ -137,18 +163,11 @@ mod tests {
 
     #[test]
     fn a_map_shows_the_grid_with_j_upward() {
-        let r = Reading {
-            name: "desk".into(),
-            quantity: "illuminance",
-            unit: "lx",
-            nx: 2,
-            ny: 2,
-            points: vec![DVec3::ZERO; 4],
-            columns: vec![("E_lx".into(), vec![0.0, 0.0, 0.0, 500.0])],
-        };
+        let values = [0.0, 0.0, 0.0, 500.0];
+        let m = GridMap { title: "desk illuminance", unit: "lx", nx: 2, ny: 2, values: &values };
         let path = std::env::temp_dir().join(format!("morgana-fc-{}.png", std::process::id()));
-        false_colour_png(&r, &path).unwrap();
-        let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
+        write_png(&m, &path).unwrap();
+        let decoder = ::png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
         let mut reader = decoder.read_info().unwrap();
         let mut buf = vec![0; reader.output_buffer_size().unwrap()];
         let info = reader.next_frame(&mut buf).unwrap();
@@ -157,7 +176,7 @@ mod tests {
         assert_eq!(px((MARGIN + 330) as usize, (TITLE + 110) as usize), &viridis(1.0));
         assert_eq!(px((MARGIN + 110) as usize, (TITLE + 330) as usize), &viridis(0.0));
         std::fs::remove_file(&path).ok();
-        let s = r.stats();
+        let s = Stats::of(&values);
         assert_eq!((s.mean, s.min, s.max, s.uniformity), (125.0, 0.0, 500.0, 0.0));
     }
 }

@@ -23,7 +23,7 @@
 //!   Journal of Computer Graphics Techniques 10(3), 1–18, §3 (channel naming) and §4
 //!   (attributes).
 
-use super::SpectralImage;
+use crate::spectrum::SpectralImage;
 use exr::prelude::*;
 use std::io;
 use std::path::Path;
