@@ -193,7 +193,7 @@ fn cauchy_born_wolf_constants_agree_with_ciddor_in_the_visible() {
 use glam::DVec3;
 use morgana::atmosphere::edit::{HotSurface, Inversion, Offset};
 use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, Edit};
-use morgana::media::index::GradientRegion;
+use morgana::field::GradientRegion;
 
 fn edited(edits: Vec<Edit>) -> Atmosphere {
     Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, edits, AirDispersion::ciddor(450.0).unwrap(), 86_000.0)
@@ -298,8 +298,8 @@ fn atmosphere_construction_rejects_impossible_settings() {
 // Atmosphere files.
 
 use morgana::atmosphere::file::{Files, load_str};
-use morgana::media::index::Lattice;
-use morgana::media::index::grid_file::{self, Encoding, Quantity};
+use morgana::field::Lattice;
+use morgana::field::grid_file::{self, Encoding, Quantity};
 use std::path::{Path, PathBuf};
 
 fn repo(rel: &str) -> PathBuf {
@@ -364,7 +364,7 @@ fn tropical_table_is_the_afgl_model_and_hydrostatic() {
     // 86 km against ln(P₁/P₀) = −(g M₀/R*)∫dz/T (T linear in the layer, g at mid-layer), to 1%
     // (the table prints 3–4 digits). A mistyped digit in the transcription would show here.
     let text = std::fs::read_to_string(repo("atmospheres/tropical_afgl1986.csv")).unwrap();
-    let cols = morgana::atmosphere::table::parse_numeric_columns(&text, &["z", "t", "p"]).unwrap();
+    let cols = morgana::spectrum::table::parse_numeric_columns(&text, &["z", "t", "p"]).unwrap();
     let (z, t, p) = (&cols[0], &cols[1], &cols[2]);
     for i in 0..z.len() - 1 {
         if z[i + 1] > 86_000.0 {

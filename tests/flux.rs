@@ -5,9 +5,9 @@ mod common;
 use common::scene;
 use glam::DVec3;
 use morgana::photon::{MapKind, shoot};
+use morgana::photon_map::Filter;
 use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap};
 use morgana::quadrature::gauss_legendre;
-use morgana::scene::Filter;
 use std::f64::consts::PI;
 
 const BLACK_SPHERE: &str = r#"

@@ -5,8 +5,8 @@
 use super::edit::{Bubble, Edit, GridEdit, HotSurface, Inversion, Offset};
 use super::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, TableProfile, usa76};
 use crate::error::{Error, Location, Result};
-use crate::media::index::Interpolation;
-use crate::media::index::grid_file::{self, Quantity};
+use crate::field::Interpolation;
+use crate::field::grid_file::{self, Quantity};
 use glam::DVec3;
 use serde::Deserialize;
 use std::ops::Range;

@@ -23,10 +23,10 @@
 
 use super::World;
 use super::budget::Budget;
-use super::clock::{Span, Took};
 use super::split::{dealt, dealt_index};
 use crate::error::Result;
 use crate::photon_map::{Estimator, IrradianceCache, KdTree, Photon, PhotonMap, PhotonRecord};
+use crate::timing::{Span, Took};
 use glam::DVec3;
 
 /// Where a map's photons live.

@@ -15,7 +15,7 @@
 use super::World;
 use super::tiles::{Dispenser, Schedule, max_rows_for};
 use super::world::Tag;
-use crate::render::RayCounts;
+use crate::raypath::RayCounts;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use std::sync::Mutex;

@@ -20,7 +20,6 @@
 
 pub mod assemble;
 pub mod budget;
-pub mod clock;
 pub mod eye;
 pub mod fault;
 pub mod fingerprint;
@@ -69,7 +68,7 @@ impl<'w> Rank<'w> {
     }
 
     /// Every rank's report, in rank order, on every rank, after this rank's `phases`. Collective.
-    pub fn gather_reports(&mut self, phases: &crate::render::Phases) -> Vec<RankReport> {
+    pub fn gather_reports(&mut self, phases: &crate::timing::Phases) -> Vec<RankReport> {
         self.report.phases = phases.0.clone();
         self.report.map_memory_bytes = self.budget.held();
         self.world.all_gather_json(&self.report)

@@ -6,7 +6,7 @@ use super::eye::EyeWork;
 use super::photons::RankPhotons;
 use super::tiles::Schedule;
 use crate::raypath::CurvedWorkTotals;
-use crate::render::PhaseTime;
+use crate::timing::PhaseTime;
 use serde::{Deserialize, Serialize};
 
 /// One rank's part of a render.

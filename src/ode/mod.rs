@@ -31,11 +31,13 @@ pub mod dopri5;
 pub mod error;
 pub mod euler;
 pub mod rk4;
+mod settings;
 pub mod system;
 
 pub use controller::Controller;
 pub use dense::Dense;
 pub use error::OdeError;
+pub use settings::CurvedSettings;
 pub use system::{IndexSample, RayY};
 
 use glam::DVec3;

@@ -13,7 +13,7 @@
 //!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
 //!   arc tolerance ([`arc`]), and the same visitors and segment queries
 //!   ([`crate::geometry::Bvh::intersect`]) see those chords. Outside the field's
-//!   [`crate::media::index::GradientRegion`] the path is straight again, seamlessly (n is
+//!   [`crate::field::GradientRegion`] the path is straight again, seamlessly (n is
 //!   continuous there).
 //!
 //! Free-flight distances and marching are measured along the path (the sum of chord lengths,
@@ -22,14 +22,15 @@
 
 pub mod accuracy;
 mod arc;
+mod cost;
 pub mod curved;
 pub mod trace_cli;
-mod work;
 
-pub use work::{CurvedWork, CurvedWorkTotals};
+pub use cost::{CurvedWork, CurvedWorkTotals, RayCounts};
 
+use crate::field::GradientRegion;
 use crate::geometry::{Hit, Ray};
-use crate::media::index::{GradientRegion, IndexField};
+use crate::media::index::IndexField;
 use crate::media::tracking;
 use crate::rng::Rng;
 use crate::scene::Scene;

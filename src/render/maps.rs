@@ -3,12 +3,12 @@
 
 use super::progress;
 use super::stats::{MapReport, Phases};
-use crate::distributed::clock::Span;
 use crate::distributed::{self, Rank, assemble, photons::Shot};
 use crate::error::Result;
 use crate::photon::MapKind;
 use crate::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
 use crate::scene::Scene;
+use crate::timing::Span;
 
 /// Every stride-th global photon gets a precomputed irradiance estimate (Christensen uses 4).
 pub const IRRADIANCE_STRIDE: usize = 4;

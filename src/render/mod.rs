@@ -16,7 +16,6 @@ pub mod stats;
 pub use lanes::Lanes;
 pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 
-use crate::distributed::clock::Span;
 use crate::distributed::{self, DistributedReport, Rank, World};
 use crate::error::Result;
 use crate::raypath::RayState;
@@ -24,6 +23,7 @@ use crate::rng::{Rng, Stream};
 use crate::scene::{Method, Scene};
 use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::BandsToColour;
+use crate::timing::Span;
 use eye::{EyeTracer, Scratch};
 use rayon::prelude::*;
 

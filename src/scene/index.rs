@@ -23,11 +23,9 @@ use super::context::{Ctx, R};
 use super::media::Table;
 use crate::atmosphere::{AirDispersion, Earth};
 use crate::error::{Error, Location};
+use crate::field::{Bump, Interpolation, grid_file};
 use crate::material::Ior;
-use crate::media::index::{
-    Bump, Constant, Exponential, GridPressure, IndexField, Interpolation, Linear, Profile, Sum, TemperatureGrid,
-    grid_file,
-};
+use crate::media::index::{Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid};
 use glam::DVec3;
 use toml::{Spanned, Value};
 

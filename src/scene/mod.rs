@@ -19,10 +19,7 @@ mod spectrum_spec;
 mod tone;
 
 pub use plan::{Decision, EffectPlan};
-pub use settings::{
-    DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, Method, OutputSettings, WavelengthSampling,
-};
-pub use spectrum_spec::parse_two_column_csv;
+pub use settings::{DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, Method, OutputSettings, WavelengthSampling};
 
 use crate::atmosphere::Earth;
 use crate::error::{Error, Location, Result};

@@ -17,9 +17,10 @@ mod rgb_sigmoid;
 mod sampler;
 pub mod solar;
 mod solar_data;
+pub mod table;
 mod tabulated;
 
-pub use bands::{Bands, MAX_BANDS};
+pub use bands::{BandValues, Bands, MAX_BANDS};
 pub use blackbody::planck_radiance;
 pub use image::SpectralImage;
 pub use rgb_sigmoid::RgbSigmoid;

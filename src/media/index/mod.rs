@@ -9,29 +9,21 @@
 //! - D. Gutierrez, F. J. Serón, A. Muñoz & O. Anson 2005, "Non-linear volume photon mapping",
 //!   Eurographics Symposium on Rendering, §2.3 and §5.
 
-mod bump;
 mod constant;
 mod exponential;
-pub mod grid_file;
-mod lattice;
 mod linear;
-mod monotone_cubic;
 mod profile;
-mod region;
 mod sum;
 mod temperature_grid;
 
-pub use bump::Bump;
 pub use constant::Constant;
 pub use exponential::Exponential;
-pub use lattice::{Beyond, Interpolation, Lattice, MAX_LATTICE_POINTS};
 pub use linear::Linear;
-pub use monotone_cubic::MonotoneCubic;
 pub use profile::Profile;
-pub use region::GradientRegion;
 pub use sum::Sum;
-pub use temperature_grid::{GridPressure, TemperatureGrid, catmull_rom_overshoot};
+pub use temperature_grid::{GridPressure, TemperatureGrid};
 
+use crate::field::GradientRegion;
 use crate::geometry::Aabb;
 use glam::DVec3;
 

@@ -6,9 +6,9 @@
 //! CSV with two columns `height_m,n`: `#` comment lines and blank lines are skipped and the first
 //! data row may be a header; heights strictly increasing.
 
-use super::MonotoneCubic;
 use crate::atmosphere::Earth;
-use crate::atmosphere::table::parse_numeric_columns;
+use crate::field::MonotoneCubic;
+use crate::spectrum::table::parse_numeric_columns;
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -1,6 +1,7 @@
 //! A base field plus local perturbations: n = n_base + Σᵢ δnᵢ·wᵢ(x) (see [`Bump`]).
 
-use super::{Bump, IndexField};
+use super::IndexField;
+use crate::field::Bump;
 use glam::DVec3;
 
 #[derive(Clone, Debug)]

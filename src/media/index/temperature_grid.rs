@@ -12,8 +12,8 @@
 //! - J. Stam & E. Languenou 1996, "Ray tracing in non-constant media", Eurographics Rendering
 //!   Workshop, 225–234.
 
-use super::{Beyond, GradientRegion, Interpolation, Lattice};
 use crate::atmosphere::{AirDispersion, Earth, gas, usa76};
+use crate::field::{Beyond, GradientRegion, Interpolation, Lattice, catmull_rom_overshoot};
 use glam::DVec3;
 
 /// The pressure the grid's air is at.
@@ -61,7 +61,7 @@ impl TemperatureGrid {
         Ok(TemperatureGrid { lattice, interpolation, pressure, dispersion, uniform_faces })
     }
 
-    /// Reads a lattice file of quantity `temperature_k` (see [`super::grid_file`]); errors name
+    /// Reads a lattice file of quantity `temperature_k` (see [`crate::field::grid_file`]); errors name
     /// the file.
     pub fn load(
         path: &std::path::Path,
@@ -70,9 +70,9 @@ impl TemperatureGrid {
         dispersion: AirDispersion,
     ) -> crate::error::Result<TemperatureGrid> {
         use crate::error::{Error, Location};
-        let (quantity, lattice) = super::grid_file::read(path)?;
+        let (quantity, lattice) = crate::field::grid_file::read(path)?;
         let at = || Some(Location::file(path));
-        if quantity != super::grid_file::Quantity::TemperatureK {
+        if quantity != crate::field::grid_file::Quantity::TemperatureK {
             return Err(Error::input(
                 at(),
                 format!("a temperature grid needs quantity temperature_k, the file holds {}", quantity.name()),
@@ -109,22 +109,6 @@ impl TemperatureGrid {
         match self.pressure {
             GridPressure::Constant { .. } if self.uniform_faces => GradientRegion::Box(self.lattice.bounds()),
             _ => GradientRegion::Everywhere,
-        }
-    }
-}
-
-/// How far below the lowest lattice value the interpolant can go.
-///
-/// Per axis the negative Catmull–Rom weights sum to t(1 − t)/2 ≤ 1/8, so Σ|w| ≤ 5/4 and the
-/// tensor product's negative weights sum to at most ((5/4)³ − 1)/2 < 0.48. The interpolant is then
-/// at least the stencil's minimum minus 0.48 × the stencil's range, and a 4×4×4 stencil spans at
-/// most 9 neighbour steps.
-pub fn catmull_rom_overshoot(lattice: &Lattice, interpolation: Interpolation) -> f64 {
-    match interpolation {
-        Interpolation::Trilinear => 0.0,
-        Interpolation::Tricubic => {
-            let (lo, hi) = lattice.value_range();
-            0.48 * (hi - lo).min(9.0 * lattice.max_step())
         }
     }
 }

@@ -17,8 +17,8 @@
 //! 16-point Gauss–Legendre quadrature on panels of at most 2 nm.
 
 use super::Inelastic;
-use crate::photon_map::BandValues;
 use crate::quadrature::gauss_legendre;
+use crate::spectrum::BandValues;
 use crate::spectrum::Bands;
 
 /// Spacing of the excitation nodes, nm.

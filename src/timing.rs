@@ -1,4 +1,5 @@
-//! Wall and CPU time of a span of work on this rank.
+//! Wall and CPU time of a span of work on this process (an MPI rank), and the times of a run's
+//! phases.
 //!
 //! Wall time is what a user waits for; on a machine shared with other jobs it also counts the
 //! time the rank was not scheduled. CPU time (user + system, over all threads of the process)
@@ -59,6 +60,33 @@ fn parse_stat(line: &str) -> Option<f64> {
     let utime: u64 = fields.next()?.parse().ok()?;
     let stime: u64 = fields.next()?.parse().ok()?;
     Some((utime + stime) as f64 / TICKS_PER_SECOND)
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PhaseTime {
+    pub phase: String,
+    /// Wall time.
+    pub seconds: f64,
+    /// CPU time of this process over the phase (see [`Took`]).
+    #[serde(default)]
+    pub cpu_seconds: f64,
+}
+
+/// Wall (and CPU) time per phase, in the order the phases ran.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Phases(pub Vec<PhaseTime>);
+
+impl Phases {
+    /// Records the time since `start` under `phase` and returns its wall time in seconds.
+    pub fn add(&mut self, phase: &str, start: Span) -> f64 {
+        self.push(phase, start.took())
+    }
+
+    /// Records `took` under `phase` and returns its wall time in seconds.
+    pub fn push(&mut self, phase: &str, took: Took) -> f64 {
+        self.0.push(PhaseTime { phase: phase.to_string(), seconds: took.seconds, cpu_seconds: took.cpu_seconds });
+        took.seconds
+    }
 }
 
 #[cfg(test)]

@@ -68,3 +68,20 @@ impl CurvedWorkTotals {
         self.lost += o.lost;
     }
 }
+
+/// Rays traced in the eye pass, by purpose.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RayCounts {
+    /// Camera rays and the specular continuations of eye paths.
+    pub eye: u64,
+    pub shadow: u64,
+    pub gather: u64,
+}
+
+impl RayCounts {
+    pub fn add(&mut self, o: &RayCounts) {
+        self.eye += o.eye;
+        self.shadow += o.shadow;
+        self.gather += o.gather;
+    }
+}

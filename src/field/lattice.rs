@@ -290,6 +290,22 @@ fn catmull_rom_weights(t: f64) -> [[f64; 4]; 2] {
     ]
 }
 
+/// How far below the lowest lattice value the interpolant can go.
+///
+/// Per axis the negative Catmull–Rom weights sum to t(1 − t)/2 ≤ 1/8, so Σ|w| ≤ 5/4 and the
+/// tensor product's negative weights sum to at most ((5/4)³ − 1)/2 < 0.48. The interpolant is then
+/// at least the stencil's minimum minus 0.48 × the stencil's range, and a 4×4×4 stencil spans at
+/// most 9 neighbour steps.
+pub fn catmull_rom_overshoot(lattice: &Lattice, interpolation: Interpolation) -> f64 {
+    match interpolation {
+        Interpolation::Trilinear => 0.0,
+        Interpolation::Tricubic => {
+            let (lo, hi) = lattice.value_range();
+            0.48 * (hi - lo).min(9.0 * lattice.max_step())
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
