@@ -14,6 +14,7 @@
 
 pub mod atmosphere;
 pub mod atomic;
+pub mod cli;
 pub mod distributed;
 pub mod error;
 pub mod field;

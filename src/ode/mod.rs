@@ -25,6 +25,7 @@
 //! (1980) 19–26, implemented after E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary
 //! Differential Equations I*, §II.4–6 and their DOPRI5 code.
 
+pub mod accuracy;
 pub mod controller;
 pub mod dense;
 pub mod dopri5;

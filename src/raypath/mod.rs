@@ -20,11 +20,10 @@
 //! within the arc tolerance of the arc length). Media extend to the *world sphere* (twice the
 //! radius of the sphere bounding the scene and the camera); a path leaving it escapes.
 
-pub mod accuracy;
 mod arc;
 mod cost;
 pub mod curved;
-pub mod trace_cli;
+pub mod trace;
 
 pub use cost::{CurvedWork, CurvedWorkTotals, RayCounts};
 

@@ -7,7 +7,6 @@
 
 mod bands;
 mod blackbody;
-pub mod check;
 pub mod cie;
 pub mod cie_data;
 pub mod colour;

@@ -21,14 +21,13 @@
 //! Or, instead of 2–5, **false colour** ([`false_colour`]): luminance on a log scale with a
 //! legend. [`region`] exports luminance and illuminance of a pixel rectangle as CSV.
 //!
-//! `morgana tonemap IN.exr --out OUT.png [options]` runs this on a file ([`cli`]); `render` runs
+//! `morgana tonemap IN.exr --out OUT.png [options]` runs this on a file (`crate::cli::tonemap`); `render` runs
 //! it on its own image when `[output]` asks for it ([`write_png`]).
 
 pub mod acuity;
 pub mod blur;
 pub mod chromatic;
 pub mod cie_scotopic_data;
-pub mod cli;
 pub mod delta_e;
 pub mod exposure;
 pub mod exr_read;

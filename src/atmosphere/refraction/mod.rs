@@ -22,7 +22,7 @@
 //!
 //! [`formulas`] holds the classical formulas the traced values are compared with (Bennett 1982,
 //! Saemundsson 1986, their pressure–temperature factor); [`sun`] the apparent shape of the sun
-//! near the horizon; [`report`] the table and CSV of `morgana refraction`; [`cli`] its command
+//! near the horizon; [`report`] the table and CSV of `morgana refraction`
 //! line.
 //!
 //! # References
@@ -30,7 +30,6 @@
 //!   ch. III (the refraction integral, Laplace's series).
 //! - A. T. Young 2004, "Sunset science. IV. Low-altitude refraction", Astron. J. 127:3622.
 
-pub mod cli;
 pub mod formulas;
 pub mod report;
 pub mod sun;

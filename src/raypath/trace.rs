@@ -1,4 +1,4 @@
-//! `morgana trace`: one ray followed through a scene's media — curved where their index fields
+//! One ray followed through a scene's media — curved where their index fields
 //! bend it — without scattering, to see where a pixel's ray goes (which surface a mirage pixel
 //! shows, how low a ray dips before it turns, which part of the sky it escapes to).
 //!
@@ -20,42 +20,10 @@
 
 use super::{Chord, Event, Propagator, RayState};
 use crate::atmosphere::Earth;
-use crate::atomic::Staged;
-use crate::error::{Error, Result};
 use crate::media::index::IndexField;
-use crate::scene::{Scene, load_scene_file};
+use crate::scene::Scene;
 use glam::DVec3;
 use std::fmt::Write as _;
-use std::path::PathBuf;
-
-/// `morgana trace SCENE --from x,y,z (--toward x,y,z | --dir x,y,z)`.
-#[derive(clap::Args, Clone, Debug)]
-pub struct TraceArgs {
-    /// Scene file (TOML).
-    pub scene: PathBuf,
-    /// Start point, m: x,y,z.
-    #[arg(long, value_parser = parse_xyz, allow_hyphen_values = true)]
-    pub from: [f64; 3],
-    /// A point the ray starts toward, m: x,y,z (or give --dir).
-    #[arg(long, value_parser = parse_xyz, allow_hyphen_values = true, conflicts_with = "dir")]
-    pub toward: Option<[f64; 3]>,
-    /// Start direction x,y,z (need not be unit length).
-    #[arg(long, value_parser = parse_xyz, allow_hyphen_values = true)]
-    pub dir: Option<[f64; 3]>,
-    /// Wavelength, nm (within the scene's wavelength range).
-    #[arg(long, default_value_t = 550.0)]
-    pub wavelength_nm: f64,
-    /// Write the path's chord points (s_m,x,y,z,dx,dy,dz,n) to this CSV.
-    #[arg(long)]
-    pub csv: Option<PathBuf>,
-    /// Most events to follow (surfaces, boundaries, escape).
-    #[arg(long, default_value_t = 32)]
-    pub events: usize,
-    /// Longest path to follow, m (a ray trapped in a duct would circle the Earth; the world of an
-    /// Earth-scale scene reaches ~2·10⁷ m from the camera).
-    #[arg(long, default_value_t = 1.0e8)]
-    pub max_length_m: f64,
-}
 
 /// One recorded point of the path.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,50 +60,6 @@ pub struct Traced {
     pub end: End,
     /// What the integrator did along the path.
     pub work: super::CurvedWorkTotals,
-}
-
-/// Runs the command; the text to print.
-pub fn run(args: &TraceArgs) -> Result<String> {
-    let scene = load_scene_file(&args.scene)?;
-    let from = finite_point(args.from, "--from")?;
-    let dir = start_direction(args, from)?;
-    check_wavelength(&scene, args.wavelength_nm)?;
-    if args.events == 0 {
-        return Err(Error::input(None, "--events 0: give at least 1 event to follow"));
-    }
-    if !(args.max_length_m.is_finite() && args.max_length_m > 0.0) {
-        return Err(Error::input(
-            None,
-            format!("--max-length-m {}: expected a positive finite length in metres", args.max_length_m),
-        ));
-    }
-    let staged = match &args.csv {
-        Some(p) => Some(Staged::new(p).map_err(|e| Error::input(None, format!("--csv {}: {e}", p.display())))?),
-        None => None,
-    };
-    let limits = Limits { events: args.events, length_m: args.max_length_m };
-    let traced = trace(&scene, from, dir, args.wavelength_nm, limits);
-    let mut out = header(&scene, from, dir, args.wavelength_nm);
-    for l in &traced.lines {
-        out.push_str(l);
-        out.push('\n');
-    }
-    let (earth, heights) = scene_earth(&scene);
-    let _ = writeln!(out, "heights are {heights}");
-    out.push_str(&summary(&traced, &earth));
-    let w = &traced.work;
-    let _ = writeln!(
-        out,
-        "integrator: {} steps accepted, {} rejected, {} samples of n and ∇n, {} chords",
-        w.ode_steps, w.ode_rejected, w.rhs_evals, w.chords
-    );
-    if let (Some(staged), Some(path)) = (staged, &args.csv) {
-        let fail = |e: std::io::Error| Error::internal(format!("cannot write {}: {e}", path.display()));
-        std::fs::write(&staged.temp, csv_text(&traced.points)).map_err(fail)?;
-        staged.commit().map_err(fail)?;
-        let _ = writeln!(out, "wrote {} ({} points)", path.display(), traced.points.len());
-    }
-    Ok(out)
 }
 
 /// How far a trace goes at most.
@@ -250,20 +174,8 @@ fn sees(scene: &Scene, d: DVec3, wavelength_nm: f64) -> String {
     if names.is_empty() { "sees no light".to_string() } else { format!("sees {}", names.join(", ")) }
 }
 
-fn medium_label(scene: &Scene, m: Option<u32>) -> String {
+pub fn medium_label(scene: &Scene, m: Option<u32>) -> String {
     m.map_or_else(|| "vacuum".to_string(), |i| format!("\"{}\"", scene.medium_names[i as usize]))
-}
-
-fn header(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64) -> String {
-    let m = scene.medium_at(from);
-    let n = Propagator::new(scene).n_at(m, wavelength_nm, from);
-    format!(
-        "trace {}: {wavelength_nm} nm from {} going {} in {} (n = {n:.8}); elevations above the scene's xz-plane\n",
-        scene.label(),
-        xyz(from),
-        heading(dir),
-        medium_label(scene, m)
-    )
 }
 
 /// The Earth heights are measured from: that of the first medium whose index is an atmosphere
@@ -277,13 +189,6 @@ pub fn scene_earth(scene: &Scene) -> (Earth, String) {
         Some((e, name)) => (e, format!("above the Earth of the atmosphere in \"{name}\"")),
         None => (Earth::flat_y(), "y (no atmosphere in the scene)".to_string()),
     }
-}
-
-/// The lowest point of the path above the ground, and the number of points.
-fn summary(t: &Traced, earth: &Earth) -> String {
-    let lowest = t.points.iter().map(|p| (earth.height(p.position), p)).min_by(|a, b| a.0.total_cmp(&b.0));
-    let Some((h, p)) = lowest else { return String::new() };
-    format!("lowest point: height {h:.4} m at s = {:.3} m, {}; {} points\n", p.s_m, xyz(p.position), t.points.len())
 }
 
 /// The CSV of the path's points.
@@ -300,61 +205,12 @@ pub fn csv_text(points: &[PathPoint]) -> String {
     text
 }
 
-fn xyz(p: DVec3) -> String {
+pub fn xyz(p: DVec3) -> String {
     format!("({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)
 }
 
 /// A direction and its elevation above the xz-plane, in degrees.
-fn heading(d: DVec3) -> String {
+pub fn heading(d: DVec3) -> String {
     let elev = d.y.clamp(-1.0, 1.0).asin().to_degrees();
     format!("({:.6}, {:.6}, {:.6}) at elevation {elev:.5}°", d.x, d.y, d.z)
-}
-
-fn finite_point(v: [f64; 3], flag: &str) -> Result<DVec3> {
-    let p = DVec3::from(v);
-    if p.is_finite() {
-        Ok(p)
-    } else {
-        Err(Error::input(None, format!("{flag}: found {}, expected three finite numbers", xyz(p))))
-    }
-}
-
-/// The unit start direction from `--dir` or `--toward`.
-fn start_direction(args: &TraceArgs, from: DVec3) -> Result<DVec3> {
-    let (d, flag) = match (args.dir, args.toward) {
-        (Some(d), None) => (finite_point(d, "--dir")?, "--dir"),
-        (None, Some(t)) => (finite_point(t, "--toward")? - from, "--toward"),
-        _ => return Err(Error::input(None, "give the start direction: --toward x,y,z or --dir x,y,z (one of them)")),
-    };
-    let len = d.length();
-    if !(len.is_finite() && len > 1e-12 * (1.0 + from.length())) {
-        let why = if flag == "--dir" { "a zero direction" } else { "the start point itself" };
-        return Err(Error::input(None, format!("{flag}: {why}; expected a direction of non-zero length")));
-    }
-    Ok(d / len)
-}
-
-fn check_wavelength(scene: &Scene, nm: f64) -> Result<()> {
-    let (lo, hi) = (scene.bands.min_nm, scene.bands.max_nm);
-    if nm.is_finite() && (lo..=hi).contains(&nm) {
-        return Ok(());
-    }
-    Err(Error::input(
-        None,
-        format!(
-            "--wavelength-nm {nm}: expected a wavelength within the scene's range {lo}–{hi} nm (its media are checked there)"
-        ),
-    ))
-}
-
-fn parse_xyz(s: &str) -> std::result::Result<[f64; 3], String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|x| x.trim().parse::<f64>())
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|e| format!("{e}"))?;
-    match v.as_slice() {
-        [x, y, z] => Ok([*x, *y, *z]),
-        _ => Err(format!("expected three numbers x,y,z, found \"{s}\"")),
-    }
 }

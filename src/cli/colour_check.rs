@@ -37,11 +37,11 @@
 //! - `scotopic`: each spectral radiance's scotopic luminance K′_m Σ L(λ) V′(λ) · 1 nm
 //!   ([`scotopic_luminance`]).
 
-use super::colour::{BandsToColour, absolute_xyz, cmf_sums, relative_xyz, xyz_to_linear_srgb};
-use super::{Bands, RgbSigmoid, Spectrum, Tabulated, named_illuminant};
 use crate::atomic::Staged;
 use crate::spectrum::SpectralImage;
+use crate::spectrum::colour::{BandsToColour, absolute_xyz, cmf_sums, relative_xyz, xyz_to_linear_srgb};
 use crate::spectrum::exr::{emissive_channel_name, write_spectral_exr};
+use crate::spectrum::{Bands, RgbSigmoid, Spectrum, Tabulated, named_illuminant};
 use crate::tonemap::chromatic::{Cat, adaptation_matrix};
 use crate::tonemap::exr_read::read_exr;
 use crate::tonemap::matrix::mul_vec;

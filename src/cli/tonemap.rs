@@ -1,21 +1,21 @@
 //! `morgana tonemap IN.exr --out OUT.png [options]`: the command's work, behind a thin `main`.
 //!
-//! Reads the EXR ([`super::exr_read`]), tone-maps it ([`super::tonemap`]) and writes the PNG
+//! Reads the EXR ([`crate::tonemap::exr_read`]), tone-maps it ([`crate::tonemap::tonemap`]) and writes the PNG
 //! and, with `--region x0,y0,x1,y1 --csv FILE`, the region's luminance CSV. Outputs are staged
 //! and renamed into place only when all were written. Bad options and unreadable input are
 //! input errors (exit code 2) naming the option or file and what is allowed.
 
-use super::exposure::Exposure;
-use super::exr_read::read_exr;
-use super::region::Region;
-use super::settings::{OptionError, ToneOptions};
-use super::tonemap;
 use crate::atomic::Staged;
 use crate::error::{Error, Location, Result};
 use crate::raster::png::write_rgb8;
+use crate::tonemap::exposure::Exposure;
+use crate::tonemap::exr_read::read_exr;
+use crate::tonemap::region::Region;
+use crate::tonemap::settings::{OptionError, ToneOptions};
+use crate::tonemap::tonemap;
 use std::path::{Path, PathBuf};
 
-/// The command line of `morgana tonemap` (parsed by clap in `main`).
+/// The command line of `morgana tonemap`.
 #[derive(clap::Args, Clone, Debug)]
 pub struct TonemapArgs {
     /// The EXR to read: a spectral EXR written by morgana render, or an RGB EXR.
@@ -125,6 +125,11 @@ fn option_error(e: OptionError) -> Error {
 }
 
 /// Runs the command; returns the lines to print (what was written and how).
+/// What `morgana tonemap` prints: the lines of [`run`].
+pub fn run_args(args: &TonemapArgs) -> Result<String> {
+    Ok(run(&args.command()?)?.iter().map(|l| format!("{l}\n")).collect())
+}
+
 pub fn run(cmd: &TonemapCommand) -> Result<Vec<String>> {
     let settings = cmd.options.validate().map_err(option_error)?;
     let region = match (&cmd.region, &cmd.csv) {

@@ -1,7 +1,8 @@
-//! The command line of `morgana refraction` (parsed by clap in `main`) and what it prints.
+//! `morgana refraction`: astronomical refraction through an atmosphere, as a table, a CSV, a
+//! dispersion line or the flattened sun (the work is [`crate::atmosphere::refraction`]).
 
-use super::report::{dispersion, sun_text, table};
-use super::{Settings, Tracer};
+use crate::atmosphere::refraction::report::{dispersion, sun_text, table};
+use crate::atmosphere::refraction::{Settings, Tracer};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
 
