@@ -39,3 +39,4 @@ pub mod spectrum;
 pub mod testing;
 pub mod timing;
 pub mod tonemap;
+pub mod world;

@@ -34,11 +34,12 @@ const LAYERS: &[(&str, &str, u32)] = &[
     ("media", "domain", 12),
     ("photon_map", "domain", 13),
     ("sensor", "domain", 13),
-    // What light interacts with, and the scene reader that builds it with the run description.
+    // What light interacts with, propagation through it (which the scene reader uses to aim
+    // beams along curved paths), and the scene reader that builds both with the run description.
     ("world", "world", 20),
+    ("raypath", "raypath", 25),
     ("scene", "scene", 30),
-    // Propagation, then the passes built on it.
-    ("raypath", "raypath", 40),
+    // The passes built on propagation.
     ("photon", "photon", 50),
     ("distributed", "distributed", 60),
     ("render", "render", 70),

@@ -7,6 +7,7 @@ mod common;
 use common::render_with;
 use morgana::distributed::split::{dealt, dealt_index, share};
 use morgana::distributed::{self, Schedule, World, assemble::IRRADIANCE_BLOCK};
+use morgana::photon::PassSettings;
 use morgana::photon::{self, MapKind};
 use morgana::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
 use morgana::render::{RenderOptions, render_on};
@@ -39,14 +40,15 @@ fn rank_shares_of_the_batches_give_the_single_process_photons_in_order() {
             MapKind::Global => scene.integrator.photons,
             MapKind::Caustic => scene.integrator.caustic_photons,
         };
-        let (whole, whole_stats) = photon::shoot(&scene, kind, emitted, 11, &|_| {});
+        let (whole, whole_stats) = photon::shoot(&scene.world, &PassSettings::of(&scene), kind, emitted, 11, &|_| {});
         assert!(!whole.surface.is_empty(), "{kind:?}: no photons stored");
         for ranks in [1, 2, 3, 4, 12] {
             let mut surface = Vec::new();
             let mut stats = Vec::new();
             for r in 0..ranks {
                 let range = share(photon::batch_count(emitted), r, ranks);
-                let (sink, st) = photon::shoot_batches(&scene, kind, emitted, 11, range, &|_| {});
+                let (sink, st) =
+                    photon::shoot_batches(&scene.world, &PassSettings::of(&scene), kind, emitted, 11, range, &|_| {});
                 surface.extend(sink.surface);
                 stats.push(st);
             }
@@ -66,7 +68,8 @@ fn rank_shares_of_the_batches_give_the_single_process_photons_in_order() {
 #[test]
 fn maps_assembled_from_parts_equal_the_map_built_at_once() {
     let scene = small_scene(6 * photon::BATCH);
-    let (sink, _) = photon::shoot(&scene, MapKind::Global, scene.integrator.photons, 11, &|_| {});
+    let (sink, _) =
+        photon::shoot(&scene.world, &PassSettings::of(&scene), MapKind::Global, scene.integrator.photons, 11, &|_| {});
     let whole = PhotonMap::build(&sink.surface);
     for ranks in [2, 3, 5] {
         // Split the records unevenly, as ranks' stored counts differ.
@@ -88,7 +91,8 @@ fn maps_assembled_from_parts_equal_the_map_built_at_once() {
 #[test]
 fn irradiance_estimated_in_dealt_blocks_equals_the_whole_estimate() {
     let scene = small_scene(8 * photon::BATCH);
-    let (sink, _) = photon::shoot(&scene, MapKind::Global, scene.integrator.photons, 11, &|_| {});
+    let (sink, _) =
+        photon::shoot(&scene.world, &PassSettings::of(&scene), MapKind::Global, scene.integrator.photons, 11, &|_| {});
     let map = PhotonMap::build(&sink.surface);
     let s = &scene.integrator;
     let est = Estimator {

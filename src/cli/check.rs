@@ -23,8 +23,8 @@ pub fn run(args: &CheckArgs) -> Result<String> {
         scene.bands.min_nm,
         scene.bands.max_nm,
         scene.sampling,
-        scene.lights.len(),
-        scene.shapes.len()
+        scene.world.lights.len(),
+        scene.world.shapes.len()
     ));
     out.push_str("effect plan:\n");
     out.push_str(&scene.plan.to_string());

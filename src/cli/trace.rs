@@ -7,7 +7,7 @@ use crate::atmosphere::Earth;
 use crate::atomic::Staged;
 use crate::error::{Error, Result};
 use crate::raypath::Propagator;
-use crate::raypath::trace::{Limits, Traced, csv_text, heading, medium_label, scene_earth, trace, xyz};
+use crate::raypath::trace::{Limits, Traced, csv_text, heading, medium_label, trace, world_earth, xyz};
 use crate::scene::{Scene, load_scene_file};
 use glam::DVec3;
 use std::fmt::Write as _;
@@ -63,13 +63,13 @@ pub fn run(args: &TraceArgs) -> Result<String> {
         None => None,
     };
     let limits = Limits { events: args.events, length_m: args.max_length_m };
-    let traced = trace(&scene, from, dir, args.wavelength_nm, limits);
+    let traced = trace(&scene.world, scene.curved(), from, dir, args.wavelength_nm, limits);
     let mut out = header(&scene, from, dir, args.wavelength_nm);
     for l in &traced.lines {
         out.push_str(l);
         out.push('\n');
     }
-    let (earth, heights) = scene_earth(&scene);
+    let (earth, heights) = world_earth(&scene.world);
     let _ = writeln!(out, "heights are {heights}");
     out.push_str(&summary(&traced, &earth));
     let w = &traced.work;
@@ -88,14 +88,14 @@ pub fn run(args: &TraceArgs) -> Result<String> {
 }
 
 fn header(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64) -> String {
-    let m = scene.medium_at(from);
-    let n = Propagator::new(scene).n_at(m, wavelength_nm, from);
+    let m = scene.world.medium_at(from);
+    let n = Propagator::new(&scene.world, scene.curved()).n_at(m, wavelength_nm, from);
     format!(
         "trace {}: {wavelength_nm} nm from {} going {} in {} (n = {n:.8}); elevations above the scene's xz-plane\n",
         scene.label(),
         xyz(from),
         heading(dir),
-        medium_label(scene, m)
+        medium_label(&scene.world, m)
     )
 }
 

@@ -55,7 +55,15 @@ pub fn shoot(
 ) -> Shot {
     let t = std::time::Instant::now();
     let (batches, _) = my_share(world, emitted);
-    let (sink, local) = photon::shoot_batches(scene, kind, emitted, scene.integrator.seed, batches.clone(), on_batch);
+    let (sink, local) = photon::shoot_batches(
+        &scene.world,
+        &photon::PassSettings::of(scene),
+        kind,
+        emitted,
+        scene.integrator.seed,
+        batches.clone(),
+        on_batch,
+    );
     let mine = RankPhotons {
         pass: pass.to_string(),
         batches: [batches.start, batches.end],

@@ -21,7 +21,8 @@
 use super::{Chord, Event, Propagator, RayState};
 use crate::atmosphere::Earth;
 use crate::media::index::IndexField;
-use crate::scene::Scene;
+use crate::ode::CurvedSettings;
+use crate::world::World;
 use glam::DVec3;
 use std::fmt::Write as _;
 
@@ -72,9 +73,17 @@ pub struct Limits {
 }
 
 /// Follows the ray from `from` along unit `dir` at `wavelength_nm` within `limits`.
-pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits: Limits) -> Traced {
-    let prop = Propagator::new(scene);
-    let mut state = RayState { position: from, dir, wavelength_nm: Some(wavelength_nm), medium: scene.medium_at(from) };
+#[allow(clippy::too_many_arguments)]
+pub fn trace(
+    world: &World,
+    curved: Option<&CurvedSettings>,
+    from: DVec3,
+    dir: DVec3,
+    wavelength_nm: f64,
+    limits: Limits,
+) -> Traced {
+    let prop = Propagator::new(world, curved);
+    let mut state = RayState { position: from, dir, wavelength_nm: Some(wavelength_nm), medium: world.medium_at(from) };
     let (mut points, mut lines) = (Vec::new(), Vec::new());
     // `s0`: the polyline's length at the start of this leg; `arc`: the path length along the
     // arc through the last surface, as the propagator measures it.
@@ -97,7 +106,7 @@ pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits:
             let n = prop.n_at(state.medium, wavelength_nm, state.position);
             points.push(PathPoint { s_m: s0, position: state.position, dir: state.dir, n });
         }
-        let medium_name = |m: Option<u32>| medium_label(scene, m);
+        let medium_name = |m: Option<u32>| medium_label(world, m);
         match event {
             Event::Surface { hit, dir: d, path_length, medium } => {
                 arc += path_length;
@@ -106,12 +115,12 @@ pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits:
                 s0 = last.s_m + (hit.point - last.position).length();
                 let n = prop.n_at(medium, wavelength_nm, hit.point);
                 points.push(PathPoint { s_m: s0, position: hit.point, dir: d, n });
-                let name = &scene.prim_names[hit.prim as usize];
-                let pr = &scene.prims[hit.prim as usize];
+                let name = &world.names.prims[hit.prim as usize];
+                let pr = &world.prims[hit.prim as usize];
                 let at = format!("s = {arc:.6} m at {} going {}", xyz(hit.point), heading(d));
                 if pr.material.is_some() || pr.light.is_some() {
                     let what = match pr.material {
-                        Some(m) => format!("material \"{}\"", scene.material_names[m as usize]),
+                        Some(m) => format!("material \"{}\"", world.names.materials[m as usize]),
                         None => "an emitter".to_string(),
                     };
                     lines.push(format!("{k:>3}  surface   {at}: {name} ({what}); the trace stops here"));
@@ -119,7 +128,7 @@ pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits:
                 }
                 let (nd, across) = prop.cross(&hit, d, medium, wavelength_nm, 1.0);
                 let n_across = prop.n_at(across, wavelength_nm, hit.point);
-                let into = scene.medium_across(hit.prim, d, hit.normal);
+                let into = world.medium_across(hit.prim, d, hit.normal);
                 let how = if across != into {
                     format!("totally reflected back into {}", medium_name(across))
                 } else if nd == d {
@@ -135,7 +144,7 @@ pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits:
                     s0 = t.s_m;
                     points.push(PathPoint { dir: d, n: prop.n_at(state.medium, wavelength_nm, t.position), ..t });
                 }
-                let sees = sees(scene, d, wavelength_nm);
+                let sees = sees(world, d, wavelength_nm);
                 lines.push(format!("{k:>3}  escape    after {s0:.3} m of chords, going {}: {sees}", heading(d)));
                 return Traced { points, lines, end: End::Escape(d), work: prop.work.totals() };
             }
@@ -152,7 +161,7 @@ pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits:
                     limits.length_m,
                     xyz(position),
                     heading(d),
-                    medium_label(scene, Some(medium))
+                    medium_label(world, Some(medium))
                 ));
                 return Traced { points, lines, end: End::LengthLimit, work: prop.work.totals() };
             }
@@ -163,25 +172,25 @@ pub fn trace(scene: &Scene, from: DVec3, dir: DVec3, wavelength_nm: f64, limits:
 }
 
 /// Which lights at infinity a ray escaping along `d` sees.
-fn sees(scene: &Scene, d: DVec3, wavelength_nm: f64) -> String {
-    let names: Vec<String> = scene
+fn sees(world: &World, d: DVec3, wavelength_nm: f64) -> String {
+    let names: Vec<String> = world
         .lights
         .iter()
-        .zip(&scene.light_names)
+        .zip(&world.names.lights)
         .filter(|(l, _)| l.escape_radiance(d, wavelength_nm) > 0.0)
         .map(|(_, n)| format!("light \"{n}\""))
         .collect();
     if names.is_empty() { "sees no light".to_string() } else { format!("sees {}", names.join(", ")) }
 }
 
-pub fn medium_label(scene: &Scene, m: Option<u32>) -> String {
-    m.map_or_else(|| "vacuum".to_string(), |i| format!("\"{}\"", scene.medium_names[i as usize]))
+pub fn medium_label(world: &World, m: Option<u32>) -> String {
+    m.map_or_else(|| "vacuum".to_string(), |i| format!("\"{}\"", world.names.media[i as usize]))
 }
 
 /// The Earth heights are measured from: that of the first medium whose index is an atmosphere
 /// (its file's, or the scene's `[world] earth`), else flat ground y = 0.
-pub fn scene_earth(scene: &Scene) -> (Earth, String) {
-    let atmosphere = scene.media.iter().zip(&scene.medium_names).find_map(|(m, name)| match &m.index {
+pub fn world_earth(world: &World) -> (Earth, String) {
+    let atmosphere = world.media.iter().zip(&world.names.media).find_map(|(m, name)| match &m.index {
         Some(IndexField::Atmosphere(a)) => Some((a.earth, name)),
         _ => None,
     });

@@ -110,7 +110,7 @@ impl<'a> EyeTracer<'a> {
         let volume_paths = if shadow { Paths::NotDirect } else { Paths::All };
         EyeTracer {
             scene,
-            prop: Propagator::new(scene),
+            prop: Propagator::new(&scene.world, scene.curved()),
             maps,
             global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, global_paths)),
             global_all: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, Paths::All)),
@@ -190,7 +190,7 @@ impl<'a> EyeTracer<'a> {
     /// leaves the scene along `dir`; gather rays leave it to the shadow rays and photon maps.
     fn escape(&self, dir: DVec3, lanes: &Lanes) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        for light in &self.scene.lights {
+        for light in &self.scene.world.lights {
             for (o, l) in out.iter_mut().zip(&lanes.nm[..lanes.len]) {
                 *o += light.escape_radiance(dir, *l);
             }
@@ -210,15 +210,17 @@ impl<'a> EyeTracer<'a> {
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         if at.mode == Mode::Camera
-            && let Some(light) = self.scene.area_light_of(hit.prim)
+            && let Some(light) = self.scene.world.area_light_of(hit.prim)
             && light.emitted_cos(hit.normal, -dir) > 0.0
         {
             for (o, l) in out.iter_mut().zip(&at.lanes.nm[..at.lanes.len]) {
                 *o += light.emission.spectrum.eval(*l);
             }
         }
-        let add = match self.scene.material_of(hit.prim) {
-            None if self.scene.prims[hit.prim as usize].light.is_none() => self.boundary(hit, dir, medium, at, rng, sc),
+        let add = match self.scene.world.material_of(hit.prim) {
+            None if self.scene.world.prims[hit.prim as usize].light.is_none() => {
+                self.boundary(hit, dir, medium, at, rng, sc)
+            }
             None => return out,
             Some(m) if m.is_diffuse() => self.diffuse(hit, dir, m, medium, at, rng, sc),
             Some(m) => self.specular(hit, dir, m, medium, at, rng, sc),
@@ -260,7 +262,7 @@ impl<'a> EyeTracer<'a> {
             out[..lanes.len].copy_from_slice(&lr[..lanes.len]);
             return out;
         };
-        let across = self.scene.medium_across(hit.prim, dir, hit.normal);
+        let across = self.scene.world.medium_across(hit.prim, dir, hit.normal);
         let lt = self.radiance(&self.prop.leave(hit, t_dir, at.wavelength(), across), next, rng, sc);
         for i in 0..lanes.len {
             let f = crate::material::fresnel_dielectric(cos_i, eta_of(lanes.nm[i]));
@@ -346,7 +348,8 @@ impl<'a> EyeTracer<'a> {
         if w[..lanes.len].iter().all(|w| *w == 0.0) {
             return out;
         }
-        let next_medium = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+        let next_medium =
+            if s.transmitted { self.scene.world.medium_across(hit.prim, dir, hit.normal) } else { medium };
         let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
         let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
         for i in 0..lanes.len {
@@ -440,7 +443,7 @@ impl<'a> EyeTracer<'a> {
         sc: &mut Scratch,
     ) -> BandValues {
         let mut e = [0.0; MAX_BANDS];
-        for light in &self.scene.lights {
+        for light in &self.scene.world.lights {
             let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
             let cos = if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
             if cos <= 0.0 {
@@ -480,7 +483,7 @@ impl<'a> EyeTracer<'a> {
         }
         let nm = &lanes.nm[..lanes.len];
         let phase = |l: f64, light_travel: DVec3| m.phase.eval(l, light_travel.dot(wo));
-        for light in &self.scene.lights {
+        for light in &self.scene.world.lights {
             let Some(inc) = light.incident(x, rng.uniform2()) else { continue };
             sc.rays.shadow += 1;
             let Some(tr) = self.prop.shadow(x, None, inc.wi, inc.dist, Some(id), nm, rng) else { continue };
@@ -492,14 +495,14 @@ impl<'a> EyeTracer<'a> {
                 out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * tr[i];
             }
         }
-        if self.scene.lights.iter().any(|l| !l.is_delta()) {
+        if self.scene.world.lights.iter().any(|l| !l.is_delta()) {
             // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
             let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());
             let to_light = -wi;
             sc.rays.shadow += 1;
             match self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng) {
                 Some((Some(hit), tr)) => {
-                    if let Some(light) = self.scene.area_light_of(hit.prim) {
+                    if let Some(light) = self.scene.world.area_light_of(hit.prim) {
                         let cos = light.emitted_cos(hit.normal, wi);
                         if cos > 0.0 && pdf > 0.0 {
                             let p_light = hit.t * hit.t / (cos * light.shape.area());
@@ -513,8 +516,12 @@ impl<'a> EyeTracer<'a> {
                     }
                 }
                 Some((None, tr)) if pdf > 0.0 => {
-                    for sky in
-                        self.scene.lights.iter().filter_map(|l| if let Light::Sky(s) = l { Some(s) } else { None })
+                    for sky in self
+                        .scene
+                        .world
+                        .lights
+                        .iter()
+                        .filter_map(|l| if let Light::Sky(s) = l { Some(s) } else { None })
                     {
                         let mis = power_heuristic(pdf, sky.pdf(to_light));
                         if mis > 0.0 {
@@ -539,7 +546,7 @@ impl<'a> EyeTracer<'a> {
     /// ratio tracking otherwise; Russian roulette once it is negligible.
     fn march(&self, c: &Chord, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
         let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
-        let m = &self.scene.media[id as usize];
+        let m = &self.scene.world.media[id as usize];
         let lanes = at.lanes;
         if !m.scatters() {
             // A medium that only absorbs sends nothing toward the eye: its transmittance, in one

@@ -75,7 +75,7 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 
 impl<'a> PathTracer<'a> {
     pub fn new(scene: &'a Scene) -> PathTracer<'a> {
-        PathTracer { scene, prop: Propagator::new(scene) }
+        PathTracer { scene, prop: Propagator::new(&scene.world, scene.curved()) }
     }
 
     /// Integrator work along this tracer's curved paths so far.
@@ -106,7 +106,7 @@ impl<'a> PathTracer<'a> {
             rays.eye += 1;
             let lam = w.lambda;
             let event = self.prop.next_event_with(&state, &mut |c| {
-                let m = self.scene.medium(c.medium)?;
+                let m = self.scene.world.medium(c.medium)?;
                 tracking::sample_interaction(m, lam, c.origin, c.dir, c.length, rng)
             });
             if let Some(branch) = self.inelastic_track(&state, &event, &mut w, &mut l, rng, rays) {
@@ -160,7 +160,7 @@ impl<'a> PathTracer<'a> {
         rng: &mut Rng,
         rays: &mut RayCounts,
     ) -> Option<RayState> {
-        let m = &self.scene.media[medium as usize];
+        let m = &self.scene.world.media[medium as usize];
         w.beta *= m.albedo(w.lambda);
         Some(self.scatter(position, dir, medium, &m.phase, w, l, rng, rays))
     }
@@ -198,7 +198,7 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> Option<Option<RayState>> {
         let id = state.medium?;
-        let m = &self.scene.media[id as usize];
+        let m = &self.scene.world.media[id as usize];
         if m.inelastic.is_empty() {
             return None;
         }
@@ -234,7 +234,7 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> Option<RayState> {
         let lambda = Some(w.lambda);
-        if let Some(light) = self.scene.area_light_of(hit.prim) {
+        if let Some(light) = self.scene.world.area_light_of(hit.prim) {
             let cos = light.emitted_cos(hit.normal, -dir);
             if cos > 0.0 {
                 let mis = match w.emission {
@@ -247,8 +247,8 @@ impl<'a> PathTracer<'a> {
                 *l += w.beta * mis * light.emission.spectrum.eval(w.lambda);
             }
         }
-        let material = match self.scene.material_of(hit.prim) {
-            None if self.scene.prims[hit.prim as usize].light.is_none() => {
+        let material = match self.scene.world.material_of(hit.prim) {
+            None if self.scene.world.prims[hit.prim as usize].light.is_none() => {
                 let (d, across) = self.prop.cross(hit, dir, medium, w.lambda, rng.uniform());
                 return Some(self.prop.leave(hit, d, lambda, across));
             }
@@ -273,7 +273,8 @@ impl<'a> PathTracer<'a> {
                 }
                 w.beta *= s.weight;
                 w.emission = Emission::Full;
-                let next = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+                let next =
+                    if s.transmitted { self.scene.world.medium_across(hit.prim, dir, hit.normal) } else { medium };
                 Some(self.prop.leave(hit, s.dir, lambda, next))
             }
         }
@@ -285,6 +286,7 @@ impl<'a> PathTracer<'a> {
     /// estimation samples it as a delta light).
     fn escaped(&self, dir: DVec3, lambda: f64, emission: Emission) -> f64 {
         self.scene
+            .world
             .lights
             .iter()
             .map(|li| match (emission, li) {
@@ -316,7 +318,7 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> f64 {
         let mut e = 0.0;
-        for light in &self.scene.lights {
+        for light in &self.scene.world.lights {
             let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
             let (factor, p_scatter) = if n == DVec3::ZERO {
                 match phase {

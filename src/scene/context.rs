@@ -121,9 +121,9 @@ impl<'a> Ctx<'a> {
 }
 
 /// `(name, span)` pairs of a record's optional fields, for [`Ctx::only`].
-#[macro_export]
 macro_rules! present_fields {
     ($rec:expr; $($field:ident),* $(,)?) => {
         [$( (stringify!($field), $rec.$field.as_ref().map(|v| v.span())) ),*]
     };
 }
+pub(crate) use present_fields;

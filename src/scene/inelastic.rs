@@ -35,6 +35,7 @@
 //! environment variable `MORGANA_OCEAN_DATA`, else `../shared/data/ocean` beside the morgana
 //! source tree this binary was built from; a missing folder is an error naming what was tried.
 
+use super::context::present_fields;
 use super::context::{Ctx, R};
 use super::media::{Table, phase};
 use super::raw::RawMedium;
@@ -44,7 +45,6 @@ use crate::media::inelastic::{
 };
 use crate::media::ocean::{self, OceanParams, ParticlePhase};
 use crate::media::{Medium, phase::PhaseFunction};
-use crate::present_fields;
 use crate::spectrum::Bands;
 use std::ops::Range;
 use std::path::PathBuf;

@@ -20,12 +20,12 @@
 //! below the horizontal) — with photons aimed at the bounding sphere of
 //! `target_min`/`target_max` (default: of the whole scene).
 
+use super::context::present_fields;
 use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
 use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SkyLight, SpotLight};
-use crate::present_fields;
 use crate::spectrum::Bands;
 use toml::Spanned;
 

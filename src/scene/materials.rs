@@ -1,12 +1,12 @@
 //! `[[material]]` records → [`Material`]s.
 
+use super::context::present_fields;
 use super::context::{Ctx, R};
 use super::raw::RawMaterial;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::material::{
     Beckmann, COX_MUNK_MAX_WIND_M_S, Dielectric, Ior, Lambertian, Material, Mirror, RoughDielectric, named_glass,
 };
-use crate::present_fields;
 use crate::spectrum::Bands;
 use toml::{Spanned, Value};
 

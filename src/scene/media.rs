@@ -21,6 +21,7 @@
 //!
 //! A medium may be clear (`sigma_a = 0`, `sigma_s = 0`) and only bend light.
 
+use super::context::present_fields;
 use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
@@ -28,7 +29,6 @@ use crate::atmosphere::Earth;
 use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D, SphericalExponential};
 use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
-use crate::present_fields;
 use crate::spectrum::Bands;
 use glam::DVec3;
 use std::ops::Range;

@@ -25,10 +25,10 @@
 //! samples = 64                  # optional: shadow rays per band for Ed(0+)
 //! ```
 
+use super::context::present_fields;
 use super::context::{Ctx, R};
 use super::raw::RawSensor;
 use super::settings::{DirectLighting, IntegratorSettings};
-use crate::present_fields;
 use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor};
 use toml::Spanned;
 

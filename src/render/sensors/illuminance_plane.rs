@@ -51,16 +51,16 @@ fn at(
     sc: &mut Scratch,
 ) -> (f64, f64) {
     let (mut direct, mut indirect) = (0.0, 0.0);
-    let prop = Propagator::new(scene);
+    let prop = Propagator::new(&scene.world, scene.curved());
     let here = Hit { t: 0.0, point: p, normal: plane.normal, prim: u32::MAX };
-    let medium = scene.medium_at(crate::geometry::spawn_origin(p, plane.normal, plane.normal));
+    let medium = scene.world.medium_at(crate::geometry::spawn_origin(p, plane.normal, plane.normal));
     let frame = Frame::from_normal(plane.normal);
     for _ in 0..plane.samples {
         let lanes = Lanes::new(&scene.bands, WavelengthSampling::Bands, rng.uniform());
         // K_m ȳ(λ) Δλ per lane, divided among the samples: lux per W m⁻² nm⁻¹.
         let w = scene.bands.width_nm() * K_M / plane.samples as f64;
         let lux: Vec<f64> = lanes.nm[..lanes.len].iter().map(|l| w * cmf_1931(*l)[1]).collect();
-        for light in &scene.lights {
+        for light in &scene.world.lights {
             let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
             let cos = inc.wi.dot(plane.normal);
             if cos <= 0.0 {

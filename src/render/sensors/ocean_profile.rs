@@ -71,7 +71,7 @@ fn tally(
     if su.abs() > 0.5 || sv.abs() > 0.5 {
         return;
     }
-    let Some(m) = scene.medium(scene.medium_at(p.position)) else { return };
+    let Some(m) = scene.world.medium(scene.world.medium_at(p.position)) else { return };
     let sigma_t = m.sigma_t(p.wavelength_nm) * m.density.at(p.position);
     if sigma_t <= 0.0 {
         return;
@@ -110,9 +110,9 @@ fn tally(
 /// E_d(0+) per band from the lights, by shadow rays from just above the surface.
 fn ed_above(s: &OceanProfile, scene: &Scene, index: u64) -> Vec<f64> {
     let bands = scene.bands;
-    let prop = Propagator::new(scene);
+    let prop = Propagator::new(&scene.world, scene.curved());
     let p = spawn_origin(s.origin, s.up, s.up);
-    let medium = scene.medium_at(p);
+    let medium = scene.world.medium_at(p);
     let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, (index << 40) | 0xED);
     (0..bands.count)
         .map(|b| {
@@ -120,7 +120,7 @@ fn ed_above(s: &OceanProfile, scene: &Scene, index: u64) -> Vec<f64> {
             let mut sum = 0.0;
             for _ in 0..s.samples {
                 let l = lo + (hi - lo) * rng.uniform();
-                for light in &scene.lights {
+                for light in &scene.world.lights {
                     let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
                     let cos = inc.wi.dot(s.up);
                     if cos <= 0.0 {

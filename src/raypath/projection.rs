@@ -24,10 +24,11 @@
 //! corner and one ring of margin keep that to light whose path changes faster than the cell size
 //! (a caustic of the atmosphere), which `report.json`'s stated beam area lets a user check.
 
+use super::{Event, Propagator, RayState};
 use crate::geometry::{Aabb, Frame};
 use crate::light::{BeamCells, DirectionalLight};
-use crate::raypath::{Event, Propagator, RayState};
-use crate::scene::Scene;
+use crate::ode::CurvedSettings;
+use crate::world::World;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -46,9 +47,14 @@ const GROW_ROUNDS: usize = 4;
 
 /// The projection map of directional light `light` (emitting into `medium`), or `None` when it
 /// has no target or nothing of it reaches the target.
-pub fn build(scene: &Scene, light: &DirectionalLight, medium: Option<u32>) -> Option<BeamCells> {
+pub fn build(
+    world: &World,
+    curved: &CurvedSettings,
+    light: &DirectionalLight,
+    medium: Option<u32>,
+) -> Option<BeamCells> {
     let target = light.target?;
-    let prop = Propagator::new(scene);
+    let prop = Propagator::new(world, Some(curved));
     let frame = Frame::from_normal(light.dir);
     let half = [0.5 * (light.beam[0][1] - light.beam[0][0]), 0.5 * (light.beam[1][1] - light.beam[1][0])];
     let centre = [0.5 * (light.beam[0][0] + light.beam[0][1]), 0.5 * (light.beam[1][0] + light.beam[1][1])];
@@ -260,7 +266,7 @@ fn trace(
         let Event::Surface { hit, dir, medium, .. } = event else { break };
         through |= box_.contains(hit.point);
         note(hit.point);
-        let scene_prim = &prop_scene(prop).prims[hit.prim as usize];
+        let scene_prim = &prop.world().prims[hit.prim as usize];
         if through || scene_prim.material.is_some() || scene_prim.light.is_some() {
             end_normal = (!through).then_some(hit.normal);
             break;
@@ -270,10 +276,6 @@ fn trace(
         state = prop.leave(&hit, d, None, across);
     }
     (through, closest.map(|(_, q)| q), end_normal)
-}
-
-fn prop_scene<'a>(prop: &'a Propagator) -> &'a Scene {
-    prop.scene()
 }
 
 /// Whether the segment a→b meets the box (slab test).
