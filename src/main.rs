@@ -79,14 +79,18 @@ enum Command {
         /// Scene file (TOML); the embedded default scene when omitted.
         scene: Option<PathBuf>,
     },
-    /// Read a luminaire photometry file (IES LM-63, EULUMDAT) and print what it says: flux,
-    /// symmetry, peak, beam and field angles; optionally draw its polar curves.
+    /// Read a luminaire photometry file (IES LM-63, EULUMDAT, IES TM-33, GLDF) and print what it
+    /// says: format, flux, symmetry, spectrum, peak, beam and field angles; optionally draw its
+    /// polar curves.
     Luminaire {
-        /// Photometric file (.ies, .ldt).
+        /// Photometric file (.ies, .ldt, .xml TM-33, .gldf).
         file: PathBuf,
         /// Write the C0–C180 and C90–C270 polar intensity curves to this PNG.
         #[arg(long)]
         png: Option<PathBuf>,
+        /// GLDF only: the id of the variant to read (default: the first).
+        #[arg(long)]
+        variant: Option<String>,
     },
     /// Ray-integrator accuracy and speed against the closed-form ray in n = 1 + k*y: Dormand-Prince
     /// over tolerances, Euler and RK4 over step sizes (Gutierrez et al. 2005, Fig. 1, extended).
@@ -114,7 +118,9 @@ fn main() {
                 .map(|()| println!("wrote {}", out.display()))
         }
         Command::Tonemap(args) => run_tonemap(&args),
-        Command::Luminaire { file, png } => morgana::luminaire::inspect(&file, png.as_deref()).map(|s| print!("{s}")),
+        Command::Luminaire { file, png, variant } => {
+            morgana::luminaire::inspect_variant(&file, png.as_deref(), variant.as_deref()).map(|s| print!("{s}"))
+        }
         Command::Accuracy(args) => morgana::raypath::accuracy::run_cli(&args).map(|s| print!("{s}")),
         Command::Refraction(args) => morgana::atmosphere::refraction::cli::run(&args).map(|s| print!("{s}")),
         Command::Trace(args) => morgana::raypath::trace_cli::run(&args).map(|s| print!("{s}")),
