@@ -190,7 +190,7 @@ fn raw(doc: &Document) -> Result<Raw, ParseError> {
         emitters.push(raw_emitter(e)?);
     }
     if emitters.is_empty() {
-        return Err(xml::require(root, "Emitter", W, "at least one <Emitter> with the luminous data").unwrap_err());
+        xml::require(root, "Emitter", W, "at least one <Emitter> with the luminous data")?;
     }
     Ok(Raw {
         edition,
