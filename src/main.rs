@@ -22,8 +22,9 @@ enum Command {
     Tonemap(cli::tonemap::TonemapArgs),
     /// Validate a scene and print what will be simulated and why.
     Check(cli::check::CheckArgs),
-    /// Read a luminaire photometry file (IES LM-63, EULUMDAT) and print what it says: flux,
-    /// symmetry, peak, beam and field angles; optionally draw its polar curves.
+    /// Read a luminaire photometry file (IES LM-63, EULUMDAT, IES TM-33, GLDF) and print what it
+    /// says: format, flux, symmetry, spectrum, peak, beam and field angles; optionally draw its
+    /// polar curves.
     Luminaire(cli::luminaire::LuminaireArgs),
     /// Ray-integrator accuracy and speed against the closed-form ray in n = 1 + k*y: Dormand-Prince
     /// over tolerances, Euler and RK4 over step sizes (Gutierrez et al. 2005, Fig. 1, extended).
