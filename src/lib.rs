@@ -39,4 +39,5 @@ pub mod spectrum;
 pub mod testing;
 pub mod timing;
 pub mod tonemap;
+pub mod validate;
 pub mod world;

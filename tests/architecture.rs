@@ -20,6 +20,7 @@ const LAYERS: &[(&str, &str, u32)] = &[
     ("timing", "base", 0),
     ("sampling", "base", 1),
     ("raster", "base", 1),
+    ("validate", "base", 1),
     ("spectrum", "base", 2),
     ("geometry", "base", 2),
     ("ode", "base", 2),

@@ -415,19 +415,19 @@ fn bad_atmosphere_files_are_rejected_with_file_line_and_key() {
         ("base = \"usa76\"\nprofile = \"x.csv\"\n", &["test.toml:1", "either `base` or `profile`"]),
         ("base = \"usa62\"\n", &["allowed: usa76"]),
         ("profile = \"definitely-missing.csv\"\n", &["test.toml:1:11", "cannot read"]),
-        ("[[edit]]\ndT_k = 3\n", &["test.toml:1", "missing key `type`"]),
+        ("[[edit]]\ndT_k = 3\n", &["test.toml:1", "missing field `type`"]),
         ("[[edit]]\ntype = \"heatwave\"\n", &["test.toml:2:8", "allowed: offset, hot_surface"]),
-        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\n", &["edit \"hot_surface\": missing key `z0_m`"]),
+        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\n", &["edit \"hot_surface\": missing field `z0_m`"]),
         ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\nz0_m = 0\n", &["test.toml:4:8", "z0_m = 0", "greater than 0"]),
         (
             "[[edit]]\ntype = \"offset\"\ndT_k = 1\nheight_m = 3\n",
-            &["test.toml:4:12", "key `height_m` is not used here; allowed keys: dT_k"],
+            &["test.toml:4:12", "field `height_m` is not used here; allowed fields: dT_k"],
         ),
         ("[[edit]]\ntype = \"inversion\"\ndT_k = 1\nheight_m = 3\nthickness_m = -1\n", &["thickness_m = -1"]),
-        ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "key `centre`"]),
+        ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "field `centre`"]),
         ("[[edit]]\ntype = \"offset\"\ndT_k = -400\n", &["can cool the air to", "must stay positive"]),
         ("[[edit]]\ntype = \"grid\"\nfile = \"missing.mfield\"\n", &["missing.mfield", "cannot read"]),
-        ("top_m = \"high\"\n", &["test.toml:1:9", "key `top_m`", "expected f64"]),
+        ("top_m = \"high\"\n", &["test.toml:1:9", "field `top_m`", "expected f64"]),
     ];
     for (toml, wants) in cases {
         let e = error_of(toml);

@@ -19,13 +19,13 @@
 //! Heights are measured by the scene's Earth (`[world] earth = "flat"` with +y up, or
 //! `"spherical"` with the centre at (0, −R, 0), R = `earth_radius_m`, default 6 371 km).
 
-use super::context::{Ctx, R};
 use super::media::Table;
 use crate::atmosphere::{AirDispersion, Earth};
 use crate::error::{Error, Location};
 use crate::field::{Bump, Interpolation, grid_file};
 use crate::material::Ior;
 use crate::media::index::{Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid};
+use crate::validate::{Ctx, R};
 use glam::DVec3;
 use toml::{Spanned, Value};
 

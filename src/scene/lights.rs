@@ -20,13 +20,13 @@
 //! below the horizontal) — with photons aimed at the bounding sphere of
 //! `target_min`/`target_max` (default: of the whole scene).
 
-use super::context::present_fields;
-use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
 use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SkyLight, SpotLight};
 use crate::spectrum::Bands;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use toml::Spanned;
 
 pub struct NamedLight {

@@ -26,13 +26,13 @@
 //! spectrum the file carries), else the file's emission spectrum (TM-33 `SpectralData`, GLDF
 //! `Spectrum`; a note names it), else an error asking for one.
 
-use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::error::Error;
 use crate::light::{Light, LightSpectrum, LuminaireLight};
 use crate::luminaire::{self, Opening, Photometry, Placement, WebSampler, luminous_fraction_in, per_candela};
 use crate::spectrum::{Bands, Spectrum};
+use crate::validate::{Ctx, R};
 use std::ops::Range;
 use std::sync::Arc;
 use toml::Spanned;

@@ -21,8 +21,6 @@
 //!
 //! A medium may be clear (`sigma_a = 0`, `sigma_s = 0`) and only bend light.
 
-use super::context::present_fields;
-use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::atmosphere::Earth;
@@ -30,6 +28,8 @@ use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D, SphericalEx
 use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
 use crate::spectrum::Bands;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use glam::DVec3;
 use std::ops::Range;
 use toml::{Spanned, Value};

@@ -3,7 +3,6 @@
 //! Loading goes parse, then validate and transform, then build (as Mitsuba 3 does). Every
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
-mod context;
 mod index;
 mod inelastic;
 mod lights;
@@ -30,8 +29,8 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::ode::CurvedSettings;
 use crate::spectrum::Bands;
+use crate::validate::Ctx;
 use crate::world::{Names as WorldNames, Prim, Reach, World};
-use context::Ctx;
 use glam::DVec3;
 use raw::RawScene;
 use spectrum_spec::SpectrumLibrary;
@@ -107,24 +106,8 @@ pub fn default_scene() -> Result<Scene> {
 /// `default_name` is the output stem when `[output] name` is absent.
 pub fn load_scene_str(source: &str, file: &Path, dir: &Path, default_name: &str) -> Result<Scene> {
     let ctx = Ctx::new(file, source, dir);
-    let raw: RawScene = toml::from_str(source).map_err(|e| toml_error(&ctx, &e))?;
+    let raw: RawScene = toml::from_str(source).map_err(|e| ctx.toml_error(&e))?;
     build(&ctx, &raw, default_name)
-}
-
-fn toml_error(ctx: &Ctx, e: &toml::de::Error) -> Error {
-    let message = e.message().trim().to_string();
-    let Some(span) = e.span() else {
-        return Error::input(Some(Location::file(&ctx.file)), message);
-    };
-    let loc = ctx.loc(&span);
-    // Name the key written on the offending line, since serde's type errors do not.
-    let line = loc.line.and_then(|l| ctx.source.lines().nth(l - 1)).unwrap_or("");
-    let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
-    let message = match key {
-        Some(k) if !message.contains(&format!("`{k}`")) => format!("field `{k}`: {message}"),
-        _ => message,
-    };
-    Error::input(Some(loc), message)
 }
 
 fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {

@@ -1,6 +1,5 @@
 //! Camera, `[output]` and `[integrator]`: validated settings.
 
-use super::context::{Ctx, R};
 use super::raw::{RawCamera, RawIntegrator, RawOutput};
 use crate::geometry::Aabb;
 use crate::geometry::Camera;
@@ -10,6 +9,7 @@ use crate::spectrum::{Bands, MAX_BANDS};
 use crate::tonemap::Exposure;
 use crate::tonemap::ToneSettings;
 use crate::tonemap::region::Region;
+use crate::validate::{Ctx, R};
 use serde::Serialize;
 use toml::{Spanned, Value};
 

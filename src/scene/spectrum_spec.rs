@@ -9,8 +9,8 @@
 //!   `values = [...]`, or `file = "data.csv"` (two columns: wavelength_nm, value; `#` comments and
 //!   one header row allowed); plus an optional `scale = k` multiplier.
 
-use super::context::{Ctx, R};
 use crate::spectrum::{RgbSigmoid, Spectrum, Tabulated, named_illuminant};
+use crate::validate::{Ctx, R};
 use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::{Spanned, Value};

@@ -1,5 +1,6 @@
-//! Validation context: turns spans into `file:line:column` errors, checks which fields a typed
-//! record uses, and reads values with range checks.
+//! The one validation context for TOML documents (scenes, atmosphere files): turns spans into
+//! `file:line:column` errors, names the field of a TOML or type error, checks which fields a
+//! typed record uses, and reads values with range checks.
 
 use crate::error::{Error, Location};
 use glam::DVec3;
@@ -7,11 +8,11 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// The scene file being validated.
+/// The document being validated.
 pub struct Ctx<'a> {
     pub file: PathBuf,
     pub source: &'a str,
-    /// Directory that relative paths in the scene are resolved against.
+    /// Directory that relative paths in the document are resolved against.
     pub dir: PathBuf,
 }
 
@@ -22,8 +23,30 @@ impl<'a> Ctx<'a> {
         Ctx { file: file.to_path_buf(), source, dir: dir.to_path_buf() }
     }
 
+    /// The location of `span`; the file alone for the empty span at 0 (no place in the text).
     pub fn loc(&self, span: &Range<usize>) -> Location {
-        Location::at_offset(&self.file, self.source, span.start)
+        if span.is_empty() && span.start == 0 {
+            Location::file(&self.file)
+        } else {
+            Location::at_offset(&self.file, self.source, span.start)
+        }
+    }
+
+    /// A TOML syntax or type error, naming the key written on the offending line (serde's type
+    /// errors do not).
+    pub fn toml_error(&self, e: &toml::de::Error) -> Error {
+        let message = e.message().trim().to_string();
+        let Some(span) = e.span() else {
+            return Error::input(Some(Location::file(&self.file)), message);
+        };
+        let loc = Location::at_offset(&self.file, self.source, span.start);
+        let line = loc.line.and_then(|l| self.source.lines().nth(l - 1)).unwrap_or("");
+        let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
+        let message = match key {
+            Some(k) if !message.contains(&format!("`{k}`")) => format!("field `{k}`: {message}"),
+            _ => message,
+        };
+        Error::input(Some(loc), message)
     }
 
     /// An input error at `span`.
@@ -73,6 +96,17 @@ impl<'a> Ctx<'a> {
         Err(self.err(&v.span(), format!("{what} = {x} is out of range: it must be {range}")))
     }
 
+    /// A finite number in (lo, hi]: above `lo`, at most `hi`.
+    pub fn number_above(&self, v: &Spanned<f64>, what: &str, lo: f64, hi: f64) -> R<f64> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > lo && x <= hi {
+            return Ok(x);
+        }
+        let range =
+            if hi.is_infinite() { format!("greater than {lo}") } else { format!("greater than {lo} and at most {hi}") };
+        Err(self.err(&v.span(), format!("{what} = {x} is out of range: it must be {range}")))
+    }
+
     /// An integer within [lo, hi].
     pub fn integer(&self, v: &Spanned<i64>, what: &str, lo: i64, hi: i64) -> R<i64> {
         let x = *v.get_ref();
@@ -113,7 +147,7 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// A path from the scene, resolved relative to the scene's directory.
+    /// A path from the document, resolved relative to its directory.
     pub fn path(&self, v: &Spanned<String>) -> PathBuf {
         let p = Path::new(v.get_ref());
         if p.is_absolute() { p.to_path_buf() } else { self.dir.join(p) }
