@@ -19,11 +19,12 @@
 //! into one path per lane at a dispersive surface (a gather path instead follows one lane chosen
 //! at random, weighted by the lane count).
 
+use super::direct::{ShadowOrigin, sample_lights};
 use super::lanes::Lanes;
 use super::maps::Maps;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
-use crate::light::Light;
+use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Medium, tracking};
 use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
@@ -443,21 +444,15 @@ impl<'a> EyeTracer<'a> {
         sc: &mut Scratch,
     ) -> BandValues {
         let mut e = [0.0; MAX_BANDS];
-        for light in &self.scene.world.lights {
-            let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-            let cos = if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
-            if cos <= 0.0 {
-                continue;
-            }
-            sc.rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(p, from, inc.wi, inc.dist, medium, &lanes.nm[..lanes.len], rng) else {
-                continue;
-            };
+        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &lanes.nm[..lanes.len] };
+        let cos = |_: &Light, inc: &Incident| if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
+        let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {
                 e[i] += s.eval(lanes.nm[i]) * inc.weight * cos * tr[i];
             }
-        }
+        };
+        sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &cos, &mut add);
         e
     }
 
@@ -483,10 +478,9 @@ impl<'a> EyeTracer<'a> {
         }
         let nm = &lanes.nm[..lanes.len];
         let phase = |l: f64, light_travel: DVec3| m.phase.eval(l, light_travel.dot(wo));
-        for light in &self.scene.world.lights {
-            let Some(inc) = light.incident(x, rng.uniform2()) else { continue };
-            sc.rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(x, None, inc.wi, inc.dist, Some(id), nm, rng) else { continue };
+        // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
+        let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm };
+        let mut add = |light: &Light, inc: &Incident, _: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {
                 let l = lanes.nm[i];
@@ -494,7 +488,8 @@ impl<'a> EyeTracer<'a> {
                 let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
                 out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * tr[i];
             }
-        }
+        };
+        sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);
         if self.scene.world.lights.iter().any(|l| !l.is_delta()) {
             // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
             let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());

@@ -5,6 +5,7 @@
 //! of threads — and of ranks: [`render_on`] runs the same passes split across the processes of
 //! a [`World`] ([`crate::distributed`]); [`render`] is that with one process.
 
+mod direct;
 pub mod eye;
 mod lanes;
 pub mod maps;

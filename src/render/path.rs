@@ -27,17 +27,18 @@
 //! component's emission phase function at λ'; otherwise it goes on as before, its throughput
 //! divided by 1 − q. Segments are straight (the path tracer assumes no index field).
 
+use super::direct::{ShadowOrigin, sample_lights};
 use super::lanes::Lanes;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
-use crate::light::Light;
+use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::phase::PhaseFunction;
 use crate::media::tracking;
 use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::Scene;
-use crate::spectrum::MAX_BANDS;
+use crate::spectrum::{BandValues, MAX_BANDS};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -318,28 +319,20 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> f64 {
         let mut e = 0.0;
-        for light in &self.scene.world.lights {
-            let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-            let (factor, p_scatter) = if n == DVec3::ZERO {
-                match phase {
-                    Some(ph) => {
-                        let f = ph.eval(lambda, inc.wi.dot(dir));
-                        (f, f)
-                    }
-                    None => (0.0, 0.0),
-                }
-            } else {
-                let c = inc.wi.dot(n);
-                (c, c / PI)
-            };
-            if factor <= 0.0 {
-                continue;
-            }
-            let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, p_scatter) };
-            rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(p, from, inc.wi, inc.dist, medium, &[lambda], rng) else { continue };
+        // The scattering factor: cos θ on a surface, the phase function in a medium.
+        let factor = |_: &Light, inc: &Incident| match (n == DVec3::ZERO, phase) {
+            (true, Some(ph)) => ph.eval(lambda, inc.wi.dot(dir)),
+            (true, None) => 0.0,
+            (false, _) => inc.wi.dot(n),
+        };
+        // Its density as a sampling strategy, for the MIS weight: f itself, or cos θ/π.
+        let p_scatter = |f: f64| if n == DVec3::ZERO { f } else { f / PI };
+        let mut add = |light: &Light, inc: &Incident, factor: f64, tr: &BandValues| {
+            let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, p_scatter(factor)) };
             e += mis * light.spectrum().spectrum.eval(lambda) * inc.weight * factor * tr[0];
-        }
+        };
+        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda] };
+        sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut rays.shadow, &factor, &mut add);
         e
     }
 }

@@ -15,7 +15,6 @@ pub mod ocean_profile;
 pub use illuminance_plane::IlluminancePlane;
 pub use ocean_profile::{OceanProfile, ProfileReading, ProfileRow};
 
-use crate::raster::false_colour::GridMap;
 use glam::DVec3;
 use std::io::{self, Write};
 use std::path::Path;
@@ -77,9 +76,21 @@ impl Reading {
 
     /// The false-colour map of the first column with a colour bar and its statistics.
     pub fn write_png(&self, path: &Path) -> io::Result<()> {
-        let title = format!("{} {}", self.name, self.quantity);
-        let map = GridMap { title: &title, unit: self.unit, nx: self.nx, ny: self.ny, values: &self.columns[0].1 };
-        crate::raster::false_colour::write_png(&map, path)
+        use crate::raster::false_colour::{ColourMap, Grid, Look, Rows, Scale, write_png};
+        let values = &self.columns[0].1;
+        let stats = self.stats();
+        let grid = Grid { nx: self.nx, ny: self.ny, values, rows: Rows::Upward };
+        let look = Look {
+            scale: Scale::linear_to(stats.max),
+            map: ColourMap::Viridis,
+            unit: self.unit,
+            heading: Some((format!("{} {}", self.name, self.quantity), stats.line(self.unit))),
+            cell: (560 / self.nx.max(1)).min(440 / self.ny.max(1)).max(1),
+            background: crate::raster::WHITE,
+            text: crate::raster::BLACK,
+            text_scale: 1,
+        };
+        write_png(&grid, &look, path)
     }
 }
 

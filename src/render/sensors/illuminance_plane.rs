@@ -2,13 +2,16 @@
 //! gather rays into the global photon map (see [`crate::sensor::illuminance_plane`]).
 
 use super::super::Lanes;
+use super::super::direct::{ShadowOrigin, sample_lights};
 use super::super::eye::{EyeTracer, Scratch};
 use crate::geometry::{Frame, Hit};
+use crate::light::{Incident, Light};
 use crate::raypath::{Propagator, RayState};
 use crate::rng::{Rng, Stream};
 use crate::sampling::cosine_hemisphere;
 use crate::scene::{Scene, WavelengthSampling};
 use crate::sensor::{IlluminancePlane, Reading};
+use crate::spectrum::BandValues;
 use crate::spectrum::cie::cmf_1931;
 use crate::spectrum::colour::K_M;
 use glam::DVec3;
@@ -60,19 +63,16 @@ fn at(
         // K_m ȳ(λ) Δλ per lane, divided among the samples: lux per W m⁻² nm⁻¹.
         let w = scene.bands.width_nm() * K_M / plane.samples as f64;
         let lux: Vec<f64> = lanes.nm[..lanes.len].iter().map(|l| w * cmf_1931(*l)[1]).collect();
-        for light in &scene.world.lights {
-            let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-            let cos = inc.wi.dot(plane.normal);
-            if cos <= 0.0 {
-                continue;
-            }
-            let nm = &lanes.nm[..lanes.len];
-            let Some(tr) = prop.shadow(p, Some(&here), inc.wi, inc.dist, medium, nm, rng) else { continue };
+        let nm = &lanes.nm[..lanes.len];
+        let at = ShadowOrigin { p, from: Some(&here), medium, wavelengths_nm: nm };
+        let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
-            for ((l, y), t) in nm.iter().zip(&lux).zip(&tr) {
+            for ((l, y), t) in nm.iter().zip(&lux).zip(tr) {
                 direct += y * s.eval(*l) * inc.weight * cos * t;
             }
-        }
+        };
+        let cos = |_: &Light, inc: &Incident| inc.wi.dot(plane.normal);
+        sample_lights(&prop, &scene.world.lights, &at, rng, &mut 0, &cos, &mut add);
         for _ in 0..plane.gather_rays {
             let d = frame.to_world(cosine_hemisphere(rng.uniform2()));
             let state = RayState {

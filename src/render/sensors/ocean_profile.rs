@@ -2,13 +2,16 @@
 //! of the irradiances and the next-event estimator of L_u described in
 //! [`crate::sensor::ocean_profile`], and E_d(0+) by shadow rays.
 
+use super::super::direct::{ShadowOrigin, sample_lights};
 use super::super::maps::Maps;
 use crate::geometry::spawn_origin;
+use crate::light::{Incident, Light};
 use crate::raypath::Propagator;
 use crate::rng::{Rng, Stream};
 use crate::scene::Scene;
 use crate::sensor::ocean_profile::LU_CONE_DEG;
 use crate::sensor::{OceanProfile, ProfileReading, ProfileRow};
+use crate::spectrum::BandValues;
 use glam::DVec3;
 
 /// Measures the profile; sensor `index` seeds the shadow rays.
@@ -120,15 +123,12 @@ fn ed_above(s: &OceanProfile, scene: &Scene, index: u64) -> Vec<f64> {
             let mut sum = 0.0;
             for _ in 0..s.samples {
                 let l = lo + (hi - lo) * rng.uniform();
-                for light in &scene.world.lights {
-                    let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-                    let cos = inc.wi.dot(s.up);
-                    if cos <= 0.0 {
-                        continue;
-                    }
-                    let Some(tr) = prop.shadow(p, None, inc.wi, inc.dist, medium, &[l], &mut rng) else { continue };
+                let at = ShadowOrigin { p, from: None, medium, wavelengths_nm: &[l] };
+                let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
                     sum += light.spectrum().spectrum.eval(l) * inc.weight * cos * tr[0];
-                }
+                };
+                let cos = |_: &Light, inc: &Incident| inc.wi.dot(s.up);
+                sample_lights(&prop, &scene.world.lights, &at, &mut rng, &mut 0, &cos, &mut add);
             }
             sum / s.samples as f64
         })
