@@ -108,7 +108,7 @@ fn height(p: DVec3) -> f64 {
     Earth::standard().height(p)
 }
 
-fn index_of(s: &Scene) -> &morgana::media::index::IndexField {
+fn index_of(s: &Scene) -> &morgana::media::refractive_index::IndexField {
     s.world.media[0].index.as_ref().expect("index field")
 }
 

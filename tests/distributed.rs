@@ -6,7 +6,7 @@ mod common;
 
 use common::render_with;
 use morgana::distributed::split::{dealt, dealt_index, share};
-use morgana::distributed::{self, Schedule, World, assemble::IRRADIANCE_BLOCK};
+use morgana::distributed::{self, Comm, Schedule, assemble::IRRADIANCE_BLOCK};
 use morgana::photon::PassSettings;
 use morgana::photon::{self, MapKind};
 use morgana::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
@@ -132,7 +132,7 @@ fn static_and_dynamic_schedules_give_the_same_image() {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("pool");
     let opts = distributed::Options { schedule: Schedule::Static, ..Default::default() };
     let stat = pool
-        .install(|| render_on(&World::local(), &scene, &RenderOptions { quiet: true }, &opts))
+        .install(|| render_on(&Comm::local(), &scene, &RenderOptions { quiet: true }, &opts))
         .expect("render")
         .expect("rank 0 has the image");
     let b = |d: &[f32]| d.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
@@ -147,7 +147,7 @@ fn static_and_dynamic_schedules_give_the_same_image() {
 fn a_map_memory_limit_stops_the_render_with_a_clear_error() {
     let scene = small_scene(20_000);
     let opts = distributed::Options { map_memory: distributed::MapMemory::Limit(1000), ..Default::default() };
-    let err = match render_on(&World::local(), &scene, &RenderOptions { quiet: true }, &opts) {
+    let err = match render_on(&Comm::local(), &scene, &RenderOptions { quiet: true }, &opts) {
         Ok(_) => panic!("a 1000-byte budget was accepted"),
         Err(e) => e,
     };

@@ -12,7 +12,9 @@ use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, Earth, Edit, T
 use morgana::field::{Bump, GradientRegion, Interpolation, Lattice};
 use morgana::geometry::Aabb;
 use morgana::material::Ior;
-use morgana::media::index::{Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid};
+use morgana::media::refractive_index::{
+    Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid,
+};
 use morgana::rng::{Rng, Stream};
 
 /// Relative tolerance of the gradient check.

@@ -243,7 +243,7 @@ fn a_sensor_reads_direct_illuminance_i_cos3_over_h2() {
         ies.display()
     );
     let s = scene(&toml);
-    let maps = morgana::render::maps::Maps::default();
+    let maps = morgana::render::photon_pass::Maps::default();
     let r = &morgana::render::sensors::evaluate_all(&s, &maps)[0];
     assert_eq!(r.columns[0].0, "E_lx");
     for (p, e) in r.points.iter().zip(&r.columns[0].1) {

@@ -1,7 +1,7 @@
 //! `morgana render [SCENE]`: renders a scene (the embedded default scene when none is given)
 //! into `--out`, on one process or on every rank of an MPI job; rank 0 writes the outputs.
 
-use crate::distributed::{self, MapMemory, Schedule, World};
+use crate::distributed::{self, Comm, MapMemory, Schedule};
 use crate::error::{Error, Result};
 use crate::render::{RenderOptions, render_on};
 use std::path::PathBuf;
@@ -37,24 +37,24 @@ pub struct RenderArgs {
     pub schedule: Schedule,
 }
 
-/// Renders on every rank of this run's world (one process, or an MPI job under `mpirun`); rank
+/// Renders on every rank of this run's comm (one process, or an MPI job under `mpirun`); rank
 /// 0 writes the outputs and returns the lines to print. Errors are collective: every rank ends
 /// with the same exit code, and only rank 0 prints.
 pub fn run(args: &RenderArgs) -> Result<String> {
     let start = Instant::now();
     let map_memory = args.max_map_memory.map_or(MapMemory::Available, MapMemory::Limit);
     let dist = distributed::Options { map_memory, schedule: args.schedule };
-    let world = World::start()?;
-    let result = render_and_write(&world, args, &dist, start);
-    let root = world.is_root();
-    drop(world); // MPI_Finalize on every rank, also after an error
+    let comm = Comm::start()?;
+    let result = render_and_write(&comm, args, &dist, start);
+    let root = comm.is_root();
+    drop(comm); // MPI_Finalize on every rank, also after an error
     match result {
         Err(e) if !root => std::process::exit(e.exit_code()),
         r => r,
     }
 }
 
-fn render_and_write(world: &World, args: &RenderArgs, dist: &distributed::Options, start: Instant) -> Result<String> {
+fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options, start: Instant) -> Result<String> {
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         if t == 0 {
@@ -63,14 +63,14 @@ fn render_and_write(world: &World, args: &RenderArgs, dist: &distributed::Option
         builder = builder.num_threads(t);
     }
     let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
-    let scene = distributed::scene::load(world, args.scene.as_deref(), args.photons, args.seed)?;
-    if world.is_root() {
+    let scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
+    if comm.is_root() {
         super::print_warnings(&scene);
-        if world.size() > 1 && !args.quiet {
-            eprintln!("morgana: {} ranks ({}), eye pass {:?}", world.size(), world.kind(), dist.schedule);
+        if comm.size() > 1 && !args.quiet {
+            eprintln!("morgana: {} ranks ({}), eye pass {:?}", comm.size(), comm.kind(), dist.schedule);
         }
     }
-    let rendered = pool.install(|| render_on(world, &scene, &RenderOptions { quiet: args.quiet }, dist))?;
+    let rendered = pool.install(|| render_on(comm, &scene, &RenderOptions { quiet: args.quiet }, dist))?;
     let Some(rendered) = rendered else { return Ok(String::new()) };
     let threads = pool.current_num_threads();
     let outputs = crate::output::write_outputs(&scene, &rendered, &args.out, threads, start.elapsed().as_secs_f64())?;

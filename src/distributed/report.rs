@@ -34,7 +34,7 @@ pub struct RankReport {
 #[derive(Clone, Debug, Serialize)]
 pub struct DistributedReport {
     /// "local", or the MPI library's version line.
-    pub world: String,
+    pub comm: String,
     pub ranks: usize,
     /// Each rank's host, in rank order.
     pub hosts: Vec<String>,
@@ -49,9 +49,9 @@ pub struct DistributedReport {
 }
 
 impl DistributedReport {
-    pub fn new(world: String, schedule: Schedule, per_rank: Vec<RankReport>) -> DistributedReport {
+    pub fn new(comm: String, schedule: Schedule, per_rank: Vec<RankReport>) -> DistributedReport {
         DistributedReport {
-            world,
+            comm,
             ranks: per_rank.len(),
             hosts: per_rank.iter().map(|r| r.host.clone()).collect(),
             schedule,

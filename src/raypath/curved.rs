@@ -19,7 +19,7 @@ use super::arc::{ChordOnArc, chord_count};
 use super::{Chord, Event, Propagator, RayState};
 use crate::field::GradientRegion;
 use crate::geometry::{Hit, Ray};
-use crate::media::index::IndexField;
+use crate::media::refractive_index::IndexField;
 use crate::ode::{Integrator, OdeState, Step};
 use glam::DVec3;
 

@@ -8,7 +8,7 @@
 //! assumes a path is `o + t·d`:
 //! - in a medium whose refractive index is constant (or has none) the path is one straight
 //!   chord per event and no ODE runs;
-//! - in a medium with a refractive-index field ([`crate::media::index`]) the path follows
+//! - in a medium with a refractive-index field ([`crate::media::refractive_index`]) the path follows
 //!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`crate::ode`]:
 //!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
 //!   arc tolerance ([`arc`]), and the same visitors and segment queries
@@ -30,7 +30,7 @@ pub use cost::{CurvedWork, CurvedWorkTotals, RayCounts};
 
 use crate::field::GradientRegion;
 use crate::geometry::{Hit, Ray};
-use crate::media::index::IndexField;
+use crate::media::refractive_index::IndexField;
 use crate::media::tracking;
 use crate::ode::CurvedSettings;
 use crate::rng::Rng;

@@ -20,7 +20,7 @@
 
 use super::{Chord, Event, Propagator, RayState};
 use crate::atmosphere::Earth;
-use crate::media::index::IndexField;
+use crate::media::refractive_index::IndexField;
 use crate::ode::CurvedSettings;
 use crate::world::World;
 use glam::DVec3;

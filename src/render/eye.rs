@@ -21,7 +21,7 @@
 
 use super::direct::{ShadowOrigin, sample_lights};
 use super::lanes::Lanes;
-use super::maps::Maps;
+use super::photon_pass::Maps;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
 use crate::light::{Incident, Light};

@@ -60,7 +60,7 @@ pub fn medium(
     }
     super::inelastic::finish(&mut medium, bands);
     if let Some(v) = &m.index {
-        medium.index = Some(super::index::field(ctx, v, &what, &earth.0, earth.1, range)?);
+        medium.index = Some(super::refractive_index::field(ctx, v, &what, &earth.0, earth.1, range)?);
     }
     Ok(medium)
 }

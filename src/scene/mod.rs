@@ -3,7 +3,6 @@
 //! Loading goes parse, then validate and transform, then build (as Mitsuba 3 does). Every
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
-mod index;
 mod inelastic;
 mod lights;
 mod luminaires;
@@ -11,6 +10,7 @@ mod materials;
 mod media;
 mod plan;
 pub mod raw;
+mod refractive_index;
 mod sensors;
 mod settings;
 mod shapes;
@@ -293,7 +293,14 @@ fn check_index_fields(ctx: &Ctx, raw: &RawScene, media: &[Medium], bands: &Bands
     let world = Aabb { min: c - DVec3::splat(r), max: c + DVec3::splat(r) };
     for (rec, m) in raw.medium.iter().zip(media) {
         if let (Some(v), Some(f)) = (&rec.get_ref().index, &m.index) {
-            index::check_over(ctx, v, &format!("medium \"{}\"", m.name), f, (bands.min_nm, bands.max_nm), &world)?;
+            refractive_index::check_over(
+                ctx,
+                v,
+                &format!("medium \"{}\"", m.name),
+                f,
+                (bands.min_nm, bands.max_nm),
+                &world,
+            )?;
         }
     }
     Ok(())

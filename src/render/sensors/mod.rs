@@ -5,7 +5,7 @@ mod illuminance_plane;
 mod ocean_profile;
 
 use super::eye::EyeTracer;
-use super::maps::Maps;
+use super::photon_pass::Maps;
 use crate::scene::Scene;
 use crate::sensor::{ProfileReading, Reading, Sensor};
 

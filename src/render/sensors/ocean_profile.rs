@@ -3,7 +3,7 @@
 //! [`crate::sensor::ocean_profile`], and E_d(0+) by shadow rays.
 
 use super::super::direct::{ShadowOrigin, sample_lights};
-use super::super::maps::Maps;
+use super::super::photon_pass::Maps;
 use crate::geometry::spawn_origin;
 use crate::light::{Incident, Light};
 use crate::raypath::Propagator;

@@ -1,4 +1,4 @@
-//! [`super::World::Mpi`]: `MPI_COMM_WORLD` through rsmpi (the `mpi` crate) over the system MPI.
+//! [`super::Comm::Mpi`]: `MPI_COMM_WORLD` through rsmpi (the `mpi` crate) over the system MPI.
 //!
 //! MPI is initialised with `MPI_THREAD_SERIALIZED`: the render calls MPI from its rayon worker
 //! thread, and during the eye pass rank 0's lease server calls it from a second thread while the
@@ -6,9 +6,9 @@
 //! (`MPI_ERRORS_ARE_FATAL`) stays: if a rank dies, `mpirun` ends the job (see [`super::fault`]).
 //!
 //! Only `MPI_COMM_WORLD` is used, fetched afresh for each call (a handle, not a pointer), so the
-//! world can be shared with the server thread.
+//! comm can be shared with the server thread.
 
-use super::world::{Tag, piece_bytes, round_parts, rounds};
+use super::wire::{Tag, piece_bytes, round_parts, rounds};
 use crate::error::{Error, Result};
 use mpi::Count;
 use mpi::datatype::PartitionMut;
@@ -18,16 +18,16 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
 /// An initialised MPI environment; dropping it calls `MPI_Finalize`.
-pub struct MpiWorld {
+pub struct MpiComm {
     _universe: Universe,
     rank: usize,
     size: usize,
     host: String,
 }
 
-impl MpiWorld {
+impl MpiComm {
     /// Initialises MPI (`MPI_Init_thread` asking for `MPI_THREAD_SERIALIZED`).
-    pub fn start() -> Result<MpiWorld> {
+    pub fn start() -> Result<MpiComm> {
         let (universe, threading) = mpi::initialize_with_threading(Threading::Serialized)
             .ok_or_else(|| Error::internal("MPI is already initialised"))?;
         if !matches!(threading, Threading::Serialized | Threading::Multiple) {
@@ -35,9 +35,9 @@ impl MpiWorld {
                 "the MPI library offers only {threading:?} threading; morgana needs MPI_THREAD_SERIALIZED"
             )));
         }
-        let world = universe.world();
-        let host = mpi::environment::processor_name().unwrap_or_else(|_| super::world::local_host_name());
-        Ok(MpiWorld { rank: world.rank() as usize, size: world.size() as usize, host, _universe: universe })
+        let comm = universe.world();
+        let host = mpi::environment::processor_name().unwrap_or_else(|_| super::comm::local_host_name());
+        Ok(MpiComm { rank: comm.rank() as usize, size: comm.size() as usize, host, _universe: universe })
     }
 
     fn comm(&self) -> SimpleCommunicator {
@@ -63,7 +63,7 @@ impl MpiWorld {
         line.trim_matches(|c: char| c == '\0' || c.is_whitespace()).to_string()
     }
 
-    /// See [`super::World::all_gather_pieces`]: counts first, then rounds of `MPI_Allgatherv`.
+    /// See [`super::Comm::all_gather_pieces`]: counts first, then rounds of `MPI_Allgatherv`.
     pub fn all_gather_pieces(&self, local: &[u8], unit: usize, sink: &mut dyn FnMut(usize, usize, &[u8])) -> u64 {
         let comm = self.comm();
         let mut counts = vec![0u64; self.size];
@@ -95,7 +95,7 @@ impl MpiWorld {
         received
     }
 
-    /// See [`super::World::broadcast`]: the length, then the bytes in pieces of MPI's `int` counts.
+    /// See [`super::Comm::broadcast`]: the length, then the bytes in pieces of MPI's `int` counts.
     pub fn broadcast(&self, mut bytes: Vec<u8>) -> Vec<u8> {
         let comm = self.comm();
         let root = comm.process_at_rank(0);

@@ -1,60 +1,47 @@
 //! The processes a render runs on: a closed set of communicators with the few operations the
 //! distributed render needs.
 //!
-//! [`World::Local`] is one process, rank 0 of 1: its collectives hand back the caller's own data
-//! and its messages go to itself. [`World::Mpi`] (feature `mpi`) is `MPI_COMM_WORLD` under
-//! `mpirun`. Everything above this file is written once against [`World`], so the single-process
+//! [`Comm::Local`] is one process, rank 0 of 1: its collectives hand back the caller's own data
+//! and its messages go to itself. [`Comm::Mpi`] (feature `mpi`) is `MPI_COMM_WORLD` under
+//! `mpirun`. Everything above this file is written once against [`Comm`], so the single-process
 //! render runs the same distribution code as an MPI job, with one rank.
 //!
 //! The primitives are byte-level: an all-gather that streams each rank's contribution in pieces
 //! (so a photon map larger than MPI's 2³¹-element counts, or larger than a second copy in memory,
 //! can be assembled), a broadcast from rank 0, and tagged point-to-point messages for the eye
-//! pass's lease protocol. Typed helpers are built on them here, once for every world.
+//! pass's lease protocol. Typed helpers are built on them here, once for every comm.
 
 #[cfg(feature = "mpi")]
-use super::mpi_world::MpiWorld;
+use super::mpi_comm::MpiComm;
+pub use super::wire::{PIECE_CAP, Tag, piece_bytes, round_parts, rounds};
 use std::collections::VecDeque;
 use std::sync::Mutex;
 
-/// Tags of the point-to-point messages (the eye pass's lease protocol, see [`super::eye`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(i32)]
-pub enum Tag {
-    /// Worker → rank 0: the rows of the last lease (if any) and a request for the next.
-    Request = 11,
-    /// Rank 0 → worker: the next lease of rows, or none.
-    Lease = 12,
-}
-
-/// Largest piece (bytes per rank and round) of [`World::all_gather_pieces`]: 64 MiB, so a
-/// round's receive buffer stays small next to the maps being assembled.
-pub const PIECE_CAP: u64 = 64 << 20;
-
 /// The processes of a render.
-pub enum World {
-    Local(LocalWorld),
+pub enum Comm {
+    Local(LocalComm),
     #[cfg(feature = "mpi")]
-    Mpi(MpiWorld),
+    Mpi(MpiComm),
 }
 
 /// One process: rank 0 of 1, with a mailbox for messages to itself.
 #[derive(Default)]
-pub struct LocalWorld {
+pub struct LocalComm {
     mailbox: Mutex<VecDeque<(Tag, Vec<u8>)>>,
 }
 
-impl World {
-    /// A single-process world.
-    pub fn local() -> World {
-        World::Local(LocalWorld::default())
+impl Comm {
+    /// A single-process comm.
+    pub fn local() -> Comm {
+        Comm::Local(LocalComm::default())
     }
 
-    /// The world of this run: `MPI_COMM_WORLD` when built with the `mpi` feature (one rank when
-    /// not started by `mpirun`), else [`World::local`]. Dropping an MPI world finalises MPI.
-    pub fn start() -> crate::error::Result<World> {
+    /// The comm of this run: `MPI_COMM_WORLD` when built with the `mpi` feature (one rank when
+    /// not started by `mpirun`), else [`Comm::local`]. Dropping an MPI comm finalises MPI.
+    pub fn start() -> crate::error::Result<Comm> {
         #[cfg(feature = "mpi")]
         {
-            MpiWorld::start().map(World::Mpi)
+            MpiComm::start().map(Comm::Mpi)
         }
         #[cfg(not(feature = "mpi"))]
         {
@@ -67,7 +54,7 @@ impl World {
                          `cargo build --release --features mpi` (see README, \"Distributed rendering\")"
                     ),
                 )),
-                _ => Ok(World::local()),
+                _ => Ok(Comm::local()),
             }
         }
     }
@@ -75,18 +62,18 @@ impl World {
     /// This process's rank, `0..size()`.
     pub fn rank(&self) -> usize {
         match self {
-            World::Local(_) => 0,
+            Comm::Local(_) => 0,
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.rank(),
+            Comm::Mpi(w) => w.rank(),
         }
     }
 
     /// Number of ranks.
     pub fn size(&self) -> usize {
         match self {
-            World::Local(_) => 1,
+            Comm::Local(_) => 1,
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.size(),
+            Comm::Mpi(w) => w.size(),
         }
     }
 
@@ -98,18 +85,18 @@ impl World {
     /// The name of the host this rank runs on.
     pub fn host(&self) -> String {
         match self {
-            World::Local(_) => local_host_name(),
+            Comm::Local(_) => local_host_name(),
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.host(),
+            Comm::Mpi(w) => w.host(),
         }
     }
 
-    /// What the world is, for reports: "local" or the MPI library's version line.
+    /// What the comm is, for reports: "local" or the MPI library's version line.
     pub fn kind(&self) -> String {
         match self {
-            World::Local(_) => "local".to_string(),
+            Comm::Local(_) => "local".to_string(),
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.library(),
+            Comm::Mpi(w) => w.library(),
         }
     }
 
@@ -120,7 +107,7 @@ impl World {
     /// increasing offset. Collective. Returns the bytes received from other ranks.
     pub fn all_gather_pieces(&self, local: &[u8], unit: usize, sink: &mut dyn FnMut(usize, usize, &[u8])) -> u64 {
         match self {
-            World::Local(_) => {
+            Comm::Local(_) => {
                 debug_assert_eq!(local.len() % unit.max(1), 0, "contribution of whole units");
                 if !local.is_empty() {
                     sink(0, 0, local);
@@ -128,28 +115,28 @@ impl World {
                 0
             }
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.all_gather_pieces(local, unit, sink),
+            Comm::Mpi(w) => w.all_gather_pieces(local, unit, sink),
         }
     }
 
     /// Rank 0's `bytes` on every rank (other ranks pass anything, e.g. nothing). Collective.
     pub fn broadcast(&self, bytes: Vec<u8>) -> Vec<u8> {
         match self {
-            World::Local(_) => bytes,
+            Comm::Local(_) => bytes,
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.broadcast(bytes),
+            Comm::Mpi(w) => w.broadcast(bytes),
         }
     }
 
     /// Sends `bytes` to rank `to` (at most 2³¹ − 1 of them).
     pub fn send(&self, to: usize, tag: Tag, bytes: &[u8]) {
         match self {
-            World::Local(l) => {
-                debug_assert_eq!(to, 0, "a local world has only rank 0");
+            Comm::Local(l) => {
+                debug_assert_eq!(to, 0, "a local comm has only rank 0");
                 lock(&l.mailbox).push_back((tag, bytes.to_vec()));
             }
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.send(to, tag, bytes),
+            Comm::Mpi(w) => w.send(to, tag, bytes),
         }
     }
 
@@ -157,14 +144,14 @@ impl World {
     /// arrived: (sender, bytes). Does not wait.
     pub fn try_receive(&self, from: Option<usize>, tag: Tag) -> Option<(usize, Vec<u8>)> {
         match self {
-            World::Local(l) => {
-                debug_assert!(from.is_none_or(|f| f == 0), "a local world has only rank 0");
+            Comm::Local(l) => {
+                debug_assert!(from.is_none_or(|f| f == 0), "a local comm has only rank 0");
                 let mut q = lock(&l.mailbox);
                 let i = q.iter().position(|(t, _)| *t == tag)?;
                 q.remove(i).map(|(_, b)| (0, b))
             }
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.try_receive(from, tag),
+            Comm::Mpi(w) => w.try_receive(from, tag),
         }
     }
 
@@ -173,9 +160,9 @@ impl World {
     pub fn abort(&self, message: &str) -> ! {
         eprintln!("morgana: rank {} of {}: internal error: {message}", self.rank(), self.size());
         match self {
-            World::Local(_) => std::process::exit(1),
+            Comm::Local(_) => std::process::exit(1),
             #[cfg(feature = "mpi")]
-            World::Mpi(w) => w.abort(1),
+            Comm::Mpi(w) => w.abort(1),
         }
     }
 
@@ -213,32 +200,6 @@ impl World {
             })
             .collect()
     }
-}
-
-/// The pieces of one round of a streamed all-gather: for each rank with `counts[rank]` bytes,
-/// the byte range of its contribution that round `round` carries, when every rank sends at most
-/// `piece` bytes per round. Rounds `0..rounds(counts, piece)` carry every byte exactly once.
-pub fn round_parts(counts: &[u64], piece: u64, round: u64) -> Vec<std::ops::Range<u64>> {
-    counts
-        .iter()
-        .map(|&c| {
-            let start = (round * piece).min(c);
-            start..(start + piece).min(c)
-        })
-        .collect()
-}
-
-/// Rounds a streamed all-gather takes: enough for the largest contribution.
-pub fn rounds(counts: &[u64], piece: u64) -> u64 {
-    counts.iter().max().map_or(0, |m| m.div_ceil(piece.max(1)))
-}
-
-/// Bytes per rank and round: whole `unit`s, at most [`PIECE_CAP`], and small enough that a
-/// round's total over `size` ranks fits MPI's `int` counts and displacements.
-pub fn piece_bytes(size: usize, unit: usize) -> u64 {
-    let unit = unit.max(1) as u64;
-    let limit = PIECE_CAP.min(i32::MAX as u64 / size.max(1) as u64);
-    (limit / unit).max(1) * unit
 }
 
 /// The rank count an MPI launcher announced in the environment (Open MPI's
@@ -296,7 +257,7 @@ mod tests {
 
     #[test]
     fn local_world_is_rank_0_of_1_and_hands_back_its_data() {
-        let w = World::local();
+        let w = Comm::local();
         assert_eq!((w.rank(), w.size(), w.is_root()), (0, 1, true));
         assert_eq!(w.all_gather(b"abc"), vec![b"abc".to_vec()]);
         assert_eq!(w.all_gather_u64(&[7, u64::MAX]), vec![vec![7, u64::MAX]]);

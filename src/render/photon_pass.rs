@@ -22,7 +22,7 @@ pub struct Maps {
     pub irradiance: Option<IrradianceCache>,
 }
 
-/// Runs the photon passes the plan asks for, on every rank of `rank`'s world: each rank shoots
+/// Runs the photon passes the plan asks for, on every rank of `rank`'s comm: each rank shoots
 /// its share of the batches and every rank assembles the whole maps (see
 /// [`crate::distributed`]). Fails, on every rank, if a map would not fit in the rank's budget.
 pub fn build(
@@ -65,7 +65,7 @@ pub fn build(
             bands: scene.bands,
             paths: Paths::All,
         };
-        let (cache, gathered) = assemble::irradiance(rank.world, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
+        let (cache, gathered) = assemble::irradiance(rank.comm, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
         rank.report.irradiance_received_bytes += gathered.received_bytes;
         maps.irradiance = Some(cache);
         phases.push("irradiance precompute", gathered.compute);
@@ -89,13 +89,13 @@ fn shoot(
     let batches = crate::photon::batch_count(emitted);
     progress::note(
         quiet,
-        rank.world.size(),
-        &format!("{name} photons: {batches} batches over {} ranks", rank.world.size()),
+        rank.comm.size(),
+        &format!("{name} photons: {batches} batches over {} ranks", rank.comm.size()),
     );
     let t = Span::start();
-    let (_, mine) = distributed::photons::my_share(rank.world, emitted);
+    let (_, mine) = distributed::photons::my_share(rank.comm, emitted);
     let pb = progress::bar(quiet, mine, &format!("{name} photons"));
-    let shot = distributed::photons::shoot(rank.world, scene, kind, emitted, name, &|n| pb.inc(n));
+    let shot = distributed::photons::shoot(rank.comm, scene, kind, emitted, name, &|n| pb.inc(n));
     pb.finish_and_clear();
     phases.add(&format!("{name} photon tracing"), t);
     rank.report.photons.push(shot.mine.clone());
@@ -112,7 +112,7 @@ fn build_map(
     shot: &Shot,
     phases: &mut Phases,
 ) -> Result<(PhotonMap, MapReport)> {
-    let (map, gathered) = assemble::photon_map(rank.world, &mut rank.budget, name, records)?;
+    let (map, gathered) = assemble::photon_map(rank.comm, &mut rank.budget, name, records)?;
     phases.push(&format!("{name} map gather"), gathered.gather);
     let build_s = phases.push(&format!("{name} map build"), gathered.build);
     rank.report.map_received_bytes += gathered.received_bytes;

@@ -24,7 +24,9 @@ use crate::atmosphere::{AirDispersion, Earth};
 use crate::error::{Error, Location};
 use crate::field::{Bump, Interpolation, grid_file};
 use crate::material::Ior;
-use crate::media::index::{Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid};
+use crate::media::refractive_index::{
+    Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid,
+};
 use crate::validate::{Ctx, R};
 use glam::DVec3;
 use toml::{Spanned, Value};
