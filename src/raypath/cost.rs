@@ -69,19 +69,45 @@ impl CurvedWorkTotals {
     }
 }
 
-/// Rays traced in the eye pass, by purpose.
+/// Rays traced and other work done in the eye pass, by purpose: each effect of the plan that
+/// runs in the eye pass has a counter here, so `report.json` shows that an effect the plan
+/// turned off did no work.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct RayCounts {
     /// Camera rays and the specular continuations of eye paths.
     pub eye: u64,
+    /// Shadow rays (direct light and single scattering by next-event estimation).
     pub shadow: u64,
+    /// Final-gathering rays.
     pub gather: u64,
+    /// Eye paths split into one path per wavelength (dispersion), or narrowed to one chosen
+    /// wavelength (gather paths).
+    #[serde(default)]
+    pub splits: u64,
+    /// Work in participating media: ray-marching steps of the photon-map eye pass, collisions
+    /// of the path tracer.
+    #[serde(default)]
+    pub medium_steps: u64,
 }
 
 impl RayCounts {
+    /// Adds `o`'s counts.
     pub fn add(&mut self, o: &RayCounts) {
         self.eye += o.eye;
         self.shadow += o.shadow;
         self.gather += o.gather;
+        self.splits += o.splits;
+        self.medium_steps += o.medium_steps;
+    }
+
+    /// The counts added since `before` (taken from the same running counter).
+    pub fn since(&self, before: &RayCounts) -> RayCounts {
+        RayCounts {
+            eye: self.eye - before.eye,
+            shadow: self.shadow - before.shadow,
+            gather: self.gather - before.gather,
+            splits: self.splits - before.splits,
+            medium_steps: self.medium_steps - before.medium_steps,
+        }
     }
 }

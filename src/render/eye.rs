@@ -30,7 +30,7 @@ use crate::media::{Medium, tracking};
 use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
-use crate::scene::{DirectLighting, Scene};
+use crate::scene::Scene;
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -106,7 +106,8 @@ impl<'a> EyeTracer<'a> {
         let s = &scene.integrator;
         let est =
             |map, k, max_radius, paths| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands, paths };
-        let shadow = s.direct == DirectLighting::ShadowRays;
+        // Under shadow rays the maps' direct photons are left out (the rays count that light).
+        let shadow = scene.plan.shadow_rays.on;
         let global_paths = if shadow { Paths::DiffuseOnly } else { Paths::All };
         let volume_paths = if shadow { Paths::NotDirect } else { Paths::All };
         EyeTracer {
@@ -169,6 +170,7 @@ impl<'a> EyeTracer<'a> {
     /// Radiance per lane along `state` in a medium that bends each wavelength differently: one
     /// path per lane (a gather path follows one lane chosen uniformly, weighted by the count).
     fn split(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        sc.rays.splits += 1;
         let mut out = [0.0; MAX_BANDS];
         let lanes = at.lanes;
         let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {
@@ -286,6 +288,7 @@ impl<'a> EyeTracer<'a> {
         let lanes = at.lanes;
         let refracts = self.prop.boundary_refracts(hit.prim, lanes.nm[0], hit.point);
         if refracts && lanes.len > 1 && self.prop.boundary_is_dispersive(hit.prim) {
+            sc.rays.splits += 1;
             let mut out = [0.0; MAX_BANDS];
             let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {
                 let single = lanes.single(i);
@@ -318,6 +321,9 @@ impl<'a> EyeTracer<'a> {
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         let lanes = at.lanes;
+        if m.is_dispersive() && lanes.len > 1 {
+            sc.rays.splits += 1;
+        }
         if m.is_dispersive() && lanes.len > 1 && at.mode == Mode::Gather {
             // A gather path follows one lane chosen uniformly, weighted by the lane count: an
             // unbiased estimate of every lane at the cost of one.
@@ -384,7 +390,7 @@ impl<'a> EyeTracer<'a> {
             }
             return out;
         }
-        if self.scene.integrator.direct == DirectLighting::PhotonMap {
+        if !self.scene.plan.shadow_rays.on {
             if let Some(g) = &self.global {
                 add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0);
             }
@@ -553,7 +559,7 @@ impl<'a> EyeTracer<'a> {
             Mode::Camera => self.volume.as_ref(),
             Mode::Gather => self.volume_all.as_ref(),
         };
-        let shadow = at.mode == Mode::Camera && self.scene.integrator.direct == DirectLighting::ShadowRays;
+        let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
         let wo = -c.dir;
         let sigma_t_max = lanes.nm[..lanes.len].iter().map(|l| m.sigma_t(*l)).fold(0.0, f64::max);
         let xi = rng.uniform();
@@ -564,6 +570,7 @@ impl<'a> EyeTracer<'a> {
             let h = self.step_length(m, c, t0, sigma_t_max, level, at.mode);
             let t1 = (t0 + h).min(c.length);
             let s = t0 + xi * (t1 - t0);
+            sc.rays.medium_steps += 1;
             self.attenuate(m, c, t_prev, s, lanes, along, rng);
             t_prev = s;
             if !self.roulette(along, lanes, rng) {

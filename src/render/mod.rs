@@ -123,11 +123,7 @@ fn eye_pass(
                     }
                 }
                 pb.inc(1);
-                let mut rays = sc.rays;
-                rays.eye -= before.eye;
-                rays.shadow -= before.shadow;
-                rays.gather -= before.gather;
-                (row, rays)
+                (row, sc.rays.since(&before))
             })
             .collect();
         let mut data = Vec::with_capacity(done.len() * w * nb);

@@ -162,6 +162,7 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> Option<RayState> {
         let m = &self.scene.world.media[medium as usize];
+        rays.medium_steps += 1;
         w.beta *= m.albedo(w.lambda);
         Some(self.scatter(position, dir, medium, &m.phase, w, l, rng, rays))
     }
