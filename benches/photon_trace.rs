@@ -6,6 +6,7 @@
 //! commit before the inelastic code and on this one and prints criterion's change.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
 use morgana::render::{RenderOptions, render};
 use morgana::scene::load_scene_file;
@@ -26,7 +27,15 @@ fn photon_pass(c: &mut Criterion) {
     let mut group = c.benchmark_group("no_inelastic");
     group.sample_size(20);
     group.bench_function("fog_box_photons_100k", |b| {
-        b.iter(|| pool.install(|| black_box(shoot(&scene, MapKind::Global, 100_000, 1, &|_| {}).1.stored_volume)))
+        b.iter(|| {
+            pool.install(|| {
+                black_box(
+                    shoot(&scene.world, &PassSettings::of(&scene), MapKind::Global, 100_000, 1, &|_| {})
+                        .1
+                        .stored_volume,
+                )
+            })
+        })
     });
     let mut small = fog_box();
     small.camera.width = 32;

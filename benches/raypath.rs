@@ -27,8 +27,8 @@
 use atm_refraction::{EarthShape, Environment, air::us76_atmosphere};
 use criterion::{BenchmarkId, Criterion};
 use glam::DVec3;
-use morgana::raypath::accuracy::{Point, pareto, time_at};
-use morgana::raypath::ode::{Integrator, Method, OdeError, OdeState, Step};
+use morgana::ode::accuracy::{Point, pareto, time_at};
+use morgana::ode::{Integrator, Method, OdeError, OdeState, Step};
 use ode_solvers::{Dopri5, OutputType, System, Vector6};
 use std::hint::black_box;
 use std::time::Instant;

@@ -13,16 +13,21 @@
 //! units where they could be doubted (`wavelength_nm`, `power_w`).
 
 pub mod atmosphere;
+pub mod atomic;
+pub mod cli;
 pub mod distributed;
 pub mod error;
+pub mod field;
 pub mod geometry;
 pub mod light;
 pub mod luminaire;
 pub mod material;
 pub mod media;
+pub mod ode;
 pub mod output;
 pub mod photon;
 pub mod photon_map;
+pub mod quadrature;
 pub mod raster;
 pub mod raypath;
 pub mod render;
@@ -32,4 +37,7 @@ pub mod scene;
 pub mod sensor;
 pub mod spectrum;
 pub mod testing;
+pub mod timing;
 pub mod tonemap;
+pub mod validate;
+pub mod world;

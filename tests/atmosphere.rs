@@ -193,7 +193,7 @@ fn cauchy_born_wolf_constants_agree_with_ciddor_in_the_visible() {
 use glam::DVec3;
 use morgana::atmosphere::edit::{HotSurface, Inversion, Offset};
 use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, Edit};
-use morgana::media::index::GradientRegion;
+use morgana::field::GradientRegion;
 
 fn edited(edits: Vec<Edit>) -> Atmosphere {
     Atmosphere::new("t", Earth::flat_y(), BaseProfile::Usa76, edits, AirDispersion::ciddor(450.0).unwrap(), 86_000.0)
@@ -298,8 +298,8 @@ fn atmosphere_construction_rejects_impossible_settings() {
 // Atmosphere files.
 
 use morgana::atmosphere::file::{Files, load_str};
-use morgana::media::index::Lattice;
-use morgana::media::index::grid_file::{self, Encoding, Quantity};
+use morgana::field::Lattice;
+use morgana::field::grid_file::{self, Encoding, Quantity};
 use std::path::{Path, PathBuf};
 
 fn repo(rel: &str) -> PathBuf {
@@ -364,7 +364,7 @@ fn tropical_table_is_the_afgl_model_and_hydrostatic() {
     // 86 km against ln(P₁/P₀) = −(g M₀/R*)∫dz/T (T linear in the layer, g at mid-layer), to 1%
     // (the table prints 3–4 digits). A mistyped digit in the transcription would show here.
     let text = std::fs::read_to_string(repo("atmospheres/tropical_afgl1986.csv")).unwrap();
-    let cols = morgana::atmosphere::table::parse_numeric_columns(&text, &["z", "t", "p"]).unwrap();
+    let cols = morgana::spectrum::table::parse_numeric_columns(&text, &["z", "t", "p"]).unwrap();
     let (z, t, p) = (&cols[0], &cols[1], &cols[2]);
     for i in 0..z.len() - 1 {
         if z[i + 1] > 86_000.0 {
@@ -415,19 +415,19 @@ fn bad_atmosphere_files_are_rejected_with_file_line_and_key() {
         ("base = \"usa76\"\nprofile = \"x.csv\"\n", &["test.toml:1", "either `base` or `profile`"]),
         ("base = \"usa62\"\n", &["allowed: usa76"]),
         ("profile = \"definitely-missing.csv\"\n", &["test.toml:1:11", "cannot read"]),
-        ("[[edit]]\ndT_k = 3\n", &["test.toml:1", "missing key `type`"]),
+        ("[[edit]]\ndT_k = 3\n", &["test.toml:1", "missing field `type`"]),
         ("[[edit]]\ntype = \"heatwave\"\n", &["test.toml:2:8", "allowed: offset, hot_surface"]),
-        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\n", &["edit \"hot_surface\": missing key `z0_m`"]),
+        ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\n", &["edit \"hot_surface\": missing field `z0_m`"]),
         ("[[edit]]\ntype = \"hot_surface\"\ndT_k = 10\nz0_m = 0\n", &["test.toml:4:8", "z0_m = 0", "greater than 0"]),
         (
             "[[edit]]\ntype = \"offset\"\ndT_k = 1\nheight_m = 3\n",
-            &["test.toml:4:12", "key `height_m` is not used here; allowed keys: dT_k"],
+            &["test.toml:4:12", "field `height_m` is not used here; allowed fields: dT_k"],
         ),
         ("[[edit]]\ntype = \"inversion\"\ndT_k = 1\nheight_m = 3\nthickness_m = -1\n", &["thickness_m = -1"]),
-        ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "key `centre`"]),
+        ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "field `centre`"]),
         ("[[edit]]\ntype = \"offset\"\ndT_k = -400\n", &["can cool the air to", "must stay positive"]),
         ("[[edit]]\ntype = \"grid\"\nfile = \"missing.mfield\"\n", &["missing.mfield", "cannot read"]),
-        ("top_m = \"high\"\n", &["test.toml:1:9", "key `top_m`", "expected f64"]),
+        ("top_m = \"high\"\n", &["test.toml:1:9", "field `top_m`", "expected f64"]),
     ];
     for (toml, wants) in cases {
         let e = error_of(toml);

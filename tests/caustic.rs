@@ -11,6 +11,7 @@ mod common;
 
 use common::scene;
 use morgana::material::named_glass;
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
 use morgana::photon_map::PhotonRecord;
 
@@ -84,7 +85,7 @@ fn least_confusion_depth(photons: &[&PhotonRecord]) -> f64 {
 fn glass_sphere_focuses_at_the_paraxial_focus_blue_before_red() {
     let s = scene(&scene_toml());
     assert!(s.plan.caustic_map.on);
-    let photons = shoot(&s, MapKind::Caustic, 3_000_000, 2, &|_| {}).0.surface;
+    let photons = shoot(&s.world, &PassSettings::of(&s), MapKind::Caustic, 3_000_000, 2, &|_| {}).0.surface;
     let on_axis: Vec<&PhotonRecord> =
         photons.iter().filter(|p| p.dir.y < 0.0 && (p.position.x.hypot(p.position.z)) < 0.08).collect();
     let blue: Vec<&PhotonRecord> = on_axis.iter().copied().filter(|p| p.wavelength_nm < 550.0).collect();

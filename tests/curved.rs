@@ -73,7 +73,7 @@ fn a_horizontal_ray_in_a_linear_field_hits_the_wall_on_the_catenary() {
     let s = scene(&linear_air(a, ""));
     assert!(s.plan.curved_paths.on, "{}", s.plan.curved_paths.why);
     assert!(!s.plan.participating_media.on, "clear air only bends light: {}", s.plan.participating_media.why);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let Event::Surface { hit, dir, path_length, .. } = prop.next_event(&start(DVec3::ZERO, DVec3::X, s.camera_medium))
     else {
         panic!("the ray must hit the wall");
@@ -101,7 +101,7 @@ fn the_path_is_as_accurate_as_the_arc_tolerance_asks() {
     for tol in [1e-2, 1e-4, 1e-6] {
         let text = linear_air(a, "").replace("[world]", &format!("[integrator]\narc_tolerance_m = {tol}\n\n[world]"));
         let s = scene(&text);
-        let prop = Propagator::new(&s);
+        let prop = Propagator::new(&s.world, s.curved());
         let Event::Surface { hit, .. } = prop.next_event(&start(DVec3::ZERO, DVec3::X, s.camera_medium)) else {
             panic!("must hit");
         };
@@ -115,8 +115,8 @@ fn free_flights_are_measured_along_the_arc() {
     // path length is the catenary's arc length up to it.
     let a = 0.02;
     let s = scene(&linear_air(a, "").replace("sigma_s = 0.0", "sigma_s = 0.2"));
-    let prop = Propagator::new(&s);
-    let m = &s.media[0];
+    let prop = Propagator::new(&s.world, s.curved());
+    let m = &s.world.media[0];
     let mut rng = Rng::for_task(3, Stream::Test, 0);
     let mut interactions = 0;
     for _ in 0..400 {
@@ -189,8 +189,8 @@ fn a_ray_through_a_layer_keeps_bouguers_invariant_and_switches_seamlessly() {
     let dir = std::env::temp_dir().join(format!("morgana-curved-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let s = scene(&slab_profile(&dir));
-    let prop = Propagator::new(&s);
-    let m = &s.media[0];
+    let prop = Propagator::new(&s.world, s.curved());
+    let m = &s.world.media[0];
     let n_of = |y: f64| m.index.as_ref().expect("index").n(550.0, DVec3::new(0.0, y, 0.0));
     let e_in = 2.0f64.to_radians();
     let d = DVec3::new(e_in.cos(), -e_in.sin(), 0.0);
@@ -224,7 +224,7 @@ fn paths_outside_a_local_bump_stay_straight_and_run_no_ode() {
         .replace(r#"index = { type = "linear", n0 = 2, k_per_m = 0, direction = [0.0, 1.0, 0.0] }"#, bump);
     let s = scene(&text);
     assert!(s.plan.curved_paths.on);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let Event::Surface { hit, .. } = prop.next_event(&start(DVec3::ZERO, DVec3::X, Some(0))) else {
         panic!("must hit");
     };
@@ -319,7 +319,7 @@ power_w = 1.0
 fn a_boundary_between_media_of_different_n_refracts_by_snell_and_reflects_by_fresnel() {
     let s = scene(&boundary_scene(1.0));
     assert!(!s.plan.curved_paths.on, "constant indices need no ODE: {}", s.plan.curved_paths.why);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let theta = 40f64.to_radians();
     let d = DVec3::new(theta.sin(), -theta.cos(), 0.0);
     let Event::Surface { hit, dir, medium, .. } = prop.next_event(&start(DVec3::new(-0.5, 1.0, 0.0), d, Some(0)))
@@ -348,12 +348,12 @@ fn glass_refracts_relative_to_the_medium_around_it() {
     // Glass of n = 1.5 in a medium of n = 1.5 does not bend light at all; in n = 1 it does.
     for (outside, bends) in [(1.5, false), (1.0, true)] {
         let s = scene(&boundary_scene(outside));
-        let prop = Propagator::new(&s);
+        let prop = Propagator::new(&s.world, s.curved());
         let d = DVec3::new(1.0, -0.3, 0.0).normalize();
         let Event::Surface { hit, dir, .. } = prop.next_event(&start(DVec3::new(3.0, 1.0, 0.0), d, Some(0))) else {
             panic!("must reach the ball");
         };
-        let m = s.material_of(hit.prim).expect("glass");
+        let m = s.world.material_of(hit.prim).expect("glass");
         let n_out = prop.n_outside(hit.prim, 550.0, hit.point);
         let t = m.sample_specular_in(dir, hit.normal, 550.0, [0.999_999, 0.5, 0.5], n_out).expect("specular");
         assert!(t.transmitted);
@@ -409,9 +409,9 @@ power_w = 1.0
 "#;
     let s = scene(toml);
     assert!(s.plan.curved_paths.on, "{}", s.plan.curved_paths.why);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let p0 = DVec3::new(0.0, 2.0, 0.0);
-    let (n, g) = s.media[0].index.as_ref().expect("index").n_grad(550.0, p0);
+    let (n, g) = s.world.media[0].index.as_ref().expect("index").n_grad(550.0, p0);
     let kappa = g.length() / n;
     let Event::Surface { hit, .. } = prop.next_event(&start(p0, DVec3::X, Some(0))) else {
         panic!("must hit the wall")
@@ -478,7 +478,14 @@ irradiance_w_m2 = 1.0
 
 /// Power the plate at x = 50 receives from `photons` photons.
 fn plate_power(s: &morgana::scene::Scene, photons: u64) -> (f64, u64) {
-    let (sink, _) = morgana::photon::shoot(s, morgana::photon::MapKind::Global, photons, 5, &|_| {});
+    let (sink, _) = morgana::photon::shoot(
+        &s.world,
+        &morgana::photon::PassSettings::of(s),
+        morgana::photon::MapKind::Global,
+        photons,
+        5,
+        &|_| {},
+    );
     let on: Vec<_> = sink.surface.iter().filter(|p| (p.position.x - 50.0).abs() < 1e-6).collect();
     (on.iter().map(|p| p.power_w).sum(), on.len() as u64)
 }
@@ -486,7 +493,7 @@ fn plate_power(s: &morgana::scene::Scene, photons: u64) -> (f64, u64) {
 #[test]
 fn a_projection_map_aims_a_bent_beam_at_its_target_without_changing_the_light_it_delivers() {
     let s = scene(&bent_beam("target_min = [49.9, -0.5, -0.5]\ntarget_max = [50.1, 0.5, 0.5]"));
-    let morgana::light::Light::Directional(d) = &s.lights[0] else { panic!("directional") };
+    let morgana::light::Light::Directional(d) = &s.world.lights[0] else { panic!("directional") };
     assert!(d.cells.is_some(), "a projection map must be built where paths curve: {:?}", s.warnings);
     let n = 20_000;
     let (power, hits) = plate_power(&s, n);
@@ -531,10 +538,17 @@ fn a_low_suns_disc_photons_reach_the_sea_in_front_of_the_camera() {
     let fraction = |toml: &str| {
         let s = scene(toml);
         assert!(s.warnings.is_empty(), "{:?}", s.warnings);
-        let morgana::light::Light::Directional(sun) = &s.lights[0] else { panic!("the first light is the sun") };
+        let morgana::light::Light::Directional(sun) = &s.world.lights[0] else { panic!("the first light is the sun") };
         assert!(sun.cells.as_ref().is_some_and(|c| !c.cells.is_empty()), "a projection map");
         let n = 4000;
-        let (sink, _) = morgana::photon::shoot(&s, morgana::photon::MapKind::Global, n, 8, &|_| {});
+        let (sink, _) = morgana::photon::shoot(
+            &s.world,
+            &morgana::photon::PassSettings::of(&s),
+            morgana::photon::MapKind::Global,
+            n,
+            8,
+            &|_| {},
+        );
         let in_box = sink
             .surface
             .iter()

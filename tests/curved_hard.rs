@@ -9,8 +9,9 @@ use common::{scene, scene_error};
 use glam::DVec3;
 use morgana::atmosphere::refraction::{ARCSEC_PER_RAD, Outcome, Settings, Tracer};
 use morgana::atmosphere::{Atmosphere, EARTH_RADIUS_M, Earth};
+use morgana::ode::{Integrator, Method, OdeState};
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
-use morgana::raypath::ode::{Integrator, Method, OdeState};
 use morgana::raypath::{Chord, Event, Propagator, RayState};
 use morgana::scene::Scene;
 use std::path::PathBuf;
@@ -107,8 +108,8 @@ fn height(p: DVec3) -> f64 {
     Earth::standard().height(p)
 }
 
-fn index_of(s: &Scene) -> &morgana::media::index::IndexField {
-    s.media[0].index.as_ref().expect("index field")
+fn index_of(s: &Scene) -> &morgana::media::refractive_index::IndexField {
+    s.world.media[0].index.as_ref().expect("index field")
 }
 
 #[test]
@@ -125,7 +126,7 @@ fn grazing_rays_meet_the_sea_where_geometry_and_refraction_put_them() {
         "",
         &sea("grey"),
     ));
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let p0 = DVec3::new(0.0, 2.0, 0.0);
     let theta = 0.1f64.to_radians();
     let Event::Surface { hit, .. } = prop.next_event(&start(p0, at_elevation(-0.1))) else {
@@ -169,7 +170,7 @@ fn a_ray_grazing_the_sea_in_a_surface_duct_bounces_for_1000_km() {
         "base = \"usa76\"\n[[edit]]\ntype = \"inversion\"\ndT_k = 10.0\nheight_m = 10.0\nthickness_m = 5.0\n",
     );
     let s = scene(&air_scene(&index, "", "", &sea("mirror")));
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let mut state = start(DVec3::new(0.0, 5.0, 0.0), DVec3::X);
     let (mut bounces, mut angles, mut invariants, mut top) = (0, Vec::new(), Vec::new(), f64::NEG_INFINITY);
     let mut apex_since_bounce = f64::NEG_INFINITY;
@@ -253,7 +254,7 @@ fn a_ray_in_an_elevated_duct_oscillates_between_turning_points_for_1000_km() {
         if nr(m) < c { hi = m } else { lo = m }
     }
     let upper = 0.5 * (lo + hi);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let (mut h_min, mut h_max) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut visit = |ch: &Chord| {
         let h = height(ch.origin + ch.length * ch.dir);
@@ -310,7 +311,7 @@ fn a_ray_skimming_a_road_ten_kelvin_per_centimetre_hot_turns_up_inside_the_air()
         if n_at(m) < invariant { lo = m } else { hi = m }
     }
     let y_turn = 0.5 * (lo + hi);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let mut y_min = f64::INFINITY;
     let mut visit = |c: &Chord| {
         let end = c.origin + c.length * c.dir;
@@ -359,8 +360,8 @@ fn photons_turned_back_by_the_hot_road_keep_their_power() {
     .replace("position = [0.0, 2.0, 0.0]", "position = [0.0, 1.0, 0.0]");
     let s = scene(&text);
     let n = 20_000;
-    let (sink, stats) = shoot(&s, MapKind::Global, n, 7, &|_| {});
-    let total: f64 = s.lights.iter().map(|l| l.power_w()).sum();
+    let (sink, stats) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 7, &|_| {});
+    let total: f64 = s.world.lights.iter().map(|l| l.power_w()).sum();
     let stored: f64 = sink.surface.iter().map(|p| p.power_w).sum();
     eprintln!(
         "hot-road photons: {} stored, {stored} W of {total} W, curved work {:?}",
@@ -392,7 +393,7 @@ fn a_ray_from_space_tangent_at_one_kilometre_is_deflected_by_twice_the_horizon_r
     let b = index_of(&s).n(LAMBDA_NM, DVec3::new(0.0, 1000.0, 0.0)) * (R + 1000.0);
     let x0 = -((R + 100e3).powi(2) - b * b).sqrt();
     let p0 = DVec3::new(x0, b - R, 0.0);
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let mut lowest = f64::INFINITY;
     let mut visit = |c: &Chord| {
         lowest = lowest.min(height(c.origin + c.length * c.dir));
@@ -445,7 +446,7 @@ fn a_sphere_grazed_by_the_arc_is_hit_or_missed_never_both_and_never_twice() {
                 c.x, c.y
             );
             let s = scene(&air_scene(index, "", "", &format!("{ball}\n{wall}")));
-            let prop = Propagator::new(&s);
+            let prop = Propagator::new(&s.world, s.curved());
             let event = prop.next_event(&start(DVec3::ZERO, DVec3::X));
             let Event::Surface { hit, dir, .. } = event else { panic!("side {side}, δ {delta}: {event:?}") };
             let on_ball = hit.prim == 0;
@@ -497,7 +498,7 @@ fn rays_starting_exactly_on_a_region_boundary_go_on_as_if_they_had_arrived_there
     // (either would move the landing point by kilometres). (2) A ray starting on the boundary heading
     // straight out, and one tangent to it, escape unbent (direction unchanged to 10⁻¹²).
     let s = scene(&air_scene(r#"{ type = "atmosphere", name = "usa76" }"#, "", "", &sea("grey")));
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let top = DVec3::new(0.0, 86_000.0, 0.0);
     let d = DVec3::new(1.0, -0.3, 0.0).normalize();
     let Event::Surface { hit: a, .. } = prop.next_event(&start(top, d)) else { panic!("must reach the sea") };
@@ -522,7 +523,7 @@ fn rays_starting_exactly_on_a_region_boundary_go_on_as_if_they_had_arrived_there
     std::fs::write(&csv, "height_m,n\n0,1.0003\n2,1.0002\n5,1.00008\n10,1.0\n").expect("profile");
     let floor = "[[shape]]\ntype = \"quad\"\norigin = [-1000.0, -5.0, -1000.0]\nu = [0.0, 0.0, 2000.0]\nv = [2000.0, 0.0, 0.0]\nmaterial = \"grey\"\n";
     let s = scene(&air_scene(&format!("{{ type = \"profile\", file = \"{}\" }}", csv.display()), "", "", floor));
-    let prop = Propagator::new(&s);
+    let prop = Propagator::new(&s.world, s.curved());
     let field = index_of(&s);
     let n_at = |y: f64| field.n(LAMBDA_NM, DVec3::new(0.0, y, 0.0));
     let event = prop.next_event(&start(DVec3::new(0.0, 10.0, 0.0), DVec3::X));

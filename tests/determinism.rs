@@ -8,7 +8,8 @@ use morgana::scene::default_scene;
 #[test]
 fn default_scene_is_identical_on_one_and_two_threads() {
     let mut s = default_scene().expect("default scene");
-    s.camera = morgana::render::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 40, 32);
+    s.camera =
+        morgana::geometry::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 40, 32);
     s.integrator.spp = 2;
     s.integrator.gather_rays = 4;
     s.apply_overrides(Some(20_000), Some(9));
@@ -27,7 +28,7 @@ fn default_scene_is_identical_on_one_and_two_threads() {
         .map(|(i, r)| {
             let p = dir.join(format!("{i}.exr"));
             std::fs::create_dir_all(&dir).unwrap();
-            morgana::output::exr::write_spectral_exr(&p, &r.image).expect("write exr");
+            morgana::spectrum::exr::write_spectral_exr(&p, &r.image).expect("write exr");
             std::fs::read(&p).unwrap()
         })
         .collect();

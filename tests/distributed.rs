@@ -6,7 +6,8 @@ mod common;
 
 use common::render_with;
 use morgana::distributed::split::{dealt, dealt_index, share};
-use morgana::distributed::{self, Schedule, World, assemble::IRRADIANCE_BLOCK};
+use morgana::distributed::{self, Comm, Schedule, assemble::IRRADIANCE_BLOCK};
+use morgana::photon::PassSettings;
 use morgana::photon::{self, MapKind};
 use morgana::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
 use morgana::render::{RenderOptions, render_on};
@@ -14,7 +15,8 @@ use morgana::scene::{Scene, default_scene};
 
 fn small_scene(photons: u64) -> Scene {
     let mut s = default_scene().expect("default scene");
-    s.camera = morgana::render::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 24, 20);
+    s.camera =
+        morgana::geometry::Camera::new(s.camera.position, s.camera.look_at, s.camera.up, s.camera.fov_deg, 24, 20);
     s.integrator.spp = 1;
     s.integrator.gather_rays = 2;
     s.apply_overrides(Some(photons), Some(11));
@@ -38,14 +40,15 @@ fn rank_shares_of_the_batches_give_the_single_process_photons_in_order() {
             MapKind::Global => scene.integrator.photons,
             MapKind::Caustic => scene.integrator.caustic_photons,
         };
-        let (whole, whole_stats) = photon::shoot(&scene, kind, emitted, 11, &|_| {});
+        let (whole, whole_stats) = photon::shoot(&scene.world, &PassSettings::of(&scene), kind, emitted, 11, &|_| {});
         assert!(!whole.surface.is_empty(), "{kind:?}: no photons stored");
         for ranks in [1, 2, 3, 4, 12] {
             let mut surface = Vec::new();
             let mut stats = Vec::new();
             for r in 0..ranks {
                 let range = share(photon::batch_count(emitted), r, ranks);
-                let (sink, st) = photon::shoot_batches(&scene, kind, emitted, 11, range, &|_| {});
+                let (sink, st) =
+                    photon::shoot_batches(&scene.world, &PassSettings::of(&scene), kind, emitted, 11, range, &|_| {});
                 surface.extend(sink.surface);
                 stats.push(st);
             }
@@ -65,7 +68,8 @@ fn rank_shares_of_the_batches_give_the_single_process_photons_in_order() {
 #[test]
 fn maps_assembled_from_parts_equal_the_map_built_at_once() {
     let scene = small_scene(6 * photon::BATCH);
-    let (sink, _) = photon::shoot(&scene, MapKind::Global, scene.integrator.photons, 11, &|_| {});
+    let (sink, _) =
+        photon::shoot(&scene.world, &PassSettings::of(&scene), MapKind::Global, scene.integrator.photons, 11, &|_| {});
     let whole = PhotonMap::build(&sink.surface);
     for ranks in [2, 3, 5] {
         // Split the records unevenly, as ranks' stored counts differ.
@@ -87,7 +91,8 @@ fn maps_assembled_from_parts_equal_the_map_built_at_once() {
 #[test]
 fn irradiance_estimated_in_dealt_blocks_equals_the_whole_estimate() {
     let scene = small_scene(8 * photon::BATCH);
-    let (sink, _) = photon::shoot(&scene, MapKind::Global, scene.integrator.photons, 11, &|_| {});
+    let (sink, _) =
+        photon::shoot(&scene.world, &PassSettings::of(&scene), MapKind::Global, scene.integrator.photons, 11, &|_| {});
     let map = PhotonMap::build(&sink.surface);
     let s = &scene.integrator;
     let est = Estimator {
@@ -127,7 +132,7 @@ fn static_and_dynamic_schedules_give_the_same_image() {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("pool");
     let opts = distributed::Options { schedule: Schedule::Static, ..Default::default() };
     let stat = pool
-        .install(|| render_on(&World::local(), &scene, &RenderOptions { quiet: true }, &opts))
+        .install(|| render_on(&Comm::local(), &scene, &RenderOptions { quiet: true }, &opts))
         .expect("render")
         .expect("rank 0 has the image");
     let b = |d: &[f32]| d.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
@@ -142,7 +147,7 @@ fn static_and_dynamic_schedules_give_the_same_image() {
 fn a_map_memory_limit_stops_the_render_with_a_clear_error() {
     let scene = small_scene(20_000);
     let opts = distributed::Options { map_memory: distributed::MapMemory::Limit(1000), ..Default::default() };
-    let err = match render_on(&World::local(), &scene, &RenderOptions { quiet: true }, &opts) {
+    let err = match render_on(&Comm::local(), &scene, &RenderOptions { quiet: true }, &opts) {
         Ok(_) => panic!("a 1000-byte budget was accepted"),
         Err(e) => e,
     };

@@ -4,10 +4,11 @@ mod common;
 
 use common::scene;
 use glam::DVec3;
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
+use morgana::photon_map::Filter;
 use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap};
-use morgana::scene::Filter;
-use morgana::testing::chi2::gauss_legendre;
+use morgana::quadrature::gauss_legendre;
 use std::f64::consts::PI;
 
 const BLACK_SPHERE: &str = r#"
@@ -39,10 +40,10 @@ material = "black"
 /// power equals the lights' power.
 fn all_power_arrives(lights: &str, expected_power: f64) -> Vec<morgana::photon_map::PhotonRecord> {
     let s = scene(&format!("{BLACK_SPHERE}\n{lights}"));
-    let total: f64 = s.lights.iter().map(|l| l.power_w()).sum();
+    let total: f64 = s.world.lights.iter().map(|l| l.power_w()).sum();
     assert!((total - expected_power).abs() < 1e-9 * total, "light power {total}, expected {expected_power}");
     let n = 100_000;
-    let (sink, stats) = shoot(&s, MapKind::Global, n, 5, &|_| {});
+    let (sink, stats) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 5, &|_| {});
     let photons = sink.surface;
     assert_eq!(photons.len() as u64, n, "each photon stored exactly once");
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
@@ -111,7 +112,7 @@ scale = 0.02
 "#;
     let s = scene(toml);
     // Intensity per nm 0.02 over 100 nm: I = 2 W/sr; the photon map's band value is E per nm.
-    let records = shoot(&s, MapKind::Global, 2_000_000, 11, &|_| {}).0.surface;
+    let records = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 2_000_000, 11, &|_| {}).0.surface;
     let map = PhotonMap::build(&records);
     let k = 1000;
     let filter = Filter::Cone { k: 1.1 };
@@ -180,11 +181,14 @@ spectrum = "D65"
 irradiance_w_m2 = 3.0
 "#;
     let s = scene(toml);
-    let (sink, stats) = shoot(&s, MapKind::Global, 100_000, 8, &|_| {});
+    let (sink, stats) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 100_000, 8, &|_| {});
     let photons = sink.surface;
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
     assert!((stored / 12.0 - 1.0).abs() < 0.01, "stored {stored} W, expected 12 W");
-    assert!((stats.escaped_w + stats.absorbed_surface_w - s.lights[0].power_w()).abs() < 1e-9 * s.lights[0].power_w());
+    assert!(
+        (stats.escaped_w + stats.absorbed_surface_w - s.world.lights[0].power_w()).abs()
+            < 1e-9 * s.world.lights[0].power_w()
+    );
     assert!(photons.iter().all(|p| p.dir.y < -0.999_999));
 }
 
@@ -221,12 +225,12 @@ target_min = [-1.0, -0.01, -0.5]
 target_max = [1.0, 0.01, 0.5]
 "#;
     let s = scene(toml);
-    assert!((s.lights[0].power_w() - 6.0).abs() < 1e-9, "beam power {}", s.lights[0].power_w());
-    let (sink, _) = shoot(&s, MapKind::Global, 10_000, 8, &|_| {});
+    assert!((s.world.lights[0].power_w() - 6.0).abs() < 1e-9, "beam power {}", s.world.lights[0].power_w());
+    let (sink, _) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 10_000, 8, &|_| {});
     assert_eq!(sink.surface.len(), 10_000);
     assert!(sink.surface.iter().all(|p| p.position.x.abs() <= 1.0 + 1e-9 && p.position.z.abs() <= 0.5 + 1e-9));
     let stored: f64 = sink.surface.iter().map(|p| p.power_w).sum();
     assert!((stored - 6.0).abs() < 1e-9);
-    assert!(s.lights[0].incident(glam::DVec3::new(0.5, 0.0, 0.2), [0.5, 0.5]).is_some());
-    assert!(s.lights[0].incident(glam::DVec3::new(2.0, 0.0, 0.2), [0.5, 0.5]).is_none());
+    assert!(s.world.lights[0].incident(glam::DVec3::new(0.5, 0.0, 0.2), [0.5, 0.5]).is_some());
+    assert!(s.world.lights[0].incident(glam::DVec3::new(2.0, 0.0, 0.2), [0.5, 0.5]).is_none());
 }

@@ -28,7 +28,7 @@ fn expected_bands() -> Vec<f64> {
     (0..4)
         .map(|b| {
             let lo = 400.0 + 75.0 * b as f64;
-            morgana::testing::chi2::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4) / 75.0
+            morgana::quadrature::gauss_legendre(&|l| le(l) / (1.0 - rho(l)), lo, lo + 75.0, 4) / 75.0
         })
         .collect()
 }

@@ -9,11 +9,11 @@
 use glam::DVec3;
 use morgana::atmosphere::edit::{Bubble, GridEdit, HotSurface, Inversion, Offset};
 use morgana::atmosphere::{AirDispersion, Atmosphere, BaseProfile, Earth, Edit, TableProfile, usa76};
+use morgana::field::{Bump, GradientRegion, Interpolation, Lattice};
 use morgana::geometry::Aabb;
 use morgana::material::Ior;
-use morgana::media::index::{
-    Bump, Constant, Exponential, GradientRegion, GridPressure, IndexField, Interpolation, Lattice, Linear, Profile,
-    Sum, TemperatureGrid,
+use morgana::media::refractive_index::{
+    Constant, Exponential, GridPressure, IndexField, Linear, Profile, Sum, TemperatureGrid,
 };
 use morgana::rng::{Rng, Stream};
 
@@ -240,7 +240,7 @@ fn catmull_rom_stays_above_the_stated_overshoot_bound() {
         for i in 0..2000 {
             let mut r = Rng::for_task(seed, Stream::Test, i);
             let p = DVec3::new(r.uniform(), r.uniform(), r.uniform()) * 4.0;
-            let v = l.value_grad(p, Interpolation::Tricubic, morgana::media::index::Beyond::Clamp).0;
+            let v = l.value_grad(p, Interpolation::Tricubic, morgana::field::Beyond::Clamp).0;
             assert!(v >= bound, "{v} < {bound}");
         }
     }
@@ -513,7 +513,7 @@ fn every_field_is_finite_at_extreme_points() {
 
 #[test]
 fn profiles_and_temperature_grids_load_from_files() {
-    use morgana::media::index::grid_file::{self, Encoding, Quantity};
+    use morgana::field::grid_file::{self, Encoding, Quantity};
     let dir = std::env::temp_dir().join(format!("morgana-fields-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("n.csv"), "height_m,n\n0,1.0003\n50,1.00029\n").unwrap();

@@ -5,9 +5,11 @@ mod common;
 
 use common::scene;
 use morgana::media::inelastic::{Fa7, GaussianEmission, RamanShift};
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
+use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
-use morgana::testing::chi2::{chi2_1d, gauss_legendre};
+use morgana::testing::chi2::chi2_1d;
 use std::path::PathBuf;
 
 fn ocean_data() -> PathBuf {
@@ -173,7 +175,7 @@ fn check_fluorescent_sphere(accounting: &str) {
     let s = scene(&fluorescent_sphere(accounting));
     assert!(s.plan.inelastic_scattering.on, "{}", s.plan.inelastic_scattering.why);
     let n = 200_000u64;
-    let (sink, st) = shoot(&s, MapKind::Global, n, 11, &|_| {});
+    let (sink, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 11, &|_| {});
     let t = &st.inelastic[0];
     // Absorbed by the component: all power × (1 − e^{−σR}), binomial error.
     let pa = 1.0 - (-1.0f64).exp();
@@ -236,7 +238,7 @@ fn media_without_inelastic_components_plan_no_inelastic_scattering() {
         "",
     ));
     assert!(!s.plan.inelastic_scattering.on);
-    let (_, st) = shoot(&s, MapKind::Global, 10_000, 1, &|_| {});
+    let (_, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 10_000, 1, &|_| {});
     assert!(st.inelastic.is_empty() && st.reemitted == 0);
 }
 

@@ -445,7 +445,7 @@ fn cie_led_illuminant_files_have_their_published_chromaticities() {
             rest.split([',', ' ', ';']).find(|t| !t.is_empty()).unwrap().parse().unwrap()
         };
         let (x, y) = (num("x = "), num("y = "));
-        let (nm, values) = morgana::scene::parse_two_column_csv(&text).unwrap();
+        let (nm, values) = morgana::spectrum::table::parse_two_column_csv(&text).unwrap();
         let s = Spectrum::Tabulated(Tabulated::new(nm, values).unwrap());
         let xyz = morgana::spectrum::colour::absolute_xyz(&s);
         let sum = xyz.iter().sum::<f64>();

@@ -7,13 +7,15 @@ mod common;
 use common::{scene, scene_error};
 use glam::DVec3;
 use morgana::light::Light;
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
+use morgana::photon_map::Filter;
 use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap};
+use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
-use morgana::scene::Filter;
 use morgana::spectrum::cie::cmf_1931_at_nm;
 use morgana::spectrum::colour::K_M;
-use morgana::testing::chi2::{chi2_sphere, gauss_legendre};
+use morgana::testing::chi2::chi2_sphere;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
@@ -58,7 +60,7 @@ fn luminaire(file: &str, extra: &str) -> String {
 }
 
 fn the_luminaire(s: &morgana::scene::Scene) -> &morgana::light::LuminaireLight {
-    match &s.lights[0] {
+    match &s.world.lights[0] {
         Light::Luminaire(l) => l,
         _ => panic!("not a luminaire"),
     }
@@ -70,10 +72,10 @@ fn photons_carry_the_stated_lumens_in_watts_at_555_nm() {
     let s =
         scene(&(black_sphere(BANDS_555) + &luminaire("ldt/eulumdatpy_sample8.ldt", &format!("spectrum = {LINE_555}"))));
     let stated_w = 400.0 * 0.88629073034905 / K_M;
-    let power = s.lights[0].power_w();
+    let power = s.world.lights[0].power_w();
     assert!((power / stated_w - 1.0).abs() < 1e-4, "{power} W vs {stated_w} W");
     let n = 100_000;
-    let (sink, stats) = shoot(&s, MapKind::Global, n, 3, &|_| {});
+    let (sink, stats) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 3, &|_| {});
     let photons = sink.surface;
     assert_eq!(photons.len() as u64, n, "each photon stored once");
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
@@ -93,7 +95,7 @@ fn a_black_body_lamp_gets_watts_by_its_luminous_efficacy() {
     assert!((flux_lm / 611.9 - 1.0).abs() < 0.001, "the ERCO file's table gives {flux_lm} lm for 611.9 lm");
     let want = flux_lm * in_range / (K_M * luminous);
     // The light integrates a smooth spectrum to the sampler's stated 1e-4.
-    assert!((s.lights[0].power_w() / want - 1.0).abs() < 1e-4, "{} W vs {want} W", s.lights[0].power_w());
+    assert!((s.world.lights[0].power_w() / want - 1.0).abs() < 1e-4, "{} W vs {want} W", s.world.lights[0].power_w());
 }
 
 #[test]
@@ -105,8 +107,8 @@ fn emission_from_the_opening_still_delivers_every_watt() {
                 "cct_k = 3000\nemitter = \"opening\"\nrotation_deg = [30.0, 0.0, 0.0]",
             )),
     );
-    let power = s.lights[0].power_w();
-    let photons = shoot(&s, MapKind::Global, 50_000, 4, &|_| {}).0.surface;
+    let power = s.world.lights[0].power_w();
+    let photons = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 50_000, 4, &|_| {}).0.surface;
     let stored: f64 = photons.iter().map(|p| p.power_w).sum();
     assert_eq!(photons.len(), 50_000);
     assert!((stored / power - 1.0).abs() < 1e-9);
@@ -189,7 +191,7 @@ fn photon_map_illuminance_under_a_luminaire_is_i_cos3_over_h2() {
         ies.display()
     );
     let s = scene(&toml);
-    let records = shoot(&s, MapKind::Global, 2_000_000, 21, &|_| {}).0.surface;
+    let records = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 2_000_000, 21, &|_| {}).0.surface;
     let map = PhotonMap::build(&records);
     // Relative standard deviation of a cone-filtered k-photon estimate ≈ 1.14/√k = 3.6%.
     let (k, k_cone) = (1000, 1.1);
@@ -241,8 +243,8 @@ fn a_sensor_reads_direct_illuminance_i_cos3_over_h2() {
         ies.display()
     );
     let s = scene(&toml);
-    let maps = morgana::render::maps::Maps::default();
-    let r = &morgana::sensor::evaluate_all(&s, &maps)[0];
+    let maps = morgana::render::photon_pass::Maps::default();
+    let r = &morgana::render::sensors::evaluate_all(&s, &maps)[0];
     assert_eq!(r.columns[0].0, "E_lx");
     for (p, e) in r.points.iter().zip(&r.columns[0].1) {
         let want = illuminance(3.0, p.x, p.z);

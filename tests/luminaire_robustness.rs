@@ -6,6 +6,8 @@
 //! - A property test over mutated shared files (lines deleted, duplicated or swapped, values
 //!   replaced by junk, bytes flipped or inserted, files cut short): every mutant either loads to
 //!   a finite web or gets an input error naming the file — never a panic.
+//! - The same for this project's TM-33-18, TM-33-23 and GLDF test files (the containers mutated
+//!   as bytes, or rebuilt around a mutated product.xml, EULUMDAT or spectrum entry).
 
 use morgana::error::Error;
 use morgana::luminaire::{Photometry, Symmetry, WebSampler, read_bytes, summary};
@@ -250,4 +252,90 @@ fn a_truncated_file_names_the_field_it_stopped_in() {
         e,
         "cut.ldt:21: EULUMDAT field 21 (height of luminous area C270-plane, mm): found the end of the file, expected a line for this field"
     );
+}
+
+/// This project's TM-33 and GLDF test files (tests/data/luminaires/).
+fn own(name: &str) -> Vec<u8> {
+    std::fs::read(PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/luminaires")).join(name)).unwrap()
+}
+
+/// A deflated zip archive of `entries`.
+fn zip_of(entries: &[(&str, Vec<u8>)]) -> Vec<u8> {
+    use std::io::Write;
+    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    for (name, content) in entries {
+        w.start_file(*name, options).unwrap();
+        w.write_all(content).unwrap();
+    }
+    w.finish().unwrap().into_inner()
+}
+
+/// Reads a mutant: Ok(true) loaded to a finite web, Ok(false) an input error naming the file and
+/// saying what was expected; a panic or any other error fails the test.
+fn check_mutant(m: &[u8], name: &str) -> bool {
+    match read_bytes(m, Path::new(name)) {
+        Ok(p) => {
+            let flux = p.flux_lm();
+            assert!(flux.is_finite() && flux >= 0.0, "flux {flux}");
+            let _ = WebSampler::new(&p.web);
+            let _ = summary(&p);
+            true
+        }
+        Err(Error::Input(e)) => {
+            let msg = e.to_string();
+            assert!(msg.starts_with(name), "error does not name the file: {msg}");
+            assert!(msg.contains("expected") || msg.contains("recognise"), "{msg}");
+            false
+        }
+        Err(other) => panic!("not an input error: {other}"),
+    }
+}
+
+/// TM-33-18 and -23 files mutated as text; GLDF containers mutated as bytes, or rebuilt around a
+/// mutated product.xml, EULUMDAT or spectrum entry.
+#[test]
+fn mutated_tm33_and_gldf_files_load_or_fail_cleanly_never_panic() {
+    let per_file: u64 = std::env::var("MORGANA_MUTANTS").ok().and_then(|v| v.parse().ok()).unwrap_or(150);
+    let entries = |product: Vec<u8>, ldt: Vec<u8>, spectrum: Vec<u8>| {
+        zip_of(&[
+            ("product.xml", product),
+            ("ldc/quad_downlight.ldt", ldt),
+            ("ldc/quad_downlight.ies", own("quad_downlight.ies")),
+            ("spectrum/quad_downlight_spectrum.txt", spectrum),
+        ])
+    };
+    let (product, ldt, spectrum) =
+        (own("quad_downlight_gldf_product.xml"), own("quad_downlight.ldt"), own("quad_downlight_spectrum.txt"));
+    let gldf = entries(product.clone(), ldt.clone(), spectrum.clone());
+    let (mut ok, mut rejected) = (0, 0);
+    for (f, label) in ["tm33_18", "tm33_23", "gldf"].iter().enumerate() {
+        for k in 0..per_file {
+            let mut rng = Rng::for_task(100 + f as u64, Stream::Test, k);
+            let (m, name) = match *label {
+                "tm33_18" => (mutate(&own("quad_downlight_tm33_18.xml"), &mut rng), "mutant.xml"),
+                "tm33_23" => (mutate(&own("quad_downlight_tm33_23.xml"), &mut rng), "mutant.xml"),
+                _ => {
+                    let m = match k % 4 {
+                        0 => mutate(&gldf, &mut rng),
+                        1 => entries(mutate(&product, &mut rng), ldt.clone(), spectrum.clone()),
+                        2 => entries(product.clone(), mutate(&ldt, &mut rng), spectrum.clone()),
+                        _ => entries(product.clone(), ldt.clone(), mutate(&spectrum, &mut rng)),
+                    };
+                    (m, "mutant.gldf")
+                }
+            };
+            match std::panic::catch_unwind(|| check_mutant(&m, name)) {
+                Ok(true) => ok += 1,
+                Ok(false) => rejected += 1,
+                Err(_) => {
+                    let dump = std::env::temp_dir().join(format!("morgana-mutant-{label}-{k}.{name}"));
+                    std::fs::write(&dump, &m).ok();
+                    panic!("{label}: mutant {k} panicked; written to {}", dump.display());
+                }
+            }
+        }
+    }
+    println!("TM-33 and GLDF mutants: {ok} loaded, {rejected} rejected with an input error");
+    assert!(ok > 0 && rejected > 0);
 }

@@ -4,8 +4,9 @@ mod common;
 
 use common::{render_with, scene};
 use glam::DVec3;
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
-use morgana::testing::chi2::gauss_legendre;
+use morgana::quadrature::gauss_legendre;
 use std::f64::consts::PI;
 
 const LE: f64 = 2.0;
@@ -128,7 +129,7 @@ power_w = 10.0
 "#;
     let s = scene(toml);
     let n = 200_000u64;
-    let (_, st) = shoot(&s, MapKind::Global, n, 7, &|_| {});
+    let (_, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 7, &|_| {});
     let total = st.absorbed_medium_w + st.absorbed_surface_w + st.escaped_w + st.truncated_w;
     assert!((total - 10.0).abs() < 1e-9, "power not conserved: {total}");
     let p = 1.0 - (-0.7f64).exp();
@@ -315,7 +316,7 @@ fn a_glass_sphere_focuses_a_volume_caustic_into_fog() {
             .replace("radius = 0.3", "radius = 0.0001"),
     );
     let inscatter = |s: &morgana::scene::Scene, p: DVec3| {
-        let (sink, _) = shoot(s, MapKind::Global, s.integrator.photons, 1, &|_| {});
+        let (sink, _) = shoot(&s.world, &PassSettings::of(s), MapKind::Global, s.integrator.photons, 1, &|_| {});
         let map = PhotonMap::build(&sink.volume);
         let est = Estimator {
             map: &map,
@@ -325,7 +326,7 @@ fn a_glass_sphere_focuses_a_volume_caustic_into_fog() {
             bands: s.bands,
             paths: Paths::All,
         };
-        let (v, _) = est.volume_scattered(p, DVec3::Z, &s.media[0], &mut Neighbours::default());
+        let (v, _) = est.volume_scattered(p, DVec3::Z, &s.world.media[0], &mut Neighbours::default());
         v.iter().take(s.bands.count).sum::<f64>()
     };
     let focus = DVec3::new(0.0, -0.45, 0.0);

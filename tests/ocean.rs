@@ -94,7 +94,7 @@ fn sea_water_has_the_published_coefficients() {
     for c in ["chlorophyll fluorescence", "CDOM fluorescence", "Raman"] {
         assert!(why.contains(c), "plan does not name {c}: {why}");
     }
-    let m = &s.media[0];
+    let m = &s.world.media[0];
     let chl: f64 = 2.0;
     for l in [440.0, 550.0, 600.0] {
         let [ap, ep, aphi, ephi] = bricaud(l);
@@ -113,7 +113,8 @@ fn sea_water_has_the_published_coefficients() {
     }
     // Outside Pope & Fry's range the Smith & Baker table takes over (e.g. 730 nm is past 727.5).
     let s2 = scene(&ocean_scene("").replace("max_nm = 700.0", "max_nm = 750.0"));
-    let a730 = s2.media[0].sigma_t(730.0) - s2.media[0].sigma_s(730.0) - s2.media[0].inelastic.sigma(730.0);
+    let a730 =
+        s2.world.media[0].sigma_t(730.0) - s2.world.media[0].sigma_s(730.0) - s2.world.media[0].inelastic.sigma(730.0);
     let want = table("smith_baker_1981_water_absorption.csv", 730.0) + {
         let [ap, ep, aphi, ephi] = bricaud(700.0);
         ap * chl.powf(ep) - aphi * chl.powf(ephi)

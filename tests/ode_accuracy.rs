@@ -1,7 +1,8 @@
 //! `morgana accuracy`: the measurement runs, its numbers obey the closed form and the orders of
 //! the methods, the CSV and PNG are written, and bad options exit with code 2.
 
-use morgana::raypath::accuracy::{AccuracyArgs, Plan, Problem, measure, run_cli};
+use morgana::cli::accuracy::{AccuracyArgs, run as run_cli};
+use morgana::ode::accuracy::{Plan, Problem, measure};
 use std::path::PathBuf;
 use std::process::Command;
 

@@ -7,7 +7,7 @@
 mod ode_common;
 
 use glam::DVec3;
-use morgana::raypath::ode::{Method, OdeState};
+use morgana::ode::{Method, OdeState};
 use ode_common::{catenary, launch_at, linear, log_slope, run};
 
 const N0: f64 = 1.0;
@@ -27,12 +27,12 @@ fn run_with<F: Fn(DVec3) -> (f64, DVec3)>(
     field: &F,
     start: OdeState,
     project: bool,
-) -> (OdeState, usize, morgana::raypath::ode::Integrator) {
+) -> (OdeState, usize, morgana::ode::Integrator) {
     if !project {
         let (end, steps, ode) = run(method, field, start, S_END);
         return (end, steps.len(), ode);
     }
-    let mut ode = morgana::raypath::ode::Integrator::new(method).unwrap().with_projection(true);
+    let mut ode = morgana::ode::Integrator::new(method).unwrap().with_projection(true);
     let mut state = start;
     ode.integrate_to(field, &mut state, S_END).unwrap();
     (state, ode.counters().accepted as usize, ode)

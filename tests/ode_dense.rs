@@ -6,9 +6,9 @@
 mod ode_common;
 
 use glam::DVec3;
-use morgana::raypath::ode::dense::Dense;
-use morgana::raypath::ode::system::{RayY, eval};
-use morgana::raypath::ode::{Method, dopri5, rk4};
+use morgana::ode::dense::Dense;
+use morgana::ode::system::{RayY, eval};
+use morgana::ode::{Method, dopri5, rk4};
 use ode_common::{fish_eye, fish_eye_radius, fish_eye_ray, fish_eye_tangent, launch_at, log_slope, run};
 
 const A: f64 = 1.0;

@@ -4,7 +4,7 @@
 mod ode_common;
 
 use glam::DVec3;
-use morgana::raypath::ode::{Integrator, Method, OdeError, OdeState, Step};
+use morgana::ode::{Integrator, Method, OdeError, OdeState, Step};
 use ode_common::{catenary, launch_at, linear, run, tanh_layer};
 
 /// Tolerances of these tests: rtol = atol = TOL; measured global errors stay near TOL per metre
@@ -285,7 +285,7 @@ fn nan_field_is_an_error() {
 fn bad_states_and_step_budget() {
     let field = linear(1.0, 0.1);
     let mut ode = Integrator::new(dp()).unwrap();
-    let mut state = OdeState { s: 0.0, y: morgana::raypath::ode::RayY { r: DVec3::NAN, v: DVec3::X } };
+    let mut state = OdeState { s: 0.0, y: morgana::ode::RayY { r: DVec3::NAN, v: DVec3::X } };
     assert!(matches!(ode.step(&field, &mut state, 1.0), Err(OdeError::BadState { .. })));
     let mut ode = Integrator::new(Method::Euler { h_m: 1e-3 }).unwrap().with_max_steps(100);
     let mut state = launch_at(&field, DVec3::ZERO, 0.0);

@@ -15,7 +15,7 @@
 mod ode_common;
 
 use glam::DVec3;
-use morgana::raypath::ode::{Integrator, Method, OdeState, Step};
+use morgana::ode::{Integrator, Method, OdeState, Step};
 use ode_common::{fish_eye, fish_eye_radius, fish_eye_ray, launch_at, tanh_layer};
 
 fn path<F: Fn(DVec3) -> (f64, DVec3)>(

@@ -10,7 +10,7 @@
 mod ode_common;
 
 use glam::DVec3;
-use morgana::raypath::ode::{Method, RayY};
+use morgana::ode::{Method, RayY};
 use ode_common::{catenary, launch_at, linear, run, tanh_layer};
 use ode_solvers::{Dopri5, OutputType, System, Vector6};
 

@@ -6,8 +6,9 @@ mod common;
 use common::{mean_and_sem, render_with, scene, scene_error};
 use glam::DVec3;
 use morgana::material::{Beckmann, Ior, RoughDielectric};
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
-use morgana::testing::chi2::gauss_legendre;
+use morgana::quadrature::gauss_legendre;
 use std::f64::consts::PI;
 
 const WIND_M_S: f64 = 7.0;
@@ -96,8 +97,8 @@ fn sunlight_reflected_by_the_rough_sea_is_the_bsdfs_reflectance() {
         );
         let s = scene(&sea_scene(CAMERA_8, &light, "photon_map", 1));
         let n = 400_000;
-        let (_, stats) = shoot(&s, MapKind::Global, n, 8, &|_| {});
-        let power = s.lights[0].power_w();
+        let (_, stats) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 8, &|_| {});
+        let power = s.world.lights[0].power_w();
         let escaped = stats.escaped_w / power;
         let expected = reflectance(dir);
         // Each photon escapes with its facet weight (≈ 1) with probability ≈ R: binomial error.

@@ -1,9 +1,10 @@
 //! Wavelength sampling: chi-square tests against the spectrum itself, normalisation, and the
 //! accuracy of the piecewise-linear representation of smooth spectra.
 
+use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
 use morgana::spectrum::{RgbSigmoid, Spectrum, SpectrumSampler, Tabulated};
-use morgana::testing::chi2::{chi2_1d, gauss_legendre};
+use morgana::testing::chi2::chi2_1d;
 
 const SIGNIFICANCE: f64 = 1e-3;
 

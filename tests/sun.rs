@@ -4,6 +4,7 @@ mod common;
 
 use common::{render_with, scene};
 use glam::DVec3;
+use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
 
 /// A camera looking straight at a sun 30° up, with a field of view of 1.2° (the disc is 0.53°
@@ -126,7 +127,7 @@ target_min = [-1.0, -0.01, -1.0]
 target_max = [1.0, 0.01, 1.0]
 "#;
     let s = scene(toml);
-    let (sink, _) = shoot(&s, MapKind::Global, 20_000, 8, &|_| {});
+    let (sink, _) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 20_000, 8, &|_| {});
     let stored: f64 = sink.surface.iter().map(|p| p.power_w).sum();
     // Photons tilted off the axis can miss the plate's edge: the share is ~ the edge strip of
     // width h·tan θ over the plate (h ≈ 2.5 m upstream: under 1%).
@@ -135,7 +136,7 @@ target_max = [1.0, 0.01, 1.0]
     assert!(sink.surface.iter().all(|p| -p.dir.y >= cos_max - 1e-12));
     let tilted = sink.surface.iter().filter(|p| -p.dir.y < 1.0 - 1e-9).count();
     assert!(tilted > sink.surface.len() / 2, "directions should spread over the disc");
-    assert!(s.lights[0].incident(DVec3::new(0.5, 0.0, 0.2), [0.3, 0.7]).is_some_and(|i| i.wi.y >= cos_max));
+    assert!(s.world.lights[0].incident(DVec3::new(0.5, 0.0, 0.2), [0.3, 0.7]).is_some_and(|i| i.wi.y >= cos_max));
 }
 
 #[test]
@@ -153,7 +154,7 @@ fn a_sun_without_a_spectrum_shines_with_the_extraterrestrial_solar_irradiance() 
         .replace("spectrum = 1.0\nscale = 2.0\n", "")
         .replace("[output]\nbands = 1\nmin_nm = 540.0\nmax_nm = 560.0\n", "");
     let s = scene(&toml);
-    let e = s.lights[0].spectrum().integral();
+    let e = s.world.lights[0].spectrum().integral();
     let want = morgana::spectrum::solar::ETR_INTEGRAL_380_780_W_M2;
     assert!((e / want - 1.0).abs() < 1e-6, "∫E dλ = {e} W/m², table {want}");
 }

@@ -1,8 +1,8 @@
 //! Tone reproduction end to end: spectral images through colorimetry, chromatic adaptation and
 //! the operators; the `tonemap` command and the `[output]` keys, with their errors.
 
-use morgana::output::SpectralImage;
-use morgana::output::exr::write_spectral_exr;
+use morgana::spectrum::SpectralImage;
+use morgana::spectrum::exr::write_spectral_exr;
 use morgana::spectrum::{Bands, named_illuminant};
 use morgana::tonemap::chromatic::Cat;
 use morgana::tonemap::delta_e::{delta_e_2000, xyz_to_lab};

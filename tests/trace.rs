@@ -220,7 +220,7 @@ fn a_steep_ray_inside_the_slab_is_totally_reflected() {
 fn bad_trace_input_exits_with_2_and_writes_nothing() {
     let dir = scratch("bad");
     std::fs::write(dir.join("s.toml"), slab_scene()).unwrap();
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 8] = [
         (&["s.toml", "--from", "0,1,0"], "give the start direction"),
         (&["s.toml", "--from", "0,1,0", "--dir", "0,0,0"], "--dir: a zero direction"),
         (&["s.toml", "--from", "0,1,0", "--toward", "0,1,0"], "--toward: the start point itself"),
@@ -229,7 +229,8 @@ fn bad_trace_input_exits_with_2_and_writes_nothing() {
             "within the scene's range 540–560",
         ),
         (&["s.toml", "--from", "0,1,0", "--dir", "1,0,0", "--events", "0"], "--events 0"),
-        (&["s.toml", "--from", "0,1", "--dir", "1,0,0"], "expected three numbers x,y,z"),
+        (&["s.toml", "--from", "0,1", "--dir", "1,0,0"], "expected three finite numbers x,y,z"),
+        (&["s.toml", "--from", "0,nan,0", "--dir", "1,0,0"], "expected three finite numbers x,y,z"),
         (&["missing.toml", "--from", "0,1,0", "--dir", "1,0,0"], "missing.toml"),
     ];
     for (args, want) in cases {

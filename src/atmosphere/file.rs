@@ -1,12 +1,14 @@
 //! Atmosphere files: TOML → [`RawAtmosphere`] (serde, unknown keys rejected, every value
-//! spanned) → a validated [`Atmosphere`]. Errors name the file, line and column, the key, what was
-//! found and what is allowed. The keys are documented in `atmospheres/README.md`.
+//! spanned) → a validated [`Atmosphere`], through the validation context scenes use
+//! ([`crate::validate`]). Errors name the file, line and column, the field, what was found and
+//! what is allowed. The keys are documented in `atmospheres/README.md`.
 
 use super::edit::{Bubble, Edit, GridEdit, HotSurface, Inversion, Offset};
 use super::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, TableProfile, usa76};
 use crate::error::{Error, Location, Result};
-use crate::media::index::Interpolation;
-use crate::media::index::grid_file::{self, Quantity};
+use crate::field::Interpolation;
+use crate::field::grid_file::{self, Quantity};
+use crate::validate::Ctx;
 use glam::DVec3;
 use serde::Deserialize;
 use std::ops::Range;
@@ -66,29 +68,27 @@ pub fn load(path: &Path) -> Result<Atmosphere> {
 
 /// Validates atmosphere TOML; `file` names it in errors and is the default `name` (its stem).
 pub fn load_str(source: &str, file: &Path, files: &Files) -> Result<Atmosphere> {
-    let ctx = Ctx { file, source, files };
+    let dir = match files {
+        Files::Dir(d) => d.clone(),
+        Files::Embedded(_) => PathBuf::from("."),
+    };
+    let ctx = Ctx::new(file, source, &dir);
     let raw: RawAtmosphere = toml::from_str(source).map_err(|e| ctx.toml_error(&e))?;
-    build(&ctx, &raw)
-}
-
-struct Ctx<'a> {
-    file: &'a Path,
-    source: &'a str,
-    files: &'a Files<'a>,
+    build(&ctx, files, &raw)
 }
 
 const TYPES: &[&str] = &["offset", "hot_surface", "inversion", "bubble", "grid"];
 
-fn build(ctx: &Ctx, raw: &RawAtmosphere) -> Result<Atmosphere> {
-    let base = base_profile(ctx, raw)?;
+fn build(ctx: &Ctx, files: &Files, raw: &RawAtmosphere) -> Result<Atmosphere> {
+    let base = base_profile(ctx, files, raw)?;
     let dispersion = dispersion(ctx, raw)?;
     let earth = earth(ctx, raw)?;
     let max = base.max_altitude_m();
     let top_m = match &raw.top_m {
-        Some(t) => ctx.number(t, "top_m", 0.0, max, true)?,
+        Some(t) => ctx.number_above(t, "top_m", 0.0, max)?,
         None => max.min(usa76::TOP_GEOMETRIC_M),
     };
-    let edits = raw.edit.iter().map(|e| edit(ctx, e)).collect::<Result<Vec<_>>>()?;
+    let edits = raw.edit.iter().map(|e| edit(ctx, files, e)).collect::<Result<Vec<_>>>()?;
     let name = raw.name.as_ref().map_or_else(
         || ctx.file.file_stem().and_then(|s| s.to_str()).unwrap_or("atmosphere").to_string(),
         |n| n.get_ref().clone(),
@@ -96,7 +96,7 @@ fn build(ctx: &Ctx, raw: &RawAtmosphere) -> Result<Atmosphere> {
     Atmosphere::new(name, earth, base, edits, dispersion, top_m).map_err(|e| ctx.err(&(0..0), e))
 }
 
-fn base_profile(ctx: &Ctx, raw: &RawAtmosphere) -> Result<BaseProfile> {
+fn base_profile(ctx: &Ctx, files: &Files, raw: &RawAtmosphere) -> Result<BaseProfile> {
     match (&raw.base, &raw.profile) {
         (Some(b), Some(_)) => Err(ctx.err(&b.span(), "give either `base` or `profile`, not both")),
         (Some(b), None) => {
@@ -104,7 +104,7 @@ fn base_profile(ctx: &Ctx, raw: &RawAtmosphere) -> Result<BaseProfile> {
             Ok(BaseProfile::Usa76)
         }
         (None, Some(p)) => {
-            let (label, text) = ctx.read_text(p, "profile")?;
+            let (label, text) = read_text(ctx, files, p, "profile")?;
             let table = TableProfile::from_csv(&text).map_err(|(line, msg)| {
                 Error::input(Some(Location { file: label, line: Some(line), column: None }), format!("profile: {msg}"))
             })?;
@@ -137,7 +137,7 @@ fn earth(ctx: &Ctx, raw: &RawAtmosphere) -> Result<Earth> {
     match (kind, &raw.earth_radius_m) {
         ("spherical", r) => {
             let radius =
-                r.as_ref().map_or(Ok(EARTH_RADIUS_M), |r| ctx.number(r, "earth_radius_m", 0.0, f64::INFINITY, true))?;
+                r.as_ref().map_or(Ok(EARTH_RADIUS_M), |r| ctx.number_above(r, "earth_radius_m", 0.0, f64::INFINITY))?;
             Earth::spherical_y(radius).map_err(|e| ctx.err(&(0..0), e))
         }
         (_, Some(r)) => Err(ctx.err(&r.span(), "earth_radius_m is only used with earth = \"spherical\"")),
@@ -145,7 +145,7 @@ fn earth(ctx: &Ctx, raw: &RawAtmosphere) -> Result<Earth> {
     }
 }
 
-fn edit(ctx: &Ctx, e: &Spanned<RawEdit>) -> Result<Edit> {
+fn edit(ctx: &Ctx, files: &Files, e: &Spanned<RawEdit>) -> Result<Edit> {
     let span = e.span();
     let r = e.get_ref();
     let kind = ctx.choice(ctx.require(&r.kind, "type", &span, "edit")?, "edit type", TYPES)?;
@@ -170,7 +170,7 @@ fn edit(ctx: &Ctx, e: &Spanned<RawEdit>) -> Result<Edit> {
     ctx.only(&present, allowed, &what)?;
     let dt = |ctx: &Ctx| ctx.number(ctx.require(&r.dt_k, "dT_k", &span, &what)?, "dT_k", -500.0, 500.0, false);
     let positive = |ctx: &Ctx, v: &S<f64>, key: &str| {
-        ctx.number(ctx.require(v, key, &span, &what)?, key, 0.0, f64::INFINITY, true)
+        ctx.number_above(ctx.require(v, key, &span, &what)?, key, 0.0, f64::INFINITY)
     };
     let edit = match kind {
         "offset" => Edit::Offset(Offset { dt_k: dt(ctx)? }),
@@ -191,12 +191,12 @@ fn edit(ctx: &Ctx, e: &Spanned<RawEdit>) -> Result<Edit> {
             let radius = positive(ctx, &r.radius_m, "radius_m")?;
             Edit::Bubble(Bubble::new(centre, radius, dt(ctx)?).map_err(|m| ctx.err(&span, m))?)
         }
-        _ => grid_edit(ctx, r, &span, &what)?,
+        _ => grid_edit(ctx, files, r, &span, &what)?,
     };
     Ok(edit)
 }
 
-fn grid_edit(ctx: &Ctx, r: &RawEdit, span: &Range<usize>, what: &str) -> Result<Edit> {
+fn grid_edit(ctx: &Ctx, files: &Files, r: &RawEdit, span: &Range<usize>, what: &str) -> Result<Edit> {
     let f = ctx.require(&r.file, "file", span, what)?;
     let interpolation = match &r.interpolation {
         Some(i) => match ctx.choice(i, "interpolation", &["trilinear", "tricubic"])? {
@@ -205,7 +205,7 @@ fn grid_edit(ctx: &Ctx, r: &RawEdit, span: &Range<usize>, what: &str) -> Result<
         },
         None => Interpolation::Tricubic,
     };
-    let Files::Dir(dir) = ctx.files else {
+    let Files::Dir(dir) = files else {
         return Err(ctx.err(&f.span(), "grid edits need a file on disk; built-in atmospheres have none"));
     };
     let path = resolve(dir, f.get_ref());
@@ -230,89 +230,19 @@ fn resolve(dir: &Path, name: &str) -> PathBuf {
     if p.is_absolute() { p.to_path_buf() } else { dir.join(p) }
 }
 
-impl Ctx<'_> {
-    fn err(&self, span: &Range<usize>, message: impl Into<String>) -> Error {
-        let loc = if span.is_empty() && span.start == 0 {
-            Location::file(self.file)
-        } else {
-            Location::at_offset(self.file, self.source, span.start)
-        };
-        Error::input(Some(loc), message)
-    }
-
-    /// A TOML or type error, naming the key written on the offending line (serde's type errors
-    /// do not).
-    fn toml_error(&self, e: &toml::de::Error) -> Error {
-        let message = e.message().trim().to_string();
-        let Some(span) = e.span() else {
-            return Error::input(Some(Location::file(self.file)), message);
-        };
-        let loc = Location::at_offset(self.file, self.source, span.start);
-        let line = loc.line.and_then(|l| self.source.lines().nth(l - 1)).unwrap_or("");
-        let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
-        let message = match key {
-            Some(k) if !message.contains(&format!("`{k}`")) => format!("key `{k}`: {message}"),
-            _ => message,
-        };
-        Error::input(Some(loc), message)
-    }
-
-    fn require<'v, T>(&self, f: &'v S<T>, name: &str, owner: &Range<usize>, what: &str) -> Result<&'v Spanned<T>> {
-        f.as_ref().ok_or_else(|| self.err(owner, format!("{what}: missing key `{name}`")))
-    }
-
-    fn only(&self, present: &[(&str, Option<Range<usize>>)], allowed: &[&str], what: &str) -> Result<()> {
-        for (name, span) in present {
-            if let Some(span) = span
-                && !allowed.contains(name)
-            {
-                return Err(self.err(
-                    span,
-                    format!("{what}: key `{name}` is not used here; allowed keys: {}", allowed.join(", ")),
-                ));
-            }
+/// The text of a file named by the atmosphere, and the path or label to cite in errors.
+fn read_text(ctx: &Ctx, files: &Files, v: &Spanned<String>, what: &str) -> Result<(PathBuf, String)> {
+    match files {
+        Files::Dir(dir) => {
+            let path = resolve(dir, v.get_ref());
+            std::fs::read_to_string(&path)
+                .map(|t| (path.clone(), t))
+                .map_err(|e| ctx.err(&v.span(), format!("{what}: cannot read {}: {e}", path.display())))
         }
-        Ok(())
-    }
-
-    /// A finite number in [lo, hi], or in (lo, hi] when `open`.
-    fn number(&self, v: &Spanned<f64>, what: &str, lo: f64, hi: f64, open: bool) -> Result<f64> {
-        let x = *v.get_ref();
-        let ok = x.is_finite() && if open { x > lo && x <= hi } else { x >= lo && x <= hi };
-        if ok {
-            return Ok(x);
-        }
-        let range = match (open, hi.is_infinite()) {
-            (true, true) => format!("greater than {lo}"),
-            (true, false) => format!("greater than {lo} and at most {hi}"),
-            (false, true) => format!("at least {lo}"),
-            (false, false) => format!("between {lo} and {hi}"),
-        };
-        Err(self.err(&v.span(), format!("{what} = {x} is out of range: it must be {range}")))
-    }
-
-    fn choice<'s>(&self, v: &'s Spanned<String>, what: &str, allowed: &[&str]) -> Result<&'s str> {
-        let s = v.get_ref().as_str();
-        if allowed.contains(&s) {
-            return Ok(s);
-        }
-        Err(self.err(&v.span(), format!("{what} \"{s}\" is not known; allowed: {}", allowed.join(", "))))
-    }
-
-    /// The text of a file named by the atmosphere, and the path or label to cite in errors.
-    fn read_text(&self, v: &Spanned<String>, what: &str) -> Result<(PathBuf, String)> {
-        match self.files {
-            Files::Dir(dir) => {
-                let path = resolve(dir, v.get_ref());
-                std::fs::read_to_string(&path)
-                    .map(|t| (path.clone(), t))
-                    .map_err(|e| self.err(&v.span(), format!("{what}: cannot read {}: {e}", path.display())))
-            }
-            Files::Embedded(list) => list
-                .iter()
-                .find(|(n, _)| *n == v.get_ref())
-                .map(|(n, t)| (PathBuf::from(format!("<built-in {n}>")), t.to_string()))
-                .ok_or_else(|| self.err(&v.span(), format!("{what}: no built-in file \"{}\"", v.get_ref()))),
-        }
+        Files::Embedded(list) => list
+            .iter()
+            .find(|(n, _)| *n == v.get_ref())
+            .map(|(n, t)| (PathBuf::from(format!("<built-in {n}>")), t.to_string()))
+            .ok_or_else(|| ctx.err(&v.span(), format!("{what}: no built-in file \"{}\"", v.get_ref()))),
     }
 }

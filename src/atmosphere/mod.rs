@@ -13,7 +13,6 @@ pub mod file;
 pub mod gas;
 mod model;
 pub mod refraction;
-pub mod table;
 mod table_profile;
 pub mod usa76;
 

@@ -22,7 +22,7 @@
 use super::base::BaseProfile;
 use super::edit::Edit;
 use super::{AirDispersion, Earth, gas};
-use crate::media::index::GradientRegion;
+use crate::field::GradientRegion;
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 //! reference atmospheres (e.g. the AFGL tropical model of Anderson et al. 1986).
 //!
 //! T(z) and ln P(z) are interpolated by monotone cubics (PCHIP, see
-//! [`crate::media::index::MonotoneCubic`]), so both are C¹ and neither overshoots the table; the
+//! [`crate::field::MonotoneCubic`]), so both are C¹ and neither overshoots the table; the
 //! pressure derivative is dP/dz = P·d(ln P)/dz. Below the first row and above the last the state is
 //! held at the end rows (derivatives zero).
 //!
@@ -11,9 +11,9 @@
 //! are skipped, the first data row may be a header; altitudes strictly increasing, temperatures and
 //! pressures positive.
 
-use super::table::parse_numeric_columns;
 use super::usa76::State;
-use crate::media::index::MonotoneCubic;
+use crate::field::MonotoneCubic;
+use crate::spectrum::table::parse_numeric_columns;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableProfile {

@@ -1,5 +1,5 @@
 //! Reads a colour-check request (JSON) on stdin and prints morgana's answer (JSON) on stdout;
-//! used by `scripts/colour_check.py`. See [`morgana::spectrum::check`] for the protocol.
+//! used by `scripts/colour_check.py`. See [`morgana::cli::colour_check`] for the protocol.
 
 use std::io::Read;
 use std::process::ExitCode;
@@ -10,7 +10,7 @@ fn main() -> ExitCode {
         eprintln!("morgana-colour-check: cannot read the request from stdin: {e}");
         return ExitCode::FAILURE;
     }
-    match morgana::spectrum::check::run(&request) {
+    match morgana::cli::colour_check::run(&request) {
         Ok(answer) => {
             println!("{answer}");
             ExitCode::SUCCESS

@@ -4,7 +4,7 @@
 //!
 //! `morgana-rrs-plot SWEEP.csv OUT.png`
 
-use morgana::output::spectrum_plot::{Series, write_png};
+use morgana::raster::spectrum_plot::{Series, write_png};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

@@ -8,7 +8,7 @@
 //! 1. each rank's box is gathered and combined by min and max (exact), giving the single-process
 //!    origin;
 //! 2. each rank encodes its records relative to it (encoding is per photon);
-//! 3. the 32-byte photons are all-gathered ([`World::all_gather_pieces`], rounds of ≤ 64 MiB per
+//! 3. the 32-byte photons are all-gathered ([`Comm::all_gather_pieces`], rounds of ≤ 64 MiB per
 //!    rank) into rank order — which is batch order, since ranks shoot contiguous batch ranges;
 //! 4. each rank builds the kd-tree from that identical sequence.
 //!
@@ -21,12 +21,12 @@
 //! [`Placement`], chosen when the budget check fails, with the eye pass's `knn` going through it;
 //! steps 1–2 and the budget check stay as they are.
 
-use super::World;
+use super::Comm;
 use super::budget::Budget;
-use super::clock::{Span, Took};
 use super::split::{dealt, dealt_index};
 use crate::error::Result;
 use crate::photon_map::{Estimator, IrradianceCache, KdTree, Photon, PhotonMap, PhotonRecord};
+use crate::timing::{Span, Took};
 use glam::DVec3;
 
 /// Where a map's photons live.
@@ -59,24 +59,24 @@ pub struct Gathered {
 /// The photon map of every rank's `records` (this rank's, in batch order), the same on every
 /// rank. Collective. Fails, on every rank, if the map would not fit in `budget`.
 pub fn photon_map(
-    world: &World,
+    comm: &Comm,
     budget: &mut Budget,
     name: &str,
     records: &[PhotonRecord],
 ) -> Result<(PhotonMap, Gathered)> {
     let t = Span::start();
-    let (lo, hi) = global_bounds(world, records);
+    let (lo, hi) = global_bounds(comm, records);
     let origin = PhotonMap::origin_for(lo, hi);
     let encoded = PhotonMap::encode(records, origin);
-    let counts = world.all_gather_u64(&[encoded.len() as u64]);
+    let counts = comm.all_gather_u64(&[encoded.len() as u64]);
     let offsets: Vec<u64> = counts.iter().scan(0, |acc, c| Some(std::mem::replace(acc, *acc + c[0]))).collect();
     let items: u64 = counts.iter().map(|c| c[0]).sum();
     let bytes = KdTree::<Photon>::bytes_for(items as usize) as u64;
-    budget.reserve(world, &format!("the {name} photon map ({items} photons)"), bytes)?;
-    let (photons, received) = match world.size() {
+    budget.reserve(comm, &format!("the {name} photon map ({items} photons)"), bytes)?;
+    let (photons, received) = match comm.size() {
         // One rank's all-gather hands back its own photons.
         1 => (encoded, 0),
-        _ => gather_photons(world, encoded, &offsets, items as usize),
+        _ => gather_photons(comm, encoded, &offsets, items as usize),
     };
     let gather = t.took();
     let t = Span::start();
@@ -87,13 +87,13 @@ pub fn photon_map(
 
 /// Every rank's photons in rank order: this rank's copied in place, the others' decoded from
 /// the all-gather. Returns them and the bytes received.
-fn gather_photons(world: &World, encoded: Vec<Photon>, offsets: &[u64], items: usize) -> (Vec<Photon>, u64) {
-    let me = world.rank();
+fn gather_photons(comm: &Comm, encoded: Vec<Photon>, offsets: &[u64], items: usize) -> (Vec<Photon>, u64) {
+    let me = comm.rank();
     let wire: Vec<u8> = encoded.iter().flat_map(|p| p.to_le_bytes()).collect();
     let mut photons = vec![Photon::from_le_bytes(&[0; Photon::BYTES]); items];
     photons[offsets[me] as usize..][..encoded.len()].copy_from_slice(&encoded);
     drop(encoded);
-    let received = world.all_gather_pieces(&wire, Photon::BYTES, &mut |rank, offset, piece| {
+    let received = comm.all_gather_pieces(&wire, Photon::BYTES, &mut |rank, offset, piece| {
         if rank == me {
             return;
         }
@@ -106,11 +106,11 @@ fn gather_photons(world: &World, encoded: Vec<Photon>, offsets: &[u64], items: u
 }
 
 /// The bounding box of every rank's finite record positions.
-fn global_bounds(world: &World, records: &[PhotonRecord]) -> (DVec3, DVec3) {
+fn global_bounds(comm: &Comm, records: &[PhotonRecord]) -> (DVec3, DVec3) {
     let (lo, hi) = PhotonMap::bounds(records);
     let mine: Vec<u64> = lo.to_array().iter().chain(hi.to_array().iter()).map(|v| v.to_bits()).collect();
     let f = |b: u64| f64::from_bits(b);
-    world.all_gather_u64(&mine).iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
+    comm.all_gather_u64(&mine).iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(DVec3::new(f(v[0]), f(v[1]), f(v[2]))), hi.max(DVec3::new(f(v[3]), f(v[4]), f(v[5]))))
     })
 }
@@ -119,7 +119,7 @@ fn global_bounds(world: &World, records: &[PhotonRecord]) -> (DVec3, DVec3) {
 /// of points dealt to it, the values gathered into point order on every rank: the cache
 /// [`IrradianceCache::build`] computes. Collective; fails on every rank if it would not fit.
 pub fn irradiance(
-    world: &World,
+    comm: &Comm,
     budget: &mut Budget,
     est: &Estimator,
     stride: usize,
@@ -128,17 +128,17 @@ pub fn irradiance(
     let bands = est.bands.count;
     let bytes = IrradianceCache::bytes_for(n as usize, bands) as u64;
     let t = Span::start();
-    budget.reserve(world, &format!("the irradiance cache ({n} points, {bands} bands)"), bytes)?;
+    budget.reserve(comm, &format!("the irradiance cache ({n} points, {bands} bands)"), bytes)?;
     let reserve = t.took();
     let t = Span::start();
-    let size = world.size();
-    let mine: Vec<u32> = dealt(n, IRRADIANCE_BLOCK, world.rank(), size).flatten().map(|i| i as u32).collect();
+    let size = comm.size();
+    let mine: Vec<u32> = dealt(n, IRRADIANCE_BLOCK, comm.rank(), size).flatten().map(|i| i as u32).collect();
     let local: Vec<u8> = IrradianceCache::estimate(est, stride, &mine).iter().flat_map(|v| v.to_le_bytes()).collect();
     let compute = t.took();
     let t = Span::start();
     let point_bytes = (4 * bands).max(1);
     let mut values = vec![0f32; n as usize * bands];
-    let received = world.all_gather_pieces(&local, point_bytes, &mut |rank, offset, piece| {
+    let received = comm.all_gather_pieces(&local, point_bytes, &mut |rank, offset, piece| {
         for (j, chunk) in (offset / point_bytes..).zip(piece.chunks_exact(point_bytes)) {
             let point = dealt_index(j as u64, IRRADIANCE_BLOCK, rank, size) as usize;
             for (d, b) in values[point * bands..][..bands].iter_mut().zip(chunk.chunks_exact(4)) {

@@ -18,7 +18,7 @@
 //! every rank with a message, before anything is allocated. A distributed kd-tree, where each
 //! rank holds a part of each map, is the later step that lifts this limit.
 
-use super::World;
+use super::Comm;
 use super::fault::agree;
 use crate::error::{Error, Result};
 
@@ -59,9 +59,9 @@ impl Budget {
 
     /// Checks that `what` (`bytes` on every rank) fits, on every rank; records it as held.
     /// Collective: if it does not fit on some rank, every rank returns that rank's error.
-    pub fn reserve(&mut self, world: &World, what: &str, bytes: u64) -> Result<()> {
+    pub fn reserve(&mut self, comm: &Comm, what: &str, bytes: u64) -> Result<()> {
         let verdict = self.verdict(what, bytes, available_bytes());
-        agree(world, verdict)?;
+        agree(comm, verdict)?;
         self.held += bytes;
         Ok(())
     }

@@ -12,10 +12,10 @@
 //! Messages: a request is `[has_rows, first_row, end_row]` as u64 little-endian, then the rows'
 //! band values as f32 little-endian; a lease is `[has_rows, first_row, end_row]`.
 
-use super::World;
+use super::Comm;
+use super::comm::Tag;
 use super::tiles::{Dispenser, Schedule, max_rows_for};
-use super::world::Tag;
-use crate::render::RayCounts;
+use crate::raypath::RayCounts;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use std::sync::Mutex;
@@ -52,7 +52,7 @@ pub struct EyeOut {
 /// Runs the eye pass over `rows` rows of `row_values` values each. Collective (point to point).
 /// `on_remote_rows` is called on rank 0 as rows arrive from other ranks.
 pub fn run(
-    world: &World,
+    comm: &Comm,
     schedule: Schedule,
     rows: usize,
     row_values: usize,
@@ -60,16 +60,16 @@ pub fn run(
     on_remote_rows: &(dyn Fn(u64) + Sync),
 ) -> EyeOut {
     let max_rows = max_rows_for(row_values * 4);
-    if world.is_root() {
-        let dispenser = Mutex::new(Dispenser::new(schedule, rows, world.size(), max_rows));
-        root(world, &dispenser, rows, row_values, render, on_remote_rows)
+    if comm.is_root() {
+        let dispenser = Mutex::new(Dispenser::new(schedule, rows, comm.size(), max_rows));
+        root(comm, &dispenser, rows, row_values, render, on_remote_rows)
     } else {
-        EyeOut { data: None, work: worker(world, render) }
+        EyeOut { data: None, work: worker(comm, render) }
     }
 }
 
 fn root(
-    world: &World,
+    comm: &Comm,
     dispenser: &Mutex<Dispenser>,
     rows: usize,
     row_values: usize,
@@ -79,8 +79,7 @@ fn root(
     let image = Mutex::new(vec![0f32; rows * row_values]);
     let mut work = EyeWork::default();
     let served = std::thread::scope(|s| {
-        let server =
-            (world.size() > 1).then(|| s.spawn(|| serve(world, dispenser, &image, row_values, on_remote_rows)));
+        let server = (comm.size() > 1).then(|| s.spawn(|| serve(comm, dispenser, &image, row_values, on_remote_rows)));
         loop {
             // A statement of its own, so the dispenser is unlocked while the lease renders.
             let next = lock(dispenser).next(0);
@@ -88,12 +87,12 @@ fn root(
             let t = Instant::now();
             let (data, rays) = render(lease.clone());
             work.compute_seconds += t.elapsed().as_secs_f64();
-            place(world, &image, row_values, &lease, &data);
+            place(comm, &image, row_values, &lease, &data);
             work.leases += 1;
             work.rows += lease.len() as u64;
             work.rays.add(&rays);
         }
-        server.map(|h| h.join().unwrap_or_else(|_| world.abort("the lease server thread panicked")))
+        server.map(|h| h.join().unwrap_or_else(|_| comm.abort("the lease server thread panicked")))
     });
     if let Some((sent, received)) = served {
         work.sent_bytes = sent;
@@ -105,28 +104,28 @@ fn root(
 /// Rank 0's server: answers workers until each has been told there is nothing left. Returns the
 /// bytes sent and received.
 fn serve(
-    world: &World,
+    comm: &Comm,
     dispenser: &Mutex<Dispenser>,
     image: &Mutex<Vec<f32>>,
     row_values: usize,
     on_remote_rows: &(dyn Fn(u64) + Sync),
 ) -> (u64, u64) {
-    let mut active = world.size() - 1;
+    let mut active = comm.size() - 1;
     let (mut sent, mut received) = (0u64, 0u64);
     while active > 0 {
-        let Some((from, bytes)) = world.try_receive(None, Tag::Request) else {
+        let Some((from, bytes)) = comm.try_receive(None, Tag::Request) else {
             std::thread::sleep(POLL);
             continue;
         };
         received += bytes.len() as u64;
-        let (done, data) = decode(world, &bytes);
+        let (done, data) = decode(comm, &bytes);
         if let Some(rows) = done {
-            place(world, image, row_values, &rows, &data);
+            place(comm, image, row_values, &rows, &data);
             on_remote_rows(rows.len() as u64);
         }
         let next = lock(dispenser).next(from);
         let reply = encode(next.as_ref(), &[]);
-        world.send(from, Tag::Lease, &reply);
+        comm.send(from, Tag::Lease, &reply);
         sent += reply.len() as u64;
         if next.is_none() {
             active -= 1;
@@ -135,7 +134,7 @@ fn serve(
     (sent, received)
 }
 
-fn worker(world: &World, render: &RenderRows) -> EyeWork {
+fn worker(comm: &Comm, render: &RenderRows) -> EyeWork {
     let mut work = EyeWork::default();
     let mut done: Option<(Range<usize>, Vec<f32>)> = None;
     loop {
@@ -144,13 +143,13 @@ fn worker(world: &World, render: &RenderRows) -> EyeWork {
             Some((rows, data)) => encode(Some(rows), data),
             None => encode(None, &[]),
         };
-        world.send(0, Tag::Request, &request);
+        comm.send(0, Tag::Request, &request);
         work.sent_bytes += request.len() as u64;
         drop(request);
-        let reply = wait(world, 0, Tag::Lease);
+        let reply = wait(comm, 0, Tag::Lease);
         work.received_bytes += reply.len() as u64;
         work.wait_seconds += t.elapsed().as_secs_f64();
-        let Some(lease) = decode(world, &reply).0 else { return work };
+        let Some(lease) = decode(comm, &reply).0 else { return work };
         let t = Instant::now();
         let (data, rays) = render(lease.clone());
         work.compute_seconds += t.elapsed().as_secs_f64();
@@ -162,21 +161,21 @@ fn worker(world: &World, render: &RenderRows) -> EyeWork {
 }
 
 /// Waits (polling, so as not to spin a core) for a message from `from`.
-fn wait(world: &World, from: usize, tag: Tag) -> Vec<u8> {
+fn wait(comm: &Comm, from: usize, tag: Tag) -> Vec<u8> {
     loop {
-        if let Some((_, bytes)) = world.try_receive(Some(from), tag) {
+        if let Some((_, bytes)) = comm.try_receive(Some(from), tag) {
             return bytes;
         }
         std::thread::sleep(POLL);
     }
 }
 
-fn place(world: &World, image: &Mutex<Vec<f32>>, row_values: usize, rows: &Range<usize>, data: &[f32]) {
+fn place(comm: &Comm, image: &Mutex<Vec<f32>>, row_values: usize, rows: &Range<usize>, data: &[f32]) {
     let mut img = lock(image);
     let dst = img.get_mut(rows.start * row_values..rows.end * row_values);
     match dst {
         Some(d) if d.len() == data.len() => d.copy_from_slice(data),
-        _ => world.abort(&format!("rows {rows:?} arrived with {} values", data.len())),
+        _ => comm.abort(&format!("rows {rows:?} arrived with {} values", data.len())),
     }
 }
 
@@ -194,10 +193,10 @@ pub fn encode(rows: Option<&Range<usize>>, data: &[f32]) -> Vec<u8> {
 }
 
 /// Inverse of [`encode`]; a malformed message (a bug) aborts the job.
-pub fn decode(world: &World, bytes: &[u8]) -> (Option<Range<usize>>, Vec<f32>) {
+pub fn decode(comm: &Comm, bytes: &[u8]) -> (Option<Range<usize>>, Vec<f32>) {
     match try_decode(bytes) {
         Some(m) => m,
-        None => world.abort(&format!("malformed eye-pass message of {} bytes", bytes.len())),
+        None => comm.abort(&format!("malformed eye-pass message of {} bytes", bytes.len())),
     }
 }
 
@@ -250,7 +249,7 @@ mod tests {
         };
         for schedule in [Schedule::Dynamic, Schedule::Static] {
             lock(&calls).iter_mut().for_each(|c| *c = 0);
-            let out = run(&World::local(), schedule, rows, width, &render, &|_| {});
+            let out = run(&Comm::local(), schedule, rows, width, &render, &|_| {});
             let data = out.data.unwrap();
             let expected: Vec<f32> = (0..rows).flat_map(|y| (0..width).map(move |x| (y * 10 + x) as f32)).collect();
             assert_eq!(data, expected);

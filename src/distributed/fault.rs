@@ -11,12 +11,12 @@
 //!   every rank's rows and the final per-rank reports, all to temporary files renamed into place
 //!   last ([`crate::output::write_outputs`]); a rank that dies before then leaves no output.
 //!   (If rank 0 itself is killed while renaming, hidden `.NAME.PID.N.tmp` files may remain.)
-//! - **A broken protocol invariant** (a bug): [`super::World::abort`] ends every rank.
+//! - **A broken protocol invariant** (a bug): [`super::Comm::abort`] ends every rank.
 //!
 //! `scripts/test_mpi.sh` kills a rank with `SIGKILL` during the photon pass and during the eye
 //! pass and checks that `mpirun` fails and the output directory stays empty.
 
-use super::World;
+use super::Comm;
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -31,15 +31,15 @@ struct Outcome {
 /// Makes an outcome collective: `Ok` on every rank if every rank's `local` is `Ok`, else the
 /// first failing rank's error on every rank. The failing rank returns its own error unchanged;
 /// the others get its message prefixed by its rank and host, with its exit code. Collective.
-pub fn agree<T>(world: &World, local: Result<T>) -> Result<T> {
-    let mine = Outcome { host: world.host(), failure: local.as_ref().err().map(|e| (e.exit_code(), e.to_string())) };
-    let all = world.all_gather_json(&mine);
+pub fn agree<T>(comm: &Comm, local: Result<T>) -> Result<T> {
+    let mine = Outcome { host: comm.host(), failure: local.as_ref().err().map(|e| (e.exit_code(), e.to_string())) };
+    let all = comm.all_gather_json(&mine);
     match first_failure(&all) {
         None => local,
-        Some(r) if r == world.rank() => local,
+        Some(r) if r == comm.rank() => local,
         Some(r) => {
             let (code, message) = all[r].failure.clone().unwrap_or((1, String::new()));
-            Err(remote_error(r, world.size(), &all[r].host, code, &message))
+            Err(remote_error(r, comm.size(), &all[r].host, code, &message))
         }
     }
 }
@@ -63,7 +63,7 @@ mod tests {
 
     #[test]
     fn a_local_world_keeps_its_own_outcome() {
-        let w = World::local();
+        let w = Comm::local();
         assert_eq!(agree(&w, Ok(5)).ok(), Some(5));
         let e = agree::<()>(&w, Err(Error::input(None, "bad"))).unwrap_err();
         assert_eq!((e.exit_code(), e.to_string()), (2, "bad".to_string()));

@@ -1,7 +1,7 @@
 //! Distributed rendering: the photon passes and the eye pass split across the ranks of a
-//! [`World`] — one process ([`World::Local`]) or an MPI job ([`World::Mpi`], feature `mpi`).
+//! [`Comm`] — one process ([`Comm::Local`]) or an MPI job ([`Comm::Mpi`], feature `mpi`).
 //!
-//! The render runs the same code on every world ([`crate::render::render_on`]); with one rank
+//! The render runs the same code on every comm ([`crate::render::render_on`]); with one rank
 //! every collective hands back the rank's own data, so the single-process render *is* the
 //! distributed render with one rank, and the output does not depend on the number of ranks:
 //!
@@ -20,24 +20,24 @@
 
 pub mod assemble;
 pub mod budget;
-pub mod clock;
+pub mod comm;
 pub mod eye;
 pub mod fault;
 pub mod fingerprint;
 #[cfg(feature = "mpi")]
-mod mpi_world;
+mod mpi_comm;
 pub mod photons;
 pub mod report;
 pub mod scene;
 pub mod split;
 pub mod tiles;
-pub mod world;
+pub mod wire;
 
 pub use assemble::Placement;
 pub use budget::{Budget, MapMemory};
+pub use comm::Comm;
 pub use report::{DistributedReport, RankReport};
 pub use tiles::Schedule;
-pub use world::World;
 
 /// How to distribute a render.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -48,30 +48,30 @@ pub struct Options {
     pub schedule: Schedule,
 }
 
-/// One rank's state through a render: its world, map budget and report.
+/// One rank's state through a render: its comm, map budget and report.
 pub struct Rank<'w> {
-    pub world: &'w World,
+    pub comm: &'w Comm,
     pub options: Options,
     pub budget: Budget,
     pub report: RankReport,
 }
 
 impl<'w> Rank<'w> {
-    /// This rank of `world`, on the current rayon pool. Collective (the ranks' hosts are
+    /// This rank of `comm`, on the current rayon pool. Collective (the ranks' hosts are
     /// gathered, to share a host's memory among its ranks).
-    pub fn new(world: &'w World, options: Options) -> Rank<'w> {
-        let host = world.host();
-        let hosts = world.all_gather_json(&host);
+    pub fn new(comm: &'w Comm, options: Options) -> Rank<'w> {
+        let host = comm.host();
+        let hosts = comm.all_gather_json(&host);
         let budget = Budget::new(options.map_memory, &hosts, &host);
         let report =
-            RankReport { rank: world.rank(), host, threads: rayon::current_num_threads(), ..RankReport::default() };
-        Rank { world, options, budget, report }
+            RankReport { rank: comm.rank(), host, threads: rayon::current_num_threads(), ..RankReport::default() };
+        Rank { comm, options, budget, report }
     }
 
     /// Every rank's report, in rank order, on every rank, after this rank's `phases`. Collective.
-    pub fn gather_reports(&mut self, phases: &crate::render::Phases) -> Vec<RankReport> {
+    pub fn gather_reports(&mut self, phases: &crate::timing::Phases) -> Vec<RankReport> {
         self.report.phases = phases.0.clone();
         self.report.map_memory_bytes = self.budget.held();
-        self.world.all_gather_json(&self.report)
+        self.comm.all_gather_json(&self.report)
     }
 }

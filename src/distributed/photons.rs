@@ -7,7 +7,7 @@
 //! single-process photon set in its order. Batches are statistically alike (every photon picks
 //! its light and direction at random), so equal shares balance the pass without scheduling.
 
-use super::World;
+use super::Comm;
 use super::split::share;
 use crate::photon::inelastic::InelasticTally;
 use crate::photon::{self, MapKind, PhotonSink, PhotonStats};
@@ -38,15 +38,15 @@ pub struct Shot {
 }
 
 /// The batches of a pass of `emitted` photons that this rank shoots, and their photons.
-pub fn my_share(world: &World, emitted: u64) -> (std::ops::Range<u64>, u64) {
-    let batches = share(photon::batch_count(emitted), world.rank(), world.size());
+pub fn my_share(comm: &Comm, emitted: u64) -> (std::ops::Range<u64>, u64) {
+    let batches = share(photon::batch_count(emitted), comm.rank(), comm.size());
     let photons = batches.clone().map(|b| photon::batch_photons(emitted, b)).sum();
     (batches, photons)
 }
 
 /// Shoots this rank's share of a pass and sums the statistics over ranks. Collective.
 pub fn shoot(
-    world: &World,
+    comm: &Comm,
     scene: &Scene,
     kind: MapKind,
     emitted: u64,
@@ -54,8 +54,16 @@ pub fn shoot(
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> Shot {
     let t = std::time::Instant::now();
-    let (batches, _) = my_share(world, emitted);
-    let (sink, local) = photon::shoot_batches(scene, kind, emitted, scene.integrator.seed, batches.clone(), on_batch);
+    let (batches, _) = my_share(comm, emitted);
+    let (sink, local) = photon::shoot_batches(
+        &scene.world,
+        &photon::PassSettings::of(scene),
+        kind,
+        emitted,
+        scene.integrator.seed,
+        batches.clone(),
+        on_batch,
+    );
     let mine = RankPhotons {
         pass: pass.to_string(),
         batches: [batches.start, batches.end],
@@ -64,7 +72,7 @@ pub fn shoot(
         stored_volume: sink.volume.len() as u64,
         trace_seconds: t.elapsed().as_secs_f64(),
     };
-    let stats = sum(&world.all_gather_json(&local));
+    let stats = sum(&comm.all_gather_json(&local));
     Shot { sink, stats, mine }
 }
 

@@ -6,7 +6,7 @@ use super::eye::EyeWork;
 use super::photons::RankPhotons;
 use super::tiles::Schedule;
 use crate::raypath::CurvedWorkTotals;
-use crate::render::PhaseTime;
+use crate::timing::PhaseTime;
 use serde::{Deserialize, Serialize};
 
 /// One rank's part of a render.
@@ -34,7 +34,7 @@ pub struct RankReport {
 #[derive(Clone, Debug, Serialize)]
 pub struct DistributedReport {
     /// "local", or the MPI library's version line.
-    pub world: String,
+    pub comm: String,
     pub ranks: usize,
     /// Each rank's host, in rank order.
     pub hosts: Vec<String>,
@@ -49,9 +49,9 @@ pub struct DistributedReport {
 }
 
 impl DistributedReport {
-    pub fn new(world: String, schedule: Schedule, per_rank: Vec<RankReport>) -> DistributedReport {
+    pub fn new(comm: String, schedule: Schedule, per_rank: Vec<RankReport>) -> DistributedReport {
         DistributedReport {
-            world,
+            comm,
             ranks: per_rank.len(),
             hosts: per_rank.iter().map(|r| r.host.clone()).collect(),
             schedule,

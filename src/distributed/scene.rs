@@ -13,7 +13,7 @@
 //! On a cluster the scene's directory (with the files it names) must therefore be reachable at
 //! the same path on every host: a shared file system, or identical copies.
 
-use super::World;
+use super::Comm;
 use super::fault::agree;
 use super::fingerprint::Fnv64;
 use crate::error::{Error, Result};
@@ -42,23 +42,23 @@ struct Seen {
 
 /// Loads the scene on every rank (`path` matters on rank 0 only; `None` = the embedded default
 /// scene) and applies the overrides. Collective; every rank gets the same scene or an error.
-pub fn load(world: &World, path: Option<&Path>, photons: Option<u64>, seed: Option<u64>) -> Result<Scene> {
-    let payload = match world.is_root() {
+pub fn load(comm: &Comm, path: Option<&Path>, photons: Option<u64>, seed: Option<u64>) -> Result<Scene> {
+    let payload = match comm.is_root() {
         true => read(path)
             .and_then(|t| serde_json::to_vec(&t).map_err(|e| Error::internal(format!("scene broadcast: {e}")))),
         false => Ok(Vec::new()),
     };
     // A read error on rank 0 ends every rank here, before the broadcast.
-    let payload = agree(world, payload)?;
-    let bytes = world.broadcast(payload);
+    let payload = agree(comm, payload)?;
+    let bytes = comm.broadcast(payload);
     let text: SceneText = serde_json::from_slice(&bytes)
         .map_err(|e| Error::internal(format!("scene broadcast from rank 0 does not decode: {e}")))?;
     let loaded = build(&text, photons, seed);
-    let scene = agree(world, loaded)?;
+    let scene = agree(comm, loaded)?;
     let seen = Seen { base: base_fingerprint(&text, photons, seed), files: file_fingerprints(&text) };
-    let all = world.all_gather_json(&seen);
-    let hosts = world.all_gather_json(&world.host());
-    agree(world, compare(&all, &hosts).map_or(Ok(()), Err)).map(|()| scene)
+    let all = comm.all_gather_json(&seen);
+    let hosts = comm.all_gather_json(&comm.host());
+    agree(comm, compare(&all, &hosts).map_or(Ok(()), Err)).map(|()| scene)
 }
 
 fn read(path: Option<&Path>) -> Result<SceneText> {
@@ -210,7 +210,7 @@ mod tests {
 
     #[test]
     fn a_local_world_loads_the_default_scene() {
-        let s = load(&World::local(), None, Some(1000), Some(3)).unwrap();
+        let s = load(&Comm::local(), None, Some(1000), Some(3)).unwrap();
         assert_eq!((s.integrator.photons, s.integrator.seed), (1000, 3));
         assert!(s.file.is_none());
     }

@@ -6,6 +6,7 @@
 
 mod aabb;
 mod bvh;
+mod camera;
 mod frame;
 pub mod mesh;
 pub mod rounding;
@@ -14,6 +15,7 @@ mod spawn;
 
 pub use aabb::Aabb;
 pub use bvh::Bvh;
+pub use camera::Camera;
 pub use frame::Frame;
 pub use glam::DVec3;
 pub use shape::{Disk, Quad, Shape, ShapeSample, Sphere, Triangle};

@@ -141,7 +141,7 @@ mod tests {
         // Numerical ∫ S(cos θ) dω = 2π ∫ S(z) dz by Simpson, independent of the closed form.
         let s = spot();
         let f = |z: f64| s.falloff(z);
-        let numeric = 2.0 * PI * crate::testing::chi2::simpson(&f, s.cos_total, 1.0, 20_000);
+        let numeric = 2.0 * PI * crate::quadrature::simpson(&f, s.cos_total, 1.0, 20_000);
         assert!((numeric - s.falloff_solid_angle()).abs() < 1e-8);
         assert!((s.power_w() - numeric * 300.0).abs() < 1e-5);
     }

@@ -334,6 +334,7 @@ pub fn read(src: &SourceText, _path: &Path) -> Result<Photometry, ParseError> {
         measurement_tilt_deg: Some(h.tilt_deg),
         web,
         notes,
+        spectrum: None,
     })
 }
 

@@ -31,10 +31,11 @@
 //!   the Electronic Transfer of Photometric Data and Related Information*.
 
 use super::opening::Opening;
-use super::symmetry::{self, Plane, Symmetry};
+use super::planes::{type_c_symmetry, web_from_planes};
+use super::symmetry::{Plane, Symmetry};
 use super::text::{SourceText, Tokens};
 use super::tilt::Tilt;
-use super::web::{PhotometricWeb, WebAxes};
+use super::web::PhotometricWeb;
 use super::{LampSet, ParseError, PhotometricType, Photometry, Reader};
 use std::path::Path;
 
@@ -337,19 +338,7 @@ fn photometry(
         measurement_tilt_deg: None,
         web,
         notes,
-    }
-}
-
-/// The symmetry type C horizontal angles declare, or an error naming the allowed patterns.
-fn type_c_symmetry(h: &[f64]) -> Result<Symmetry, String> {
-    let (first, last) = (h[0], h[h.len() - 1]);
-    match (h.len(), first, last) {
-        (1, _, _) => Ok(Symmetry::Rotational),
-        (_, 0.0, 90.0) => Ok(Symmetry::Quadrant),
-        (_, 0.0, 180.0) => Ok(Symmetry::C0C180),
-        (_, 90.0, 270.0) => Ok(Symmetry::C90C270),
-        (_, 0.0, l) if l > 180.0 => Ok(Symmetry::None),
-        _ => Err(format!("first {first}°, last {last}°")),
+        spectrum: None,
     }
 }
 
@@ -371,52 +360,8 @@ fn build_web(
         _ if planes[0].0 >= 0.0 => Symmetry::Lateral,
         _ => Symmetry::None,
     };
-    let mut full = symmetry::expand(planes, symmetry);
-    let span = full[full.len() - 1].0 - full[0].0;
-    let periodic = ptype == PhotometricType::C || span >= 360.0 - 1e-9;
-    if ptype != PhotometricType::C && span >= 360.0 - 1e-9 {
-        full.pop();
-    }
-    dedup_planes(&mut full, notes);
-    let (axes, gamma, reverse) = match ptype {
-        PhotometricType::C => (WebAxes::TYPE_C, v, false),
-        PhotometricType::A => (WebAxes::TYPE_A, v.iter().map(|x| x + 90.0).collect(), false),
-        PhotometricType::B => (WebAxes::TYPE_B, v.iter().rev().map(|x| 90.0 - x).collect(), true),
-    };
-    let c: Vec<f64> = full.iter().map(|p| p.0).collect();
-    let cd: Vec<f64> = full
-        .into_iter()
-        .flat_map(|(_, mut row)| {
-            if reverse {
-                row.reverse();
-            }
-            row
-        })
-        .map(|x| x * scale)
-        .collect();
-    let web = PhotometricWeb::new(axes, c, periodic, gamma, cd)
-        .map_err(|e| ParseError::whole_file("LM-63 candela table", e, "a valid photometric web"))?;
-    if let Some(n) = web.pole_note() {
-        notes.push(n.to_string());
-    }
+    let web = web_from_planes(ptype, symmetry, planes, v, scale, "LM-63 candela table", notes)?;
     Ok((symmetry, web))
-}
-
-/// Drops a plane that repeats an earlier one (C360 after C0), noting when their values differ.
-fn dedup_planes(planes: &mut Vec<Plane>, notes: &mut Vec<String>) {
-    let mut out: Vec<Plane> = Vec::with_capacity(planes.len());
-    for p in planes.drain(..) {
-        match out.last() {
-            Some(q) if (q.0 - p.0).abs() < 1e-9 => {
-                let differ = q.1.iter().zip(&p.1).any(|(a, b)| (a - b).abs() > 0.01 * a.abs().max(b.abs()));
-                if differ {
-                    notes.push(format!("the planes at {}° and {}° differ; the first is used", q.0, q.0 + 360.0));
-                }
-            }
-            _ => out.push(p),
-        }
-    }
-    *planes = out;
 }
 
 #[cfg(test)]

@@ -2,9 +2,11 @@
 //! and what emission needs from it.
 //!
 //! Every reader turns its format into a [`Photometry`]: header facts (maker, name, lamps, stated
-//! flux, symmetry, opening) and a [`PhotometricWeb`], the intensity I(C, γ) in candela on a full
-//! grid of angles. Readers are listed in [`READERS`], one file each: a new format (CIBSE TM14, once
-//! its layout can be sourced) is one new file and one entry there.
+//! flux, symmetry, opening), a [`PhotometricWeb`], the intensity I(C, γ) in candela on a full
+//! grid of angles, and the emission spectrum when the file carries one (TM-33, GLDF). The
+//! formats are the closed set [`Format`], one reader file each: IES LM-63 (`ies.rs`), EULUMDAT
+//! (`eulumdat.rs`), IES TM-33-18/-23 (`tm33.rs`), GLDF containers (`gldf.rs`, which reads its
+//! photometry with the others), and CIBSE TM14, recognised but not read (`tm14.rs`).
 //!
 //! # Conventions
 //! The luminaire frame has x along the luminaire's length (the C0 direction), y along C90 and z
@@ -18,12 +20,16 @@
 //! dimensions in m.
 
 mod beam;
+mod emission;
 mod eulumdat;
+mod format;
+mod gldf;
 mod ies;
 mod opening;
 mod parse_error;
 mod photometric;
 mod placement;
+mod planes;
 mod polar_png;
 mod report;
 mod sampler;
@@ -31,9 +37,14 @@ mod symmetry;
 pub mod text;
 mod tilt;
 mod tm14;
+mod tm33;
 mod web;
+mod xml;
 
 pub use beam::{PlaneCurve, plane_curve, spread_angle_deg};
+pub use emission::EmissionSpectrum;
+pub use format::Format;
+pub use gldf::MAX_ENTRY_BYTES as GLDF_MAX_ENTRY_BYTES;
 pub use opening::{Kind as OpeningKind, Opening};
 pub use parse_error::ParseError;
 pub use photometric::{luminous_fraction_in, per_candela};
@@ -103,6 +114,8 @@ pub struct Photometry {
     pub web: PhotometricWeb,
     /// Things a reader tolerated (junk after the table, a leading blank line, …).
     pub notes: Vec<String>,
+    /// The emission spectrum the file carries (TM-33 `SpectralData`, GLDF `Spectrum`).
+    pub spectrum: Option<EmissionSpectrum>,
 }
 
 impl Photometry {
@@ -117,7 +130,7 @@ impl Photometry {
     }
 }
 
-/// A file format: how to recognise it and how to read it.
+/// How a text format is recognised and read (LM-63, EULUMDAT, TM14; [`Format`] dispatches).
 pub struct Reader {
     pub name: &'static str,
     /// Lower-case file extensions, without the dot.
@@ -130,53 +143,82 @@ pub struct Reader {
     pub implemented: bool,
 }
 
-/// Every format morgana knows.
-pub const READERS: [Reader; 3] = [ies::READER, eulumdat::READER, tm14::READER];
-
-/// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt)").
+/// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt, .eul), …").
 pub fn supported_formats() -> String {
-    READERS
+    Format::ALL
         .iter()
-        .filter(|r| r.implemented)
-        .map(|r| {
-            format!("{} ({})", r.name, r.extensions.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", "))
+        .copied()
+        .filter(|f| f.implemented())
+        .map(|f| {
+            format!("{} ({})", f.name(), f.extensions().iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", "))
         })
         .collect::<Vec<_>>()
         .join(", ")
 }
 
+/// Photometric files larger than this are refused before they are read, MiB.
+pub const MAX_FILE_MIB: u64 = 256;
+
 /// Reads a photometric file: the reader is chosen by extension, else by content.
 pub fn load_file(path: &Path) -> Result<Photometry> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read luminaire file: {e}")))?;
-    read_bytes(&bytes, path)
+    load_file_variant(path, None)
+}
+
+/// [`load_file`], choosing a GLDF container's `variant` (by its id) instead of the first.
+pub fn load_file_variant(path: &Path, variant: Option<&str>) -> Result<Photometry> {
+    let located = |m: String| Error::input(Some(Location::file(path)), m);
+    let len = std::fs::metadata(path).map_err(|e| located(format!("cannot read luminaire file: {e}")))?.len();
+    if len > MAX_FILE_MIB << 20 {
+        return Err(located(format!(
+            "luminaire file of {} MiB; photometric files are far smaller (morgana's limit is {MAX_FILE_MIB} MiB)",
+            len >> 20
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(|e| located(format!("cannot read luminaire file: {e}")))?;
+    read_bytes_variant(&bytes, path, variant)
 }
 
 /// Reads a photometric file's bytes; `path` names it in errors, chooses the reader by its
 /// extension and resolves files it refers to.
 pub fn read_bytes(bytes: &[u8], path: &Path) -> Result<Photometry> {
-    let src = SourceText::decode(bytes);
-    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
-    let reader = READERS
-        .iter()
-        .find(|r| r.extensions.contains(&ext.as_str()))
-        .or_else(|| READERS.iter().find(|r| (r.sniff)(&src)))
-        .ok_or_else(|| {
-            Error::input(
-                Some(Location::file(path)),
-                format!("not a photometric file morgana recognises; supported formats: {}", supported_formats()),
-            )
-        })?;
-    (reader.read)(&src, path).map_err(|e| e.into_error(path))
+    read_bytes_variant(bytes, path, None)
+}
+
+/// [`read_bytes`], choosing a GLDF container's `variant`; naming one for another format is an
+/// error.
+pub fn read_bytes_variant(bytes: &[u8], path: &Path, variant: Option<&str>) -> Result<Photometry> {
+    let format = Format::by_extension(path).or_else(|| Format::sniff(bytes)).ok_or_else(|| {
+        Error::input(
+            Some(Location::file(path)),
+            format!("not a photometric file morgana recognises; supported formats: {}", supported_formats()),
+        )
+    })?;
+    if let Some(v) = variant
+        && format != Format::Gldf
+    {
+        return Err(Error::input(
+            Some(Location::file(path)),
+            format!(
+                "variant \"{v}\" is given but this is a {} file; variants are chosen in GLDF containers",
+                format.name()
+            ),
+        ));
+    }
+    format.read(bytes, path, variant).map_err(|e| e.into_error(path))
 }
 
 /// What `morgana luminaire FILE [--png PNG]` does: reads the file, writes the polar diagram
 /// (atomically) when asked, and returns the summary to print.
 pub fn inspect(file: &Path, png: Option<&Path>) -> Result<String> {
-    let p = load_file(file)?;
+    inspect_variant(file, png, None)
+}
+
+/// [`inspect`] for a chosen GLDF `variant`.
+pub fn inspect_variant(file: &Path, png: Option<&Path>, variant: Option<&str>) -> Result<String> {
+    let p = load_file_variant(file, variant)?;
     let mut text = summary(&p);
     if let Some(png) = png {
-        let staged = crate::output::atomic::Staged::new(png)
+        let staged = crate::atomic::Staged::new(png)
             .map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;
         write_polar_png(&p, &staged.temp)
             .map_err(|e| Error::internal(format!("cannot write {}: {e}", png.display())))?;

@@ -29,6 +29,12 @@ pub fn summary(p: &Photometry) -> String {
         let set = if p.lamps.len() > 1 { format!("set {}: ", i + 1) } else { String::new() };
         row(label, format!("{set}{} × {}, {flux}{extra}{watts}", l.count, l.description));
     }
+    if let Some(sp) = &p.spectrum {
+        row(
+            "spectrum",
+            format!("{} (the light's emission spectrum unless the scene gives spectrum or cct_k)", sp.describe()),
+        );
+    }
     flux_rows(p, &mut row);
     row("symmetry", symmetry_text(p));
     let web = &p.web;
@@ -69,6 +75,7 @@ fn flux_rows(p: &Photometry, row: &mut impl FnMut(&str, String)) {
             row("flux, file", format!("{stated:.1} lm (lamps {lamp} lm{lorl})"));
         }
         (None, Some(lamp)) => row("flux, file", format!("lamps {lamp} lm (luminaire flux not stated)")),
+        (Some(stated), None) => row("flux, file", format!("{stated:.1} lm (absolute photometry)")),
         _ => row("flux, file", "not stated (absolute photometry)".to_string()),
     }
     let vs = match (p.flux_mismatch(), p.lamp_flux_lm) {

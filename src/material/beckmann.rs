@@ -96,8 +96,8 @@ pub fn erf(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::quadrature::gauss_legendre;
     use crate::rng::{Rng, Stream};
-    use crate::testing::chi2::gauss_legendre;
 
     #[test]
     fn erf_matches_published_values() {

@@ -101,8 +101,9 @@ impl RoughDielectric {
 mod tests {
     use super::*;
     use crate::geometry::Frame;
+    use crate::quadrature::gauss_legendre;
     use crate::rng::{Rng, Stream};
-    use crate::testing::chi2::{chi2_sphere, gauss_legendre};
+    use crate::testing::chi2::chi2_sphere;
     use std::f64::consts::PI;
 
     fn water(alpha: f64) -> RoughDielectric {

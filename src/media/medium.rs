@@ -28,7 +28,7 @@ pub struct Medium {
     pub phase: PhaseFunction,
     pub density: Density,
     /// The medium's refractive index; `None`: n = 1 and straight paths.
-    pub index: Option<super::index::IndexField>,
+    pub index: Option<super::refractive_index::IndexField>,
     /// Fluorescence and Raman components (empty for most media).
     pub inelastic: Inelastic,
 }

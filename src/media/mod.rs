@@ -4,11 +4,11 @@
 //! Raman — ([`inelastic`]).
 
 pub mod density;
-pub mod index;
 pub mod inelastic;
 mod medium;
 pub mod ocean;
 pub mod phase;
+pub mod refractive_index;
 pub mod tracking;
 
 pub use medium::{Coefficients, Medium};

@@ -33,9 +33,19 @@ pub fn sample_interaction(
     delta_tracking(m, sigma_t, o, dir, t_max, rng)
 }
 
-/// Delta tracking over the density's majorant intervals.
-pub fn delta_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> Option<f64> {
-    let mut found = None;
+/// Tentative collisions along `o + t·dir` within [0, t_max] at the rate of each majorant
+/// interval σ̄ = σ_t × the density's bound there (exponential steps −ln(1 − ξ)/σ̄); at each one
+/// `visit(t, σ_t(x), σ̄)` is called with the real collision rate at x, and returns whether to go
+/// on. The one loop under delta and ratio tracking (Novák et al. 2018, §4).
+fn tentative_collisions(
+    m: &Medium,
+    sigma_t: f64,
+    o: DVec3,
+    dir: DVec3,
+    t_max: f64,
+    rng: &mut Rng,
+    visit: &mut dyn FnMut(f64, f64, f64, &mut Rng) -> bool,
+) {
     m.density.majorant_intervals(o, dir, t_max, &mut |t0, t1, bound| {
         let majorant = sigma_t * bound;
         if majorant <= 0.0 {
@@ -47,11 +57,23 @@ pub fn delta_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64
             if t >= t1 {
                 return true;
             }
-            if rng.uniform() * majorant < sigma_t * m.density.at(o + t * dir) {
-                found = Some(t);
+            if !visit(t, sigma_t * m.density.at(o + t * dir), majorant, rng) {
                 return false;
             }
         }
+    });
+}
+
+/// Delta tracking over the density's majorant intervals: a tentative collision is real with
+/// probability σ_t(x)/σ̄.
+pub fn delta_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> Option<f64> {
+    let mut found = None;
+    tentative_collisions(m, sigma_t, o, dir, t_max, rng, &mut |t, rate, majorant, rng| {
+        if rng.uniform() * majorant < rate {
+            found = Some(t);
+            return false;
+        }
+        true
     });
     found
 }
@@ -68,25 +90,13 @@ pub fn transmittance(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f6
     }
 }
 
-/// Ratio tracking estimate of the transmittance.
+/// Ratio tracking estimate of the transmittance: T̂ = Π (1 − σ_t(x_i)/σ̄) over the tentative
+/// collisions.
 pub fn ratio_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> f64 {
     let mut tr = 1.0;
-    m.density.majorant_intervals(o, dir, t_max, &mut |t0, t1, bound| {
-        let majorant = sigma_t * bound;
-        if majorant <= 0.0 {
-            return true;
-        }
-        let mut t = t0;
-        loop {
-            t += -(-rng.uniform()).ln_1p() / majorant;
-            if t >= t1 {
-                return true;
-            }
-            tr *= 1.0 - sigma_t * m.density.at(o + t * dir) / majorant;
-            if tr <= 0.0 {
-                return false;
-            }
-        }
+    tentative_collisions(m, sigma_t, o, dir, t_max, rng, &mut |_, rate, majorant, _| {
+        tr *= 1.0 - rate / majorant;
+        tr > 0.0
     });
     tr.max(0.0)
 }

@@ -1,30 +1,12 @@
 //! Outputs: spectral EXR, PNG preview, JSON report; all written atomically.
 
-pub mod atomic;
-pub mod exr;
-pub mod png;
 pub mod report;
-pub mod spectrum_plot;
 
-use crate::spectrum::Bands;
-
-/// A rendered image: per-pixel spectral radiance per band (W m⁻² sr⁻¹ nm⁻¹) and its linear-sRGB
-/// rendering (Y in cd m⁻²).
-#[derive(Clone, Debug)]
-pub struct SpectralImage {
-    pub width: usize,
-    pub height: usize,
-    pub bands: Bands,
-    /// Row-major pixels, `bands.count` values each: `data[(y * width + x) * bands.count + b]`.
-    pub data: Vec<f32>,
-    /// Row-major pixels, three linear-sRGB values each.
-    pub rgb: Vec<f32>,
-}
-
+use crate::atomic::Staged;
 use crate::error::{Error, Result};
 use crate::render::Rendered;
 use crate::scene::Scene;
-use atomic::Staged;
+use crate::spectrum::SpectralImage;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -43,11 +25,11 @@ pub fn write_outputs(
     let o = &scene.output;
     let mut staged: Vec<Staged> = Vec::new();
     if o.exr {
-        stage(&mut staged, dir, format!("{}.exr", o.name), &|p| exr::write_spectral_exr(p, &r.image))?;
+        stage(&mut staged, dir, format!("{}.exr", o.name), &|p| crate::spectrum::exr::write_spectral_exr(p, &r.image))?;
     }
     if o.png {
         stage(&mut staged, dir, format!("{}.png", o.name), &|p| match &o.tone {
-            None => png::write_png_preview(p, &r.image, o.exposure),
+            None => crate::tonemap::preview::write_png_preview(p, &r.image, o.exposure),
             Some(tone) => crate::tonemap::write_png(p, &r.image, tone).map(|_| ()),
         })?;
     }

@@ -94,7 +94,13 @@ impl<'a> Report<'a> {
             rgb_units: "linear sRGB (D65), Y in cd m^-2",
             integrator: &scene.integrator,
             effects: &scene.plan,
-            lights: scene.lights.iter().zip(&scene.light_names).map(|(l, n)| LightReport::of(n, l)).collect(),
+            lights: scene
+                .world
+                .lights
+                .iter()
+                .zip(&scene.world.names.lights)
+                .map(|(l, n)| LightReport::of(n, l))
+                .collect(),
             warnings: &scene.warnings,
             total_seconds,
             stats,

@@ -9,7 +9,7 @@
 use crate::media::Medium;
 use crate::media::inelastic::{Outcome, Process};
 use crate::rng::Rng;
-use crate::scene::Scene;
+use crate::world::World;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -41,8 +41,8 @@ impl InelasticTally {
 }
 
 /// Empty tallies, one per component of every medium, named.
-pub fn tallies(scene: &Scene) -> Vec<InelasticTally> {
-    scene
+pub fn tallies(world: &World) -> Vec<InelasticTally> {
+    world
         .media
         .iter()
         .flat_map(|m| {
@@ -56,8 +56,8 @@ pub fn tallies(scene: &Scene) -> Vec<InelasticTally> {
 }
 
 /// Index of the first tally of medium `medium`.
-fn offset(scene: &Scene, medium: u32) -> usize {
-    scene.media[..medium as usize].iter().map(|m| m.inelastic.components.len()).sum()
+fn offset(world: &World, medium: u32) -> usize {
+    world.media[..medium as usize].iter().map(|m| m.inelastic.components.len()).sum()
 }
 
 /// A photon re-emitted by an inelastic event.
@@ -71,10 +71,11 @@ pub struct Reemission {
 /// What follows an interaction that the first roulette did not make an elastic scattering, for a
 /// photon of `power_w` at `wavelength_nm` travelling along `dir` in medium `medium`: the
 /// re-emitted photon, or `Err(power absorbed)` (the re-emitted power when the new wavelength is
-/// outside the scene's range). Tallies go to `tally` (indexed by [`tallies`]).
+/// outside `range_nm`, the wavelengths simulated). Tallies go to `tally` (indexed by [`tallies`]).
 #[allow(clippy::too_many_arguments)]
 pub fn after_absorption(
-    scene: &Scene,
+    world: &World,
+    range_nm: (f64, f64),
     m: &Medium,
     medium: u32,
     wavelength_nm: f64,
@@ -86,7 +87,7 @@ pub fn after_absorption(
     let non_elastic = m.sigma_t(wavelength_nm) - m.sigma_s(wavelength_nm);
     let outcome = m.inelastic.interact(wavelength_nm, non_elastic, dir, rng);
     let slot = |i: usize, tally: &mut Vec<InelasticTally>| {
-        let k = offset(scene, medium) + i;
+        let k = offset(world, medium) + i;
         if tally.len() <= k {
             tally.resize(k + 1, InelasticTally::default());
         }
@@ -107,7 +108,7 @@ pub fn after_absorption(
             t.absorbed_w += power_w;
             t.excited_w += power_w;
             t.emitted_w += out;
-            if !(scene.bands.min_nm..=scene.bands.max_nm).contains(&l) {
+            if !(range_nm.0..=range_nm.1).contains(&l) {
                 t.out_of_range_w += out;
                 return Err(out);
             }

@@ -7,7 +7,6 @@
 
 mod emit;
 pub mod inelastic;
-pub mod projection;
 mod targeting;
 mod trace;
 
@@ -15,10 +14,38 @@ pub use emit::LightChooser;
 pub use targeting::CausticTargets;
 pub use trace::{MapKind, PhotonSink, PhotonStats};
 
+use crate::ode::CurvedSettings;
 use crate::raypath::Propagator;
 use crate::rng::{Rng, Stream};
 use crate::scene::Scene;
+use crate::world::World;
 use rayon::prelude::*;
+
+/// What a photon pass needs besides the world: the effect plan's decisions and the run's
+/// settings.
+#[derive(Clone, Copy, Debug)]
+pub struct PassSettings<'a> {
+    /// How curved paths are followed (`None`: the plan keeps every path straight).
+    pub curved: Option<&'a CurvedSettings>,
+    /// Whether photons are stored in media (the plan's volume map).
+    pub volume_map: bool,
+    /// Whether sensors read photons from the volume map (then absorbing-only media keep them).
+    pub photon_sensors: bool,
+    /// The wavelengths simulated, nm; light re-emitted outside them is absorbed.
+    pub range_nm: (f64, f64),
+}
+
+impl<'a> PassSettings<'a> {
+    /// The settings of `scene`'s photon passes.
+    pub fn of(scene: &'a Scene) -> PassSettings<'a> {
+        PassSettings {
+            curved: scene.curved(),
+            volume_map: scene.plan.volume_map.on,
+            photon_sensors: !scene.sensors.is_empty(),
+            range_nm: (scene.bands.min_nm, scene.bands.max_nm),
+        }
+    }
+}
 
 /// Photons per batch (one random stream each).
 pub const BATCH: u64 = 4096;
@@ -27,13 +54,14 @@ pub const BATCH: u64 = 4096;
 /// volume, in batch order) and the pass's statistics. `on_batch` is called after each batch
 /// with its photon count.
 pub fn shoot(
-    scene: &Scene,
+    world: &World,
+    pass: &PassSettings,
     kind: MapKind,
     emitted: u64,
     seed: u64,
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> (PhotonSink, PhotonStats) {
-    shoot_batches(scene, kind, emitted, seed, 0..batch_count(emitted), on_batch)
+    shoot_batches(world, pass, kind, emitted, seed, 0..batch_count(emitted), on_batch)
 }
 
 /// How many batches a pass of `emitted` photons has (the last one may be short).
@@ -50,8 +78,10 @@ pub fn batch_photons(emitted: u64, b: u64) -> u64 {
 /// photons: each photon carries the power of the whole pass's share and each batch its own
 /// random stream, so the union of the photons of disjoint ranges covering every batch, in batch
 /// order, is what [`shoot`] returns. `stats.emitted` counts the photons of these batches.
+#[allow(clippy::too_many_arguments)]
 pub fn shoot_batches(
-    scene: &Scene,
+    world: &World,
+    pass: &PassSettings,
     kind: MapKind,
     emitted: u64,
     seed: u64,
@@ -60,10 +90,10 @@ pub fn shoot_batches(
 ) -> (PhotonSink, PhotonStats) {
     let batches = batches.start.min(batch_count(emitted))..batches.end.min(batch_count(emitted));
     let here = batches.clone().map(|b| batch_photons(emitted, b)).sum();
-    let mut stats = PhotonStats { emitted: here, inelastic: inelastic::tallies(scene), ..PhotonStats::default() };
-    let Some(chooser) = LightChooser::new(&scene.lights) else { return (PhotonSink::default(), stats) };
+    let mut stats = PhotonStats { emitted: here, inelastic: inelastic::tallies(world), ..PhotonStats::default() };
+    let Some(chooser) = LightChooser::new(&world.lights) else { return (PhotonSink::default(), stats) };
     let targets = match kind {
-        MapKind::Caustic => match CausticTargets::new(scene) {
+        MapKind::Caustic => match CausticTargets::new(world) {
             Some(t) => Some(t),
             None => return (PhotonSink::default(), stats),
         },
@@ -71,7 +101,7 @@ pub fn shoot_batches(
     };
     let power = chooser.total_power_w() / emitted.max(1) as f64;
     stats.power_per_photon_w = power;
-    let prop = Propagator::new(scene);
+    let prop = Propagator::new(world, pass.curved);
     let stream = match kind {
         MapKind::Caustic => Stream::CausticPhotons,
         MapKind::Global => Stream::GlobalPhotons,
@@ -86,12 +116,12 @@ pub fn shoot_batches(
             for _ in 0..n {
                 let (l, _) = chooser.choose(rng.uniform());
                 let (em, factor) = match &targets {
-                    Some(t) => t.emit(&scene.lights[l], &mut rng),
-                    None => (scene.lights[l].emit(&mut rng), 1.0),
+                    Some(t) => t.emit(&world.lights[l], &mut rng),
+                    None => (world.lights[l].emit(&mut rng), 1.0),
                 };
                 if factor > 0.0 {
-                    let medium = scene.light_media[l];
-                    trace::trace(scene, &prop, &em, medium, power * factor, kind, &mut rng, &mut out, &mut st);
+                    let medium = world.light_media[l];
+                    trace::trace(world, pass, &prop, &em, medium, power * factor, kind, &mut rng, &mut out, &mut st);
                 } else {
                     st.missed += 1;
                 }

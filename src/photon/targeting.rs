@@ -14,7 +14,7 @@ use crate::rng::Rng;
 use crate::sampling::{
     concentric_disk, cosine_hemisphere_pdf, uniform_cone, uniform_cone_pdf, uniform_sphere, uniform_sphere_pdf,
 };
-use crate::scene::Scene;
+use crate::world::World;
 use glam::DVec3;
 
 /// Bounding spheres of the scene's specular objects.
@@ -24,16 +24,16 @@ pub struct CausticTargets {
 
 impl CausticTargets {
     /// `None` when the scene has no specular surface.
-    pub fn new(scene: &Scene) -> Option<CausticTargets> {
+    pub fn new(world: &World) -> Option<CausticTargets> {
         let mut spheres = Vec::new();
-        for (m, material) in scene.materials.iter().enumerate() {
+        for (m, material) in world.materials.iter().enumerate() {
             if !material.is_specular() {
                 continue;
             }
-            let shapes: Vec<&Shape> = scene
+            let shapes: Vec<&Shape> = world
                 .prims
                 .iter()
-                .zip(&scene.shapes)
+                .zip(&world.shapes)
                 .filter(|(p, _)| p.material == Some(m as u32))
                 .map(|(_, s)| s)
                 .collect();

@@ -11,6 +11,7 @@
 //! carries the power it had when it arrived there (the emitted power unless an inelastic event
 //! changed it), tagged with its [`PhotonPath`].
 
+use super::PassSettings;
 use crate::geometry::spawn_origin;
 use crate::light::Emission;
 use crate::material::Lambertian;
@@ -18,7 +19,7 @@ use crate::media::tracking;
 use crate::photon_map::{PhotonPath, PhotonRecord};
 use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
-use crate::scene::Scene;
+use crate::world::World;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -96,7 +97,8 @@ pub struct PhotonSink {
 
 /// One photon in flight.
 struct Flight<'a> {
-    scene: &'a Scene,
+    world: &'a World,
+    pass: &'a PassSettings<'a>,
     kind: MapKind,
     lambda: f64,
     power_w: f64,
@@ -119,7 +121,8 @@ impl Flight<'_> {
 /// Traces one photon of power `power_w` from `em`, starting in `medium`.
 #[allow(clippy::too_many_arguments)]
 pub fn trace(
-    scene: &Scene,
+    world: &World,
+    pass: &PassSettings,
     prop: &Propagator,
     em: &Emission,
     medium: Option<u32>,
@@ -129,13 +132,13 @@ pub fn trace(
     out: &mut PhotonSink,
     st: &mut PhotonStats,
 ) {
-    let mut f = Flight { scene, kind, lambda: em.wavelength_nm, power_w, path: PhotonPath::Direct };
+    let mut f = Flight { world, pass, kind, lambda: em.wavelength_nm, power_w, path: PhotonPath::Direct };
     let origin = if em.normal == DVec3::ZERO { em.origin } else { spawn_origin(em.origin, em.normal, em.dir) };
     let mut state = RayState { position: origin, dir: em.dir, wavelength_nm: Some(f.lambda), medium };
-    let store_volume = scene.plan.volume_map.on;
+    let store_volume = pass.volume_map;
     for _ in 0..MAX_PHOTON_BOUNCES {
         let event = prop.next_event_with(&state, &mut |c| {
-            let m = scene.medium(c.medium)?;
+            let m = world.medium(c.medium)?;
             tracking::sample_interaction(m, f.lambda, c.origin, c.dir, c.length, rng)
         });
         let next = match event {
@@ -153,8 +156,8 @@ pub fn trace(
                     st.missed += 1;
                     return;
                 }
-                let m = &scene.media[medium as usize];
-                if store_volume && m.keeps_photons(!scene.sensors.is_empty()) {
+                let m = &world.media[medium as usize];
+                if store_volume && m.keeps_photons(pass.photon_sensors) {
                     out.volume.push(f.record(position, dir, DVec3::ZERO));
                     st.stored_volume += 1;
                 }
@@ -195,7 +198,17 @@ fn reemit(
     rng: &mut Rng,
     st: &mut PhotonStats,
 ) -> Option<DVec3> {
-    let r = super::inelastic::after_absorption(f.scene, m, medium, f.lambda, dir, f.power_w, rng, &mut st.inelastic);
+    let r = super::inelastic::after_absorption(
+        f.world,
+        f.pass.range_nm,
+        m,
+        medium,
+        f.lambda,
+        dir,
+        f.power_w,
+        rng,
+        &mut st.inelastic,
+    );
     let r = match r {
         Ok(r) => r,
         Err(absorbed_w) => {
@@ -224,10 +237,10 @@ fn surface(
     out: &mut PhotonSink,
     st: &mut PhotonStats,
 ) -> Option<RayState> {
-    let scene = f.scene;
+    let world = f.world;
     let lambda = Some(f.lambda);
-    let Some(material) = scene.material_of(hit.prim) else {
-        if scene.prims[hit.prim as usize].light.is_some() {
+    let Some(material) = world.material_of(hit.prim) else {
+        if world.prims[hit.prim as usize].light.is_some() {
             st.absorbed_surface_w += f.power_w;
             return None;
         }
@@ -268,6 +281,6 @@ fn surface(
         return None;
     }
     f.after(PhotonPath::Specular);
-    let next_medium = if s.transmitted { scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+    let next_medium = if s.transmitted { world.medium_across(hit.prim, dir, hit.normal) } else { medium };
     Some(prop.leave(hit, s.dir, lambda, next_medium))
 }

@@ -28,15 +28,12 @@
 //! k/(k − 1) (Loftsgaarden & Quesenberry 1965; Silverman 1986, §5.2); when fewer are found
 //! within the maximum radius, that radius is r and every photon counts.
 
+use super::filter::{Filter, filter_norm, filter_weight};
 use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
 use crate::media::Medium;
-use crate::scene::Filter;
-use crate::spectrum::{Bands, MAX_BANDS};
+use crate::spectrum::{BandValues, Bands, MAX_BANDS};
 use glam::DVec3;
 use std::f64::consts::PI;
-
-/// Per-band values, `bands.count` of them used.
-pub type BandValues = [f64; MAX_BANDS];
 
 /// Photons on surfaces tilted more than this (cosine) from the query normal are ignored.
 const MIN_NORMAL_COS: f64 = 0.5;
@@ -142,37 +139,5 @@ impl Estimator<'_> {
         let scale = 1.0 / (4.0 / 3.0 * PI * r2 * r * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         (out, r)
-    }
-}
-
-/// The filter weight of a photon at distance `d` in a disc of radius `r`.
-pub fn filter_weight(filter: Filter, d: f64, r: f64) -> f64 {
-    match filter {
-        Filter::Box => 1.0,
-        Filter::Cone { k } => (1.0 - d / (k * r)).max(0.0),
-        Filter::Epanechnikov => (2.0 * (1.0 - d * d / (r * r))).max(0.0),
-    }
-}
-
-/// ∫_disc w dA / (π r²) for a filter.
-pub fn filter_norm(filter: Filter) -> f64 {
-    match filter {
-        Filter::Box | Filter::Epanechnikov => 1.0,
-        Filter::Cone { k } => 1.0 - 2.0 / (3.0 * k),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::testing::chi2::gauss_legendre;
-
-    #[test]
-    fn filter_normalisations_integrate_the_weights() {
-        // (1/(π r²)) ∫₀ʳ w(d) 2π d dd, by quadrature, for r = 1.
-        for f in [Filter::Box, Filter::Cone { k: 1.0 }, Filter::Cone { k: 1.1 }, Filter::Epanechnikov] {
-            let integral = gauss_legendre(&|d| filter_weight(f, d, 1.0) * 2.0 * d, 0.0, 1.0, 8);
-            assert!((integral - filter_norm(f)).abs() < 1e-12, "{f:?}: {integral}");
-        }
     }
 }

@@ -5,8 +5,9 @@
 //! arrived from); a final-gather ray then reads the nearest precomputed point whose normal agrees
 //! with the surface it hit, instead of running a k-nearest estimate of its own.
 
-use super::estimate::{BandValues, Estimator};
+use super::estimate::Estimator;
 use super::{KdPoint, KdTree, Neighbours};
+use crate::spectrum::BandValues;
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
 use rayon::prelude::*;

@@ -15,11 +15,14 @@
 //!   notes (`shared/papers/jensen-2000-photon-map-course-notes.txt`).
 
 pub mod estimate;
+mod filter;
 mod irradiance;
 mod kdtree;
 mod photon;
 
-pub use estimate::{BandValues, Estimator, Paths};
+pub use crate::spectrum::BandValues;
+pub use estimate::{Estimator, Paths};
+pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
 pub use photon::{Photon, PhotonPath, PhotonRecord, oct_decode, oct_encode};

@@ -1,9 +1,17 @@
-//! A 5×7 bitmap font for labels on plots: digits, capital letters and a little punctuation
-//! (lower case is drawn as upper case). Each glyph is seven rows, bit 4 the leftmost column;
-//! the shapes are the classic 5×7 dot-matrix forms.
+//! The one bitmap font of morgana's plots and legends: 5×7 dot-matrix glyphs for digits, capital
+//! letters, a little punctuation and the lower-case letters of "cd/m2" and "1e-3" (other lower
+//! case is drawn as upper case). Each glyph is seven rows, bit 4 the leftmost column; the shapes
+//! are the classic 5×7 dot-matrix forms.
 
 /// The rows of `c`'s glyph; unknown characters are blank.
 pub fn glyph(c: char) -> [u8; 7] {
+    match c {
+        'e' => return [0, 0, 0x0E, 0x11, 0x1F, 0x10, 0x0E],
+        'c' => return [0, 0, 0x0E, 0x10, 0x10, 0x11, 0x0E],
+        'd' => return [0x01, 0x01, 0x0D, 0x13, 0x11, 0x11, 0x0F],
+        'm' => return [0, 0, 0x1A, 0x15, 0x15, 0x11, 0x11],
+        _ => {}
+    }
     match c.to_ascii_uppercase() {
         '0' => [0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E],
         '1' => [0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E],
@@ -60,3 +68,53 @@ pub fn glyph(c: char) -> [u8; 7] {
 pub const ADVANCE: usize = 6;
 /// Glyph height, in font pixels.
 pub const HEIGHT: usize = 7;
+
+/// Width of `text` in image pixels at `scale` image pixels per font pixel.
+pub fn text_width(text: &str, scale: usize) -> usize {
+    text.chars().count() * ADVANCE * scale
+}
+
+/// Draws `text` into an RGB8 buffer (`width` pixels per row) with its top-left corner at
+/// (x, y); pixels outside the buffer are skipped.
+pub fn draw_text(rgb: &mut [u8], width: usize, x: usize, y: usize, text: &str, scale: usize, colour: [u8; 3]) {
+    let height = rgb.len() / (3 * width.max(1));
+    for (n, c) in text.chars().enumerate() {
+        for (r, bits) in glyph(c).iter().enumerate() {
+            for col in 0..5 {
+                if bits & (0x10 >> col) == 0 {
+                    continue;
+                }
+                for dy in 0..scale {
+                    for dx in 0..scale {
+                        let px = x + (n * ADVANCE + col) * scale + dx;
+                        let py = y + r * scale + dy;
+                        if px < width && py < height {
+                            rgb[3 * (py * width + px)..][..3].copy_from_slice(&colour);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn draws_the_glyph_bits() {
+        let mut rgb = vec![0u8; 3 * 12 * 7];
+        draw_text(&mut rgb, 12, 0, 0, "1-", 1, [255, 255, 255]);
+        let on = |x: usize, y: usize| rgb[3 * (y * 12 + x)] == 255;
+        // '1': the stem at column 2, the foot at row 6 from column 1 to 3; '-' on row 3.
+        assert!((0..7).all(|y| on(2, y)));
+        assert!(on(1, 6) && on(3, 6) && !on(0, 6) && !on(4, 0));
+        assert!((6..11).all(|x| on(x, 3)) && !on(6, 2));
+        assert_eq!(text_width("cd/m2", 2), 60);
+        // Lower case without its own glyph is drawn as upper case; unknown characters are blank.
+        assert_eq!(glyph('x'), glyph('X'));
+        assert_ne!(glyph('e'), glyph('E'));
+        assert_eq!(glyph('§'), [0; 7]);
+    }
+}

@@ -1,10 +1,14 @@
-//! A small RGB canvas for plots written as PNG: lines, rectangles, text in a 5×7 font. Enough
-//! for polar intensity diagrams and false-colour maps with a colour bar, without a plotting
-//! dependency.
+//! Raster graphics: a small RGB canvas for plots (lines, rectangles, text in the one 5×7 font,
+//! [`font`]), the one PNG encoder ([`png`]), colour maps and false-colour grids
+//! ([`false_colour`]) and spectrum line plots ([`spectrum_plot`]). Enough for polar intensity
+//! diagrams, sensor maps with a colour bar and legends, without a plotting dependency.
 
-mod font;
+pub mod false_colour;
+pub mod font;
+pub mod png;
+pub mod spectrum_plot;
 
-use std::io::{self, BufWriter};
+use std::io;
 use std::path::Path;
 
 pub type Rgb = [u8; 3];
@@ -95,19 +99,8 @@ impl Canvas {
 
     /// Writes an 8-bit RGB PNG (not atomically; callers stage the path).
     pub fn write_png(&self, path: &Path) -> io::Result<()> {
-        let (Ok(w), Ok(h)) = (u32::try_from(self.width), u32::try_from(self.height)) else {
-            return Err(io::Error::new(io::ErrorKind::InvalidInput, "canvas too large for PNG"));
-        };
-        let file = std::fs::File::create(path)?;
-        let mut encoder = png::Encoder::new(BufWriter::new(file), w, h);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        let mut writer = encoder.write_header()?;
         let bytes: Vec<u8> = self.pixels.iter().flatten().copied().collect();
-        writer.write_image_data(&bytes)?;
-        writer.finish()?;
-        Ok(())
+        png::write_rgb8(path, self.width, self.height, &bytes)
     }
 }
 
@@ -136,7 +129,7 @@ mod tests {
         c.fill_rect(2, 1, 3, 2, [10, 200, 30]);
         let path = std::env::temp_dir().join(format!("morgana-raster-{}.png", std::process::id()));
         c.write_png(&path).unwrap();
-        let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
+        let decoder = ::png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
         let mut reader = decoder.read_info().unwrap();
         let mut buf = vec![0; reader.output_buffer_size().unwrap()];
         let info = reader.next_frame(&mut buf).unwrap();

@@ -10,7 +10,7 @@
 //! then within `tol` (to the accuracy of the dense output) of the chord through it, so a
 //! surface the arc crosses by more than `tol` is crossed by a chord.
 
-use super::ode::Step;
+use crate::ode::Step;
 use glam::DVec3;
 
 /// Most chords per step (a step that needs more is shortened by the caller's step cap).
@@ -54,7 +54,7 @@ impl ChordOnArc {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raypath::ode::{Integrator, Method, OdeState};
+    use crate::ode::{Integrator, Method, OdeState};
 
     /// The largest distance from the arc (sampled finely by dense output) to the chords.
     fn worst_gap(step: &Step, count: usize) -> f64 {

@@ -5,7 +5,7 @@
 //! - *straight*, where it is outside the field's gradient region: one chord to the nearest of
 //!   a surface, the region's boundary and the world sphere (no ODE runs there);
 //! - *curved*, inside the region: each accepted step of the integrator (the scene's
-//!   [`crate::raypath::ode::Method`]) is cut into chords within the arc tolerance
+//!   [`crate::ode::Method`]) is cut into chords within the arc tolerance
 //!   ([`super::arc`]); every chord is intersected with the scene and handed to the visitor, so a
 //!   surface crossing is found on the chord that crosses it and located on the arc to within the
 //!   tolerance; the arriving direction is the arc's tangent there (dense output). A leg ends when
@@ -16,10 +16,11 @@
 //! side the path leaves to.
 
 use super::arc::{ChordOnArc, chord_count};
-use super::ode::{Integrator, OdeState, Step};
 use super::{Chord, Event, Propagator, RayState};
+use crate::field::GradientRegion;
 use crate::geometry::{Hit, Ray};
-use crate::media::index::{GradientRegion, IndexField};
+use crate::media::refractive_index::IndexField;
+use crate::ode::{Integrator, OdeState, Step};
 use glam::DVec3;
 
 /// The wavelength at which a path that carries several follows a non-dispersive field (any
@@ -61,7 +62,7 @@ pub(super) fn next_event(
     let sample = |p: DVec3| field.n_grad(lambda, p);
     let medium = state.medium.unwrap_or_default();
     let mut walk = Walk { position: state.position, dir: state.dir, travelled: 0.0, medium, chords: 0 };
-    let Ok(mut ode) = Integrator::new(prop.scene.integrator.curved.method) else {
+    let Some(Ok(mut ode)) = prop.curved.map(|c| Integrator::new(c.method)) else {
         prop.work.lose();
         return Event::Lost { position: state.position };
     };
@@ -97,7 +98,7 @@ fn straight_leg(
     w: &mut Walk,
     visit: &mut dyn FnMut(&Chord) -> Option<f64>,
 ) -> Leg {
-    let hit = prop.scene.bvh.intersect(&prop.scene.shapes, &Ray::new(w.position, w.dir), f64::INFINITY);
+    let hit = prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(w.position, w.dir), f64::INFINITY);
     let end = hit.map_or_else(|| prop.world_exit(w.position, w.dir), |h| h.t);
     let entry = region.entry_distance(w.position, w.dir, end).filter(|t| *t < end);
     let length = entry.unwrap_or(end);
@@ -139,7 +140,7 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
         return Leg::Done(Event::Lost { position: w.position });
     };
     ode.restart();
-    let settings = &prop.scene.integrator.curved;
+    let Some(settings) = prop.curved else { return Leg::Done(Event::Lost { position: w.position }) };
     let h_cap = settings.max_step_m.min(prop.world_radius);
     loop {
         let Ok(step) = ode.step(sample, &mut state, h_cap) else {
@@ -183,7 +184,7 @@ fn chords_of(
             continue;
         }
         let u = d / len;
-        let hit = prop.scene.bvh.intersect(&prop.scene.shapes, &Ray::new(c.from, u), len);
+        let hit = prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(c.from, u), len);
         let seg = hit.map_or(len, |h| h.t);
         w.chords += 1;
         let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium) };
@@ -215,7 +216,7 @@ fn geometry_near(prop: &Propagator, step: &Step, tol_m: f64) -> bool {
     let pad = 2.0 * (m - 0.5 * (a + b)).length() + tol_m;
     let min = a.min(b).min(m) - DVec3::splat(pad);
     let max = a.max(b).max(m) + DVec3::splat(pad);
-    prop.scene.bvh.may_touch_box(&prop.scene.shapes, &crate::geometry::Aabb { min, max })
+    prop.world.bvh.may_touch_box(&prop.world.shapes, &crate::geometry::Aabb { min, max })
 }
 
 /// Sub-chords per refinement round and rounds: each round shrinks the sagitta of the chord
@@ -243,7 +244,7 @@ fn refine(prop: &Propagator, step: &Step, c: &ChordOnArc, hit: Hit, u: DVec3) ->
             if l.is_nan() || l <= 0.0 {
                 continue;
             }
-            if let Some(h) = prop.scene.bvh.intersect(&prop.scene.shapes, &Ray::new(pa, d / l), l) {
+            if let Some(h) = prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(pa, d / l), l) {
                 found = Some((h, a + (b - a) * (h.t / l).clamp(0.0, 1.0), d / l, a, b));
                 break;
             }

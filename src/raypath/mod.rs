@@ -8,33 +8,34 @@
 //! assumes a path is `o + t·d`:
 //! - in a medium whose refractive index is constant (or has none) the path is one straight
 //!   chord per event and no ODE runs;
-//! - in a medium with a refractive-index field ([`crate::media::index`]) the path follows
-//!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`ode`]:
+//! - in a medium with a refractive-index field ([`crate::media::refractive_index`]) the path follows
+//!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`crate::ode`]:
 //!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
 //!   arc tolerance ([`arc`]), and the same visitors and segment queries
 //!   ([`crate::geometry::Bvh::intersect`]) see those chords. Outside the field's
-//!   [`crate::media::index::GradientRegion`] the path is straight again, seamlessly (n is
+//!   [`crate::field::GradientRegion`] the path is straight again, seamlessly (n is
 //!   continuous there).
 //!
 //! Free-flight distances and marching are measured along the path (the sum of chord lengths,
 //! within the arc tolerance of the arc length). Media extend to the *world sphere* (twice the
 //! radius of the sphere bounding the scene and the camera); a path leaving it escapes.
 
-pub mod accuracy;
 mod arc;
+mod cost;
 pub mod curved;
-pub mod ode;
-pub mod trace_cli;
-mod work;
+pub mod projection;
+pub mod trace;
 
-pub use work::{CurvedWork, CurvedWorkTotals};
+pub use cost::{CurvedWork, CurvedWorkTotals, RayCounts};
 
+use crate::field::GradientRegion;
 use crate::geometry::{Hit, Ray};
-use crate::media::index::{GradientRegion, IndexField};
+use crate::media::refractive_index::IndexField;
 use crate::media::tracking;
+use crate::ode::CurvedSettings;
 use crate::rng::Rng;
-use crate::scene::Scene;
 use crate::spectrum::MAX_BANDS;
+use crate::world::World;
 use glam::DVec3;
 
 /// A ray state: where light is, where it goes, at which wavelength (`None` while nothing on the
@@ -72,9 +73,11 @@ pub enum Event {
     Lost { position: DVec3 },
 }
 
-/// Moves light through a scene.
+/// Moves light through a world.
 pub struct Propagator<'a> {
-    scene: &'a Scene,
+    world: &'a World,
+    /// How curved paths are followed; `None` when every path is straight.
+    curved: Option<&'a CurvedSettings>,
     world_centre: DVec3,
     world_radius: f64,
     /// Per medium: where its index field bends light, if it does and the plan follows it.
@@ -86,18 +89,24 @@ pub struct Propagator<'a> {
 }
 
 impl<'a> Propagator<'a> {
-    pub fn new(scene: &'a Scene) -> Propagator<'a> {
-        let b = scene.bounds.include(scene.camera.position);
-        let centre = b.centre();
-        let radius = 2.0 * (0.5 * b.diagonal().length()).max(1e-3);
-        let curved = scene.plan.curved_paths.on;
-        let regions = scene
+    /// A propagator through `world`; paths curve where a medium's index field bends them and
+    /// `curved` says how to follow them (`None`: the effect plan keeps every path straight).
+    pub fn new(world: &'a World, curved: Option<&'a CurvedSettings>) -> Propagator<'a> {
+        let regions = world
             .media
             .iter()
-            .map(|m| m.index.as_ref().filter(|f| curved && !f.is_uniform()).map(|f| f.gradient_region()))
+            .map(|m| m.index.as_ref().filter(|f| curved.is_some() && !f.is_uniform()).map(|f| f.gradient_region()))
             .collect();
-        let clear = scene.media.iter().map(|m| m.is_clear()).collect();
-        Propagator { scene, world_centre: centre, world_radius: radius, regions, clear, work: CurvedWork::default() }
+        let clear = world.media.iter().map(|m| m.is_clear()).collect();
+        Propagator {
+            world,
+            curved,
+            world_centre: world.reach.centre,
+            world_radius: world.reach.radius,
+            regions,
+            clear,
+            work: CurvedWork::default(),
+        }
     }
 
     /// Whether medium `m` neither absorbs nor scatters light.
@@ -105,16 +114,21 @@ impl<'a> Propagator<'a> {
         self.clear[m as usize]
     }
 
-    /// The scene light moves through.
-    pub fn scene(&self) -> &'a Scene {
-        self.scene
+    /// The world light moves through.
+    pub fn world(&self) -> &'a World {
+        self.world
+    }
+
+    /// How curved paths are followed (`None`: every path is straight).
+    pub fn curved_settings(&self) -> Option<&'a CurvedSettings> {
+        self.curved
     }
 
     /// The index field of `medium` and where it bends light, when paths in it curve.
     fn curved_field(&self, medium: Option<u32>) -> Option<(&IndexField, &GradientRegion)> {
         let m = medium? as usize;
         let region = self.regions[m].as_ref()?;
-        Some((self.scene.media[m].index.as_ref()?, region))
+        Some((self.world.media[m].index.as_ref()?, region))
     }
 
     /// Whether a path in `medium` bends differently at each wavelength, so that an eye path
@@ -126,7 +140,7 @@ impl<'a> Propagator<'a> {
     /// The refractive index of `medium` at `p` and `wavelength_nm`: its field's n, or 1 for
     /// vacuum and media without a field.
     pub fn n_at(&self, medium: Option<u32>, wavelength_nm: f64, p: DVec3) -> f64 {
-        self.scene.medium(medium).and_then(|m| m.index.as_ref()).map_or(1.0, |f| f.n(wavelength_nm, p))
+        self.world.medium(medium).and_then(|m| m.index.as_ref()).map_or(1.0, |f| f.n(wavelength_nm, p))
     }
 
     /// The next event from `state`, not stopping in media.
@@ -141,7 +155,7 @@ impl<'a> Propagator<'a> {
             return curved::next_event(self, state, field, region, visit);
         }
         let ray = Ray::new(state.position, state.dir);
-        let hit = self.scene.bvh.intersect(&self.scene.shapes, &ray, f64::INFINITY);
+        let hit = self.world.bvh.intersect(&self.world.shapes, &ray, f64::INFINITY);
         if let Some(m) = state.medium {
             let length = hit.map_or_else(|| self.world_exit(state.position, state.dir), |h| h.t);
             let chord = Chord { origin: state.position, dir: state.dir, length, medium: state.medium };
@@ -174,22 +188,22 @@ impl<'a> Propagator<'a> {
     /// The refractive index on the front side of primitive `prim` (its exterior medium) at `p`:
     /// what a dielectric material's index is relative to.
     pub fn n_outside(&self, prim: u32, wavelength_nm: f64, p: DVec3) -> f64 {
-        self.n_at(self.scene.prims[prim as usize].exterior, wavelength_nm, p)
+        self.n_at(self.world.prims[prim as usize].exterior, wavelength_nm, p)
     }
 
     /// Whether crossing the index-matched boundary `prim` at `p` refracts (the media on its two
     /// sides differ in n there at `wavelength_nm`).
     pub fn boundary_refracts(&self, prim: u32, wavelength_nm: f64, p: DVec3) -> bool {
-        let pr = &self.scene.prims[prim as usize];
+        let pr = &self.world.prims[prim as usize];
         let (front, back) = (self.n_at(pr.exterior, wavelength_nm, p), self.n_at(pr.interior, wavelength_nm, p));
         (front - back).abs() > 1e-12 * front
     }
 
     /// Whether that refraction depends on wavelength (a path carrying several must split).
     pub fn boundary_is_dispersive(&self, prim: u32) -> bool {
-        let pr = &self.scene.prims[prim as usize];
+        let pr = &self.world.prims[prim as usize];
         let dispersive =
-            |m: Option<u32>| self.scene.medium(m).and_then(|m| m.index.as_ref()).is_some_and(|f| f.is_dispersive());
+            |m: Option<u32>| self.world.medium(m).and_then(|m| m.index.as_ref()).is_some_and(|f| f.is_dispersive());
         dispersive(pr.exterior) || dispersive(pr.interior)
     }
 
@@ -205,11 +219,11 @@ impl<'a> Propagator<'a> {
         wavelength_nm: f64,
         u: f64,
     ) -> (DVec3, Option<u32>) {
-        let across = self.scene.medium_across(hit.prim, dir, hit.normal);
+        let across = self.world.medium_across(hit.prim, dir, hit.normal);
         if !self.boundary_refracts(hit.prim, wavelength_nm, hit.point) {
             return (dir, across);
         }
-        let pr = &self.scene.prims[hit.prim as usize];
+        let pr = &self.world.prims[hit.prim as usize];
         let front = self.n_at(pr.exterior, wavelength_nm, hit.point);
         let back = self.n_at(pr.interior, wavelength_nm, hit.point);
         let s = crate::material::fresnel_sample(dir, hit.normal, back / front, u);
@@ -219,7 +233,7 @@ impl<'a> Propagator<'a> {
     /// The state leaving surface `hit` in direction `dir`, in `medium`, offset so it does not
     /// re-hit the surface it leaves.
     pub fn leave(&self, hit: &Hit, dir: DVec3, wavelength_nm: Option<f64>, medium: Option<u32>) -> RayState {
-        RayState { position: hit.spawn_origin(&self.scene.shapes, dir), dir, wavelength_nm, medium }
+        RayState { position: hit.spawn_origin(&self.world.shapes, dir), dir, wavelength_nm, medium }
     }
 
     /// The first surface other than an index-matched boundary along the straight ray from `start`
@@ -236,26 +250,26 @@ impl<'a> Propagator<'a> {
         rng: &mut Rng,
     ) -> Option<(Option<Hit>, [f64; MAX_BANDS])> {
         let mut tr = [1.0; MAX_BANDS];
-        let mut origin = from.map_or(start, |h| h.spawn_origin(&self.scene.shapes, dir));
+        let mut origin = from.map_or(start, |h| h.spawn_origin(&self.world.shapes, dir));
         let mut medium = medium;
         let mut travelled = 0.0;
         for _ in 0..64 {
-            let hit = self.scene.bvh.intersect(&self.scene.shapes, &Ray::new(origin, dir), f64::INFINITY);
+            let hit = self.world.bvh.intersect(&self.world.shapes, &Ray::new(origin, dir), f64::INFINITY);
             let seg = hit.map_or_else(|| self.world_exit(origin, dir), |h| h.t);
-            if let Some(m) = self.scene.medium(medium) {
+            if let Some(m) = self.world.medium(medium) {
                 for (t, l) in tr.iter_mut().zip(wavelengths_nm) {
                     *t *= tracking::transmittance(m, *l, origin, dir, seg, rng);
                 }
             }
             let Some(mut h) = hit else { return Some((None, tr)) };
             travelled += h.t;
-            let p = &self.scene.prims[h.prim as usize];
+            let p = &self.world.prims[h.prim as usize];
             if p.material.is_some() || p.light.is_some() {
                 h.t = travelled;
                 return Some((Some(h), tr));
             }
-            medium = self.scene.medium_across(h.prim, dir, h.normal);
-            origin = h.spawn_origin(&self.scene.shapes, dir);
+            medium = self.world.medium_across(h.prim, dir, h.normal);
+            origin = h.spawn_origin(&self.world.shapes, dir);
         }
         None
     }
@@ -277,27 +291,27 @@ impl<'a> Propagator<'a> {
         rng: &mut Rng,
     ) -> Option<[f64; MAX_BANDS]> {
         let mut tr = [1.0; MAX_BANDS];
-        let mut origin = from.map_or(start, |h| h.spawn_origin(&self.scene.shapes, wi));
+        let mut origin = from.map_or(start, |h| h.spawn_origin(&self.world.shapes, wi));
         let mut left = if dist.is_finite() { (dist - (origin - start).length()) * (1.0 - 1e-7) } else { f64::INFINITY };
         let mut medium = medium;
         for _ in 0..64 {
             if left <= 0.0 {
                 return Some(tr);
             }
-            let hit = self.scene.bvh.intersect(&self.scene.shapes, &Ray::new(origin, wi), left);
+            let hit = self.world.bvh.intersect(&self.world.shapes, &Ray::new(origin, wi), left);
             let seg = hit.map_or_else(|| left.min(self.world_exit(origin, wi)), |h| h.t);
-            if let Some(m) = self.scene.medium(medium) {
+            if let Some(m) = self.world.medium(medium) {
                 for (t, l) in tr.iter_mut().zip(wavelengths_nm) {
                     *t *= tracking::transmittance(m, *l, origin, wi, seg, rng);
                 }
             }
             let Some(h) = hit else { return Some(tr) };
-            let p = &self.scene.prims[h.prim as usize];
+            let p = &self.world.prims[h.prim as usize];
             if p.material.is_some() || p.light.is_some() {
                 return None;
             }
-            medium = self.scene.medium_across(h.prim, wi, h.normal);
-            origin = h.spawn_origin(&self.scene.shapes, wi);
+            medium = self.world.medium_across(h.prim, wi, h.normal);
+            origin = h.spawn_origin(&self.world.shapes, wi);
             left -= h.t;
         }
         None

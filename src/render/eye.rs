@@ -19,17 +19,18 @@
 //! into one path per lane at a dispersive surface (a gather path instead follows one lane chosen
 //! at random, weighted by the lane count).
 
+use super::direct::{ShadowOrigin, sample_lights};
 use super::lanes::Lanes;
-use super::maps::Maps;
+use super::photon_pass::Maps;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
-use crate::light::Light;
+use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Medium, tracking};
 use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
-use crate::scene::{DirectLighting, Scene};
+use crate::scene::Scene;
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -105,12 +106,13 @@ impl<'a> EyeTracer<'a> {
         let s = &scene.integrator;
         let est =
             |map, k, max_radius, paths| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands, paths };
-        let shadow = s.direct == DirectLighting::ShadowRays;
+        // Under shadow rays the maps' direct photons are left out (the rays count that light).
+        let shadow = scene.plan.shadow_rays.on;
         let global_paths = if shadow { Paths::DiffuseOnly } else { Paths::All };
         let volume_paths = if shadow { Paths::NotDirect } else { Paths::All };
         EyeTracer {
             scene,
-            prop: Propagator::new(scene),
+            prop: Propagator::new(&scene.world, scene.curved()),
             maps,
             global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, global_paths)),
             global_all: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, Paths::All)),
@@ -168,6 +170,7 @@ impl<'a> EyeTracer<'a> {
     /// Radiance per lane along `state` in a medium that bends each wavelength differently: one
     /// path per lane (a gather path follows one lane chosen uniformly, weighted by the count).
     fn split(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        sc.rays.splits += 1;
         let mut out = [0.0; MAX_BANDS];
         let lanes = at.lanes;
         let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {
@@ -190,7 +193,7 @@ impl<'a> EyeTracer<'a> {
     /// leaves the scene along `dir`; gather rays leave it to the shadow rays and photon maps.
     fn escape(&self, dir: DVec3, lanes: &Lanes) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        for light in &self.scene.lights {
+        for light in &self.scene.world.lights {
             for (o, l) in out.iter_mut().zip(&lanes.nm[..lanes.len]) {
                 *o += light.escape_radiance(dir, *l);
             }
@@ -210,15 +213,17 @@ impl<'a> EyeTracer<'a> {
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         if at.mode == Mode::Camera
-            && let Some(light) = self.scene.area_light_of(hit.prim)
+            && let Some(light) = self.scene.world.area_light_of(hit.prim)
             && light.emitted_cos(hit.normal, -dir) > 0.0
         {
             for (o, l) in out.iter_mut().zip(&at.lanes.nm[..at.lanes.len]) {
                 *o += light.emission.spectrum.eval(*l);
             }
         }
-        let add = match self.scene.material_of(hit.prim) {
-            None if self.scene.prims[hit.prim as usize].light.is_none() => self.boundary(hit, dir, medium, at, rng, sc),
+        let add = match self.scene.world.material_of(hit.prim) {
+            None if self.scene.world.prims[hit.prim as usize].light.is_none() => {
+                self.boundary(hit, dir, medium, at, rng, sc)
+            }
             None => return out,
             Some(m) if m.is_diffuse() => self.diffuse(hit, dir, m, medium, at, rng, sc),
             Some(m) => self.specular(hit, dir, m, medium, at, rng, sc),
@@ -260,7 +265,7 @@ impl<'a> EyeTracer<'a> {
             out[..lanes.len].copy_from_slice(&lr[..lanes.len]);
             return out;
         };
-        let across = self.scene.medium_across(hit.prim, dir, hit.normal);
+        let across = self.scene.world.medium_across(hit.prim, dir, hit.normal);
         let lt = self.radiance(&self.prop.leave(hit, t_dir, at.wavelength(), across), next, rng, sc);
         for i in 0..lanes.len {
             let f = crate::material::fresnel_dielectric(cos_i, eta_of(lanes.nm[i]));
@@ -283,6 +288,7 @@ impl<'a> EyeTracer<'a> {
         let lanes = at.lanes;
         let refracts = self.prop.boundary_refracts(hit.prim, lanes.nm[0], hit.point);
         if refracts && lanes.len > 1 && self.prop.boundary_is_dispersive(hit.prim) {
+            sc.rays.splits += 1;
             let mut out = [0.0; MAX_BANDS];
             let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {
                 let single = lanes.single(i);
@@ -315,6 +321,9 @@ impl<'a> EyeTracer<'a> {
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
         let lanes = at.lanes;
+        if m.is_dispersive() && lanes.len > 1 {
+            sc.rays.splits += 1;
+        }
         if m.is_dispersive() && lanes.len > 1 && at.mode == Mode::Gather {
             // A gather path follows one lane chosen uniformly, weighted by the lane count: an
             // unbiased estimate of every lane at the cost of one.
@@ -346,7 +355,8 @@ impl<'a> EyeTracer<'a> {
         if w[..lanes.len].iter().all(|w| *w == 0.0) {
             return out;
         }
-        let next_medium = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+        let next_medium =
+            if s.transmitted { self.scene.world.medium_across(hit.prim, dir, hit.normal) } else { medium };
         let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
         let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
         for i in 0..lanes.len {
@@ -380,7 +390,7 @@ impl<'a> EyeTracer<'a> {
             }
             return out;
         }
-        if self.scene.integrator.direct == DirectLighting::PhotonMap {
+        if !self.scene.plan.shadow_rays.on {
             if let Some(g) = &self.global {
                 add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0);
             }
@@ -440,21 +450,15 @@ impl<'a> EyeTracer<'a> {
         sc: &mut Scratch,
     ) -> BandValues {
         let mut e = [0.0; MAX_BANDS];
-        for light in &self.scene.lights {
-            let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-            let cos = if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
-            if cos <= 0.0 {
-                continue;
-            }
-            sc.rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(p, from, inc.wi, inc.dist, medium, &lanes.nm[..lanes.len], rng) else {
-                continue;
-            };
+        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &lanes.nm[..lanes.len] };
+        let cos = |_: &Light, inc: &Incident| if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
+        let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {
                 e[i] += s.eval(lanes.nm[i]) * inc.weight * cos * tr[i];
             }
-        }
+        };
+        sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &cos, &mut add);
         e
     }
 
@@ -480,10 +484,9 @@ impl<'a> EyeTracer<'a> {
         }
         let nm = &lanes.nm[..lanes.len];
         let phase = |l: f64, light_travel: DVec3| m.phase.eval(l, light_travel.dot(wo));
-        for light in &self.scene.lights {
-            let Some(inc) = light.incident(x, rng.uniform2()) else { continue };
-            sc.rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(x, None, inc.wi, inc.dist, Some(id), nm, rng) else { continue };
+        // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
+        let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm };
+        let mut add = |light: &Light, inc: &Incident, _: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {
                 let l = lanes.nm[i];
@@ -491,15 +494,16 @@ impl<'a> EyeTracer<'a> {
                 let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
                 out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * tr[i];
             }
-        }
-        if self.scene.lights.iter().any(|l| !l.is_delta()) {
+        };
+        sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);
+        if self.scene.world.lights.iter().any(|l| !l.is_delta()) {
             // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
             let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());
             let to_light = -wi;
             sc.rays.shadow += 1;
             match self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng) {
                 Some((Some(hit), tr)) => {
-                    if let Some(light) = self.scene.area_light_of(hit.prim) {
+                    if let Some(light) = self.scene.world.area_light_of(hit.prim) {
                         let cos = light.emitted_cos(hit.normal, wi);
                         if cos > 0.0 && pdf > 0.0 {
                             let p_light = hit.t * hit.t / (cos * light.shape.area());
@@ -513,8 +517,12 @@ impl<'a> EyeTracer<'a> {
                     }
                 }
                 Some((None, tr)) if pdf > 0.0 => {
-                    for sky in
-                        self.scene.lights.iter().filter_map(|l| if let Light::Sky(s) = l { Some(s) } else { None })
+                    for sky in self
+                        .scene
+                        .world
+                        .lights
+                        .iter()
+                        .filter_map(|l| if let Light::Sky(s) = l { Some(s) } else { None })
                     {
                         let mis = power_heuristic(pdf, sky.pdf(to_light));
                         if mis > 0.0 {
@@ -539,7 +547,7 @@ impl<'a> EyeTracer<'a> {
     /// ratio tracking otherwise; Russian roulette once it is negligible.
     fn march(&self, c: &Chord, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
         let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
-        let m = &self.scene.media[id as usize];
+        let m = &self.scene.world.media[id as usize];
         let lanes = at.lanes;
         if !m.scatters() {
             // A medium that only absorbs sends nothing toward the eye: its transmittance, in one
@@ -551,7 +559,7 @@ impl<'a> EyeTracer<'a> {
             Mode::Camera => self.volume.as_ref(),
             Mode::Gather => self.volume_all.as_ref(),
         };
-        let shadow = at.mode == Mode::Camera && self.scene.integrator.direct == DirectLighting::ShadowRays;
+        let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
         let wo = -c.dir;
         let sigma_t_max = lanes.nm[..lanes.len].iter().map(|l| m.sigma_t(*l)).fold(0.0, f64::max);
         let xi = rng.uniform();
@@ -562,6 +570,7 @@ impl<'a> EyeTracer<'a> {
             let h = self.step_length(m, c, t0, sigma_t_max, level, at.mode);
             let t1 = (t0 + h).min(c.length);
             let s = t0 + xi * (t1 - t0);
+            sc.rays.medium_steps += 1;
             self.attenuate(m, c, t_prev, s, lanes, along, rng);
             t_prev = s;
             if !self.roulette(along, lanes, rng) {

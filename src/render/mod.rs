@@ -3,28 +3,28 @@
 //! Pixels are independent tasks with their own random streams derived from (seed, pixel), and
 //! each pixel's samples are summed in a fixed order, so the image is identical for any number
 //! of threads — and of ranks: [`render_on`] runs the same passes split across the processes of
-//! a [`World`] ([`crate::distributed`]); [`render`] is that with one process.
+//! a [`Comm`] ([`crate::distributed`]); [`render`] is that with one process.
 
-mod camera;
+mod direct;
 pub mod eye;
 mod lanes;
-pub mod maps;
 mod path;
+pub mod photon_pass;
 mod progress;
+pub mod sensors;
 pub mod stats;
 
-pub use camera::Camera;
 pub use lanes::Lanes;
 pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 
-use crate::distributed::clock::Span;
-use crate::distributed::{self, DistributedReport, Rank, World};
+use crate::distributed::{self, Comm, DistributedReport, Rank};
 use crate::error::Result;
-use crate::output::SpectralImage;
 use crate::raypath::RayState;
 use crate::rng::{Rng, Stream};
 use crate::scene::{Method, Scene};
+use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::BandsToColour;
+use crate::timing::Span;
 use eye::{EyeTracer, Scratch};
 use rayon::prelude::*;
 
@@ -47,27 +47,27 @@ pub struct Rendered {
 
 /// Renders `scene` on the current rayon thread pool.
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
-    match render_on(&World::local(), scene, opts, &distributed::Options::default()) {
+    match render_on(&Comm::local(), scene, opts, &distributed::Options::default()) {
         Ok(Some(r)) => r,
         // One rank is rank 0, and without a map-memory budget nothing can fail.
         Ok(None) | Err(_) => unreachable!("a local render without a memory budget always returns its image"),
     }
 }
 
-/// Renders `scene` on every rank of `world` (each on its current rayon pool): the photon passes
+/// Renders `scene` on every rank of `comm` (each on its current rayon pool): the photon passes
 /// and the eye pass are split across ranks (see [`crate::distributed`]) and the image, the same
 /// for any number of ranks, is returned on rank 0 (`None` on the others). Collective. Fails, on
 /// every rank, if the photon maps would not fit in `dist.map_memory`.
 pub fn render_on(
-    world: &World,
+    comm: &Comm,
     scene: &Scene,
     opts: &RenderOptions,
     dist: &distributed::Options,
 ) -> Result<Option<Rendered>> {
-    let mut rank = Rank::new(world, *dist);
-    let quiet = opts.quiet || !world.is_root();
+    let mut rank = Rank::new(comm, *dist);
+    let quiet = opts.quiet || !comm.is_root();
     let mut stats = RenderStats::default();
-    let maps = maps::build(&mut rank, scene, quiet, &mut stats.phases, &mut stats.maps)?;
+    let maps = photon_pass::build(&mut rank, scene, quiet, &mut stats.phases, &mut stats.maps)?;
     if let Some(c) = &maps.irradiance {
         stats.irradiance_points = c.len() as u64;
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
@@ -83,13 +83,13 @@ pub fn render_on(
         stats.rays.add(&r.eye.rays);
         stats.eye_curved.add(&r.eye_curved);
     }
-    stats.distributed = Some(DistributedReport::new(world.kind(), dist.schedule, ranks));
+    stats.distributed = Some(DistributedReport::new(comm.kind(), dist.schedule, ranks));
     let t = Span::start();
     let image = to_image(scene, data);
     stats.phases.add("colour conversion", t);
     let t = Span::start();
-    let sensors = crate::sensor::evaluate_all(scene, &maps);
-    let profiles = crate::sensor::evaluate_profiles(scene, &maps);
+    let sensors = sensors::evaluate_all(scene, &maps);
+    let profiles = sensors::evaluate_profiles(scene, &maps);
     if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
@@ -101,13 +101,13 @@ pub fn render_on(
 fn eye_pass(
     rank: &Rank,
     scene: &Scene,
-    maps: &maps::Maps,
+    maps: &photon_pass::Maps,
     quiet: bool,
 ) -> (Option<Vec<f32>>, distributed::eye::EyeWork, crate::raypath::CurvedWorkTotals) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
     let tracer = Tracer::new(scene, maps);
-    let ranks = rank.world.size();
+    let ranks = rank.comm.size();
     progress::note(quiet, ranks, &format!("eye pass: {h} rows over {ranks} ranks, {:?} leases", rank.options.schedule));
     let pb = progress::bar(quiet, h as u64, "eye pass");
     let render_rows = |rows: std::ops::Range<usize>| -> (Vec<f32>, RayCounts) {
@@ -123,11 +123,7 @@ fn eye_pass(
                     }
                 }
                 pb.inc(1);
-                let mut rays = sc.rays;
-                rays.eye -= before.eye;
-                rays.shadow -= before.shadow;
-                rays.gather -= before.gather;
-                (row, rays)
+                (row, sc.rays.since(&before))
             })
             .collect();
         let mut data = Vec::with_capacity(done.len() * w * nb);
@@ -138,7 +134,7 @@ fn eye_pass(
         }
         (data, rays)
     };
-    let out = distributed::eye::run(rank.world, rank.options.schedule, h, w * nb, &render_rows, &|n| pb.inc(n));
+    let out = distributed::eye::run(rank.comm, rank.options.schedule, h, w * nb, &render_rows, &|n| pb.inc(n));
     pb.finish_and_clear();
     let curved = match &tracer {
         Tracer::PhotonMap(t) => t.curved_work(),
@@ -154,7 +150,7 @@ enum Tracer<'a> {
 }
 
 impl<'a> Tracer<'a> {
-    fn new(scene: &'a Scene, maps: &'a maps::Maps) -> Tracer<'a> {
+    fn new(scene: &'a Scene, maps: &'a photon_pass::Maps) -> Tracer<'a> {
         match scene.integrator.method {
             Method::PhotonMap => Tracer::PhotonMap(Box::new(EyeTracer::new(scene, maps))),
             Method::Path => Tracer::Path(path::PathTracer::new(scene)),

@@ -27,17 +27,18 @@
 //! component's emission phase function at λ'; otherwise it goes on as before, its throughput
 //! divided by 1 − q. Segments are straight (the path tracer assumes no index field).
 
+use super::direct::{ShadowOrigin, sample_lights};
 use super::lanes::Lanes;
 use super::stats::RayCounts;
 use crate::geometry::Hit;
-use crate::light::Light;
+use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::phase::PhaseFunction;
 use crate::media::tracking;
 use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::Scene;
-use crate::spectrum::MAX_BANDS;
+use crate::spectrum::{BandValues, MAX_BANDS};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -75,7 +76,7 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 
 impl<'a> PathTracer<'a> {
     pub fn new(scene: &'a Scene) -> PathTracer<'a> {
-        PathTracer { scene, prop: Propagator::new(scene) }
+        PathTracer { scene, prop: Propagator::new(&scene.world, scene.curved()) }
     }
 
     /// Integrator work along this tracer's curved paths so far.
@@ -106,7 +107,7 @@ impl<'a> PathTracer<'a> {
             rays.eye += 1;
             let lam = w.lambda;
             let event = self.prop.next_event_with(&state, &mut |c| {
-                let m = self.scene.medium(c.medium)?;
+                let m = self.scene.world.medium(c.medium)?;
                 tracking::sample_interaction(m, lam, c.origin, c.dir, c.length, rng)
             });
             if let Some(branch) = self.inelastic_track(&state, &event, &mut w, &mut l, rng, rays) {
@@ -160,7 +161,8 @@ impl<'a> PathTracer<'a> {
         rng: &mut Rng,
         rays: &mut RayCounts,
     ) -> Option<RayState> {
-        let m = &self.scene.media[medium as usize];
+        let m = &self.scene.world.media[medium as usize];
+        rays.medium_steps += 1;
         w.beta *= m.albedo(w.lambda);
         Some(self.scatter(position, dir, medium, &m.phase, w, l, rng, rays))
     }
@@ -198,7 +200,7 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> Option<Option<RayState>> {
         let id = state.medium?;
-        let m = &self.scene.media[id as usize];
+        let m = &self.scene.world.media[id as usize];
         if m.inelastic.is_empty() {
             return None;
         }
@@ -234,7 +236,7 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> Option<RayState> {
         let lambda = Some(w.lambda);
-        if let Some(light) = self.scene.area_light_of(hit.prim) {
+        if let Some(light) = self.scene.world.area_light_of(hit.prim) {
             let cos = light.emitted_cos(hit.normal, -dir);
             if cos > 0.0 {
                 let mis = match w.emission {
@@ -247,8 +249,8 @@ impl<'a> PathTracer<'a> {
                 *l += w.beta * mis * light.emission.spectrum.eval(w.lambda);
             }
         }
-        let material = match self.scene.material_of(hit.prim) {
-            None if self.scene.prims[hit.prim as usize].light.is_none() => {
+        let material = match self.scene.world.material_of(hit.prim) {
+            None if self.scene.world.prims[hit.prim as usize].light.is_none() => {
                 let (d, across) = self.prop.cross(hit, dir, medium, w.lambda, rng.uniform());
                 return Some(self.prop.leave(hit, d, lambda, across));
             }
@@ -273,7 +275,8 @@ impl<'a> PathTracer<'a> {
                 }
                 w.beta *= s.weight;
                 w.emission = Emission::Full;
-                let next = if s.transmitted { self.scene.medium_across(hit.prim, dir, hit.normal) } else { medium };
+                let next =
+                    if s.transmitted { self.scene.world.medium_across(hit.prim, dir, hit.normal) } else { medium };
                 Some(self.prop.leave(hit, s.dir, lambda, next))
             }
         }
@@ -285,6 +288,7 @@ impl<'a> PathTracer<'a> {
     /// estimation samples it as a delta light).
     fn escaped(&self, dir: DVec3, lambda: f64, emission: Emission) -> f64 {
         self.scene
+            .world
             .lights
             .iter()
             .map(|li| match (emission, li) {
@@ -316,28 +320,20 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> f64 {
         let mut e = 0.0;
-        for light in &self.scene.lights {
-            let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-            let (factor, p_scatter) = if n == DVec3::ZERO {
-                match phase {
-                    Some(ph) => {
-                        let f = ph.eval(lambda, inc.wi.dot(dir));
-                        (f, f)
-                    }
-                    None => (0.0, 0.0),
-                }
-            } else {
-                let c = inc.wi.dot(n);
-                (c, c / PI)
-            };
-            if factor <= 0.0 {
-                continue;
-            }
-            let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, p_scatter) };
-            rays.shadow += 1;
-            let Some(tr) = self.prop.shadow(p, from, inc.wi, inc.dist, medium, &[lambda], rng) else { continue };
+        // The scattering factor: cos θ on a surface, the phase function in a medium.
+        let factor = |_: &Light, inc: &Incident| match (n == DVec3::ZERO, phase) {
+            (true, Some(ph)) => ph.eval(lambda, inc.wi.dot(dir)),
+            (true, None) => 0.0,
+            (false, _) => inc.wi.dot(n),
+        };
+        // Its density as a sampling strategy, for the MIS weight: f itself, or cos θ/π.
+        let p_scatter = |f: f64| if n == DVec3::ZERO { f } else { f / PI };
+        let mut add = |light: &Light, inc: &Incident, factor: f64, tr: &BandValues| {
+            let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, p_scatter(factor)) };
             e += mis * light.spectrum().spectrum.eval(lambda) * inc.weight * factor * tr[0];
-        }
+        };
+        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda] };
+        sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut rays.shadow, &factor, &mut add);
         e
     }
 }

@@ -35,7 +35,6 @@
 //! environment variable `MORGANA_OCEAN_DATA`, else `../shared/data/ocean` beside the morgana
 //! source tree this binary was built from; a missing folder is an error naming what was tried.
 
-use super::context::{Ctx, R};
 use super::media::{Table, phase};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
@@ -44,8 +43,9 @@ use crate::media::inelastic::{
 };
 use crate::media::ocean::{self, OceanParams, ParticlePhase};
 use crate::media::{Medium, phase::PhaseFunction};
-use crate::present_fields;
 use crate::spectrum::Bands;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use std::ops::Range;
 use std::path::PathBuf;
 use toml::{Spanned, Value};

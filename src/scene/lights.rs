@@ -20,13 +20,13 @@
 //! below the horizontal) — with photons aimed at the bounding sphere of
 //! `target_min`/`target_max` (default: of the whole scene).
 
-use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
 use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SkyLight, SpotLight};
-use crate::present_fields;
 use crate::spectrum::Bands;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use toml::Spanned;
 
 pub struct NamedLight {
@@ -58,7 +58,7 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, elevation_deg, azimuth_deg, angular_diameter_deg, up, horizon_deg);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, variant, elevation_deg, azimuth_deg, angular_diameter_deg, up, horizon_deg);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],

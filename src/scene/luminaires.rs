@@ -5,11 +5,14 @@
 //! name = "desk lamp"
 //! type = "luminaire"
 //! file = "../../shared/data/luminaires/ldt/eulumdatpy_sample4.ldt"  # relative to the scene
+//! # .ies (LM-63), .ldt (EULUMDAT), .xml (IES TM-33-18/-23) or .gldf; for a GLDF with several
+//! # variants, variant = "id" chooses one (else the first)
 //! position = [1.0, 2.8, 1.5]   # the photometric centre, m
 //! # orientation: nothing (hanging: nadir −Y, C0 +X), or an aim —
 //! # direction = [0, -1, 0.2] or look_at = [x, y, z], with optional c0_toward = [1, 0, 0] —
 //! # or Euler angles rotation_deg = [about X, then about Y, then about Z] (see luminaire::Placement)
-//! cct_k = 4000                 # black-body lamp spectrum; or spectrum = <any emission spectrum>
+//! cct_k = 4000                 # black-body lamp spectrum; or spectrum = <any emission spectrum>;
+//!                              # with neither, the file's own spectrum (TM-33, GLDF) if it has one
 //! flux_scale = 1.0             # optional: multiplies the file's intensities (dimming, maintenance)
 //! emitter = "point"            # or "opening": photons start over the file's luminous opening
 //! ```
@@ -18,21 +21,35 @@
 //! used. Watts follow from the spectrum (see [`crate::luminaire::per_candela`]): the file's
 //! lumens are those of the whole visible spectrum, so a scene whose wavelength range cuts part of
 //! it carries only that part's watts, and a note says how much of the luminous flux is inside.
+//!
+//! The lamp spectrum: the scene's `spectrum` or `cct_k` when given (a note says it overrides a
+//! spectrum the file carries), else the file's emission spectrum (TM-33 `SpectralData`, GLDF
+//! `Spectrum`; a note names it), else an error asking for one.
 
-use super::context::{Ctx, R};
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::error::Error;
 use crate::light::{Light, LightSpectrum, LuminaireLight};
 use crate::luminaire::{self, Opening, Photometry, Placement, WebSampler, luminous_fraction_in, per_candela};
 use crate::spectrum::{Bands, Spectrum};
+use crate::validate::{Ctx, R};
 use std::ops::Range;
 use std::sync::Arc;
 use toml::Spanned;
 
 /// The fields a luminaire light may have.
-pub const FIELDS: &[&str] =
-    &["position", "direction", "look_at", "c0_toward", "rotation_deg", "file", "cct_k", "flux_scale", "emitter"];
+pub const FIELDS: &[&str] = &[
+    "position",
+    "direction",
+    "look_at",
+    "c0_toward",
+    "rotation_deg",
+    "file",
+    "cct_k",
+    "flux_scale",
+    "emitter",
+    "variant",
+];
 
 /// Below this fraction of the lumens inside the scene's wavelength range, a note says so.
 const RANGE_NOTE_FRACTION: f64 = 0.99;
@@ -46,10 +63,10 @@ pub fn luminaire(
     bands: &Bands,
 ) -> R<(Light, Vec<String>)> {
     let file = ctx.require(&l.file, "file", span, what)?;
-    let photometry = read_file(ctx, file, what)?;
+    let photometry = read_file(ctx, file, l.variant.as_ref(), what)?;
     let position = ctx.vec3(ctx.require(&l.position, "position", span, what)?, "position")?;
     let placement = placement(ctx, l, span, what, position)?;
-    let shape = lamp_spectrum(ctx, lib, l, span, what, bands)?;
+    let (shape, spectrum_note) = lamp_spectrum(ctx, lib, l, span, what, bands, &photometry, file.get_ref())?;
     let per_cd = per_candela(&shape).ok_or_else(|| {
         ctx.err(span, format!("{what}: the lamp spectrum has nothing visible (360–830 nm) to carry lumens"))
     })?;
@@ -63,6 +80,7 @@ pub fn luminaire(
     let tilt_factor = photometry.tilt.as_ref().map_or(1.0, |t| t.factor(placement.tilt_deg()));
     let opening = emitter(ctx, l, what, &photometry)?;
     let mut notes = file_notes(&photometry, what, file.get_ref());
+    notes.extend(spectrum_note);
     let fraction = luminous_fraction_in(&shape, bands.min_nm, bands.max_nm);
     if fraction < RANGE_NOTE_FRACTION {
         notes.push(format!(
@@ -88,7 +106,7 @@ pub fn luminaire(
 
 /// Reads the file; a missing file is an error at the scene's `file` line, a malformed one at the
 /// luminaire file's line (naming the light and the scene line).
-fn read_file(ctx: &Ctx, file: &Spanned<String>, what: &str) -> R<Photometry> {
+fn read_file(ctx: &Ctx, file: &Spanned<String>, variant: Option<&Spanned<String>>, what: &str) -> R<Photometry> {
     let path = ctx.path(file);
     if !path.is_file() {
         return Err(ctx.err(
@@ -99,7 +117,7 @@ fn read_file(ctx: &Ctx, file: &Spanned<String>, what: &str) -> R<Photometry> {
             ),
         ));
     }
-    luminaire::load_file(&path).map_err(|e| match e {
+    luminaire::load_file_variant(&path, variant.map(|v| v.get_ref().as_str())).map_err(|e| match e {
         Error::Input(mut i) => {
             i.message = format!("{} (luminaire file of {what}, {})", i.message, ctx.loc(&file.span()));
             Error::Input(i)
@@ -141,7 +159,9 @@ fn placement(ctx: &Ctx, l: &RawLight, span: &Range<usize>, what: &str, position:
     }
 }
 
-/// The lamp's relative spectrum: `spectrum` or `cct_k` (a black body), exactly one.
+/// The lamp's relative spectrum: `spectrum` or `cct_k` (a black body), at most one, else the
+/// file's own; with a note saying which when the file has one.
+#[allow(clippy::too_many_arguments)]
 fn lamp_spectrum(
     ctx: &Ctx,
     lib: &SpectrumLibrary,
@@ -149,17 +169,37 @@ fn lamp_spectrum(
     span: &Range<usize>,
     what: &str,
     bands: &Bands,
-) -> R<Spectrum> {
-    match (&l.spectrum, &l.cct_k) {
-        (Some(s), None) => lib.parse(ctx, s, &format!("{what}: spectrum"), Use::Emission, (bands.min_nm, bands.max_nm)),
-        (None, Some(t)) => {
-            let temperature_k = ctx.number(t, "cct_k", 0.0, 1.0e6, true)?;
-            Ok(Spectrum::Blackbody { temperature_k })
+    p: &Photometry,
+    file: &str,
+) -> R<(Spectrum, Option<String>)> {
+    let overrides = |key: &str| {
+        p.spectrum
+            .as_ref()
+            .map(|s| format!("{what}: the scene's {key} overrides the spectrum in {file} ({})", s.describe()))
+    };
+    match (&l.spectrum, &l.cct_k, &p.spectrum) {
+        (Some(s), None, _) => {
+            let s = lib.parse(ctx, s, &format!("{what}: spectrum"), Use::Emission, (bands.min_nm, bands.max_nm))?;
+            Ok((s, overrides("spectrum")))
         }
-        _ => Err(ctx.err(
+        (None, Some(t), _) => {
+            let temperature_k = ctx.number(t, "cct_k", 0.0, 1.0e6, true)?;
+            Ok((Spectrum::Blackbody { temperature_k }, overrides("cct_k")))
+        }
+        (None, None, Some(s)) => {
+            let (lo, hi) = s.domain_nm();
+            let cut = if lo > bands.min_nm || hi < bands.max_nm {
+                format!("; it spans {lo}–{hi} nm, so the scene's {}–{} nm get no light outside that", bands.min_nm, bands.max_nm)
+            } else {
+                String::new()
+            };
+            Ok((s.spectrum(), Some(format!("{what}: emission spectrum from {file}: {}{cut}", s.describe()))))
+        }
+        (Some(_), Some(_), _) => Err(ctx.err(span, format!("{what}: give spectrum or cct_k for the lamp's colour, not both"))),
+        (None, None, None) => Err(ctx.err(
             span,
             format!(
-                "{what}: give exactly one of spectrum or cct_k (a black body of that temperature) for the lamp's colour"
+                "{what}: give exactly one of spectrum or cct_k (a black body of that temperature) for the lamp's colour; the luminaire file carries no spectrum"
             ),
         )),
     }

@@ -1,13 +1,13 @@
 //! `[[material]]` records → [`Material`]s.
 
-use super::context::{Ctx, R};
 use super::raw::RawMaterial;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::material::{
     Beckmann, COX_MUNK_MAX_WIND_M_S, Dielectric, Ior, Lambertian, Material, Mirror, RoughDielectric, named_glass,
 };
-use crate::present_fields;
 use crate::spectrum::Bands;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use toml::{Spanned, Value};
 
 pub struct NamedMaterial {

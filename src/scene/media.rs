@@ -21,15 +21,15 @@
 //!
 //! A medium may be clear (`sigma_a = 0`, `sigma_s = 0`) and only bend light.
 
-use super::context::{Ctx, R};
 use super::raw::RawMedium;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::atmosphere::Earth;
 use crate::media::density::{Density, ExponentialHeight, Fbm, Grid3D, SphericalExponential};
 use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
-use crate::present_fields;
 use crate::spectrum::Bands;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use glam::DVec3;
 use std::ops::Range;
 use toml::{Spanned, Value};
@@ -60,7 +60,7 @@ pub fn medium(
     }
     super::inelastic::finish(&mut medium, bands);
     if let Some(v) = &m.index {
-        medium.index = Some(super::index::field(ctx, v, &what, &earth.0, earth.1, range)?);
+        medium.index = Some(super::refractive_index::field(ctx, v, &what, &earth.0, earth.1, range)?);
     }
     Ok(medium)
 }

@@ -3,8 +3,6 @@
 //! Loading goes parse, then validate and transform, then build (as Mitsuba 3 does). Every
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
-mod context;
-mod index;
 mod inelastic;
 mod lights;
 mod luminaires;
@@ -12,6 +10,7 @@ mod materials;
 mod media;
 mod plan;
 pub mod raw;
+mod refractive_index;
 mod sensors;
 mod settings;
 mod shapes;
@@ -19,20 +18,19 @@ mod spectrum_spec;
 mod tone;
 
 pub use plan::{Decision, EffectPlan};
-pub use settings::{
-    DirectLighting, Filter, HERO_WAVELENGTHS, IntegratorSettings, Method, OutputSettings, WavelengthSampling,
-};
-pub use spectrum_spec::parse_two_column_csv;
+pub use settings::{DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, Method, OutputSettings, WavelengthSampling};
 
 use crate::atmosphere::Earth;
 use crate::error::{Error, Location, Result};
+use crate::geometry::Camera;
 use crate::geometry::{Aabb, Bvh, Shape};
-use crate::light::{AreaLight, Light};
+use crate::light::Light;
 use crate::material::Material;
 use crate::media::Medium;
-use crate::render::Camera;
+use crate::ode::CurvedSettings;
 use crate::spectrum::Bands;
-use context::Ctx;
+use crate::validate::Ctx;
+use crate::world::{Names as WorldNames, Prim, Reach, World};
 use glam::DVec3;
 use raw::RawScene;
 use spectrum_spec::SpectrumLibrary;
@@ -41,46 +39,18 @@ use std::path::{Path, PathBuf};
 /// The embedded default scene: a spectral Cornell box with a glass and a mirror sphere.
 pub const DEFAULT_SCENE: &str = include_str!("default.toml");
 
-/// What a shape in the BVH is: its material (none for an emitter with no reflectance) and the
-/// light it emits as, if any.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Prim {
-    pub material: Option<u32>,
-    pub light: Option<u32>,
-    /// Medium on the back side of the shape's normal (inside a closed shape). Unless the scene
-    /// says otherwise: vacuum inside glass, the world medium inside anything else; an
-    /// index-matched boundary (no material) must name it.
-    pub interior: Option<u32>,
-    /// Medium on the front side (outside); the world medium unless the scene says otherwise.
-    pub exterior: Option<u32>,
-}
-
-/// A validated scene, ready to render.
+/// A validated scene, ready to render: the [`World`] light interacts with and the run
+/// description (camera, wavelengths, integrator settings, effect plan, sensors).
 pub struct Scene {
+    /// Everything light interacts with.
+    pub world: World,
     /// The scene file; `None` for the embedded default scene.
     pub file: Option<PathBuf>,
     pub camera: Camera,
-    pub bands: Bands,
-    pub sampling: WavelengthSampling,
-    pub material_names: Vec<String>,
-    pub materials: Vec<Material>,
-    pub medium_names: Vec<String>,
-    pub media: Vec<Medium>,
-    /// The medium filling space outside every closed shape (`[world] medium`).
-    pub global_medium: Option<u32>,
     /// The medium the camera sits in.
     pub camera_medium: Option<u32>,
-    /// The medium each light emits into.
-    pub light_media: Vec<Option<u32>>,
-    pub shapes: Vec<Shape>,
-    pub prims: Vec<Prim>,
-    /// Per primitive: the label of the record it came from (`shape "ground"`, `shape #3`,
-    /// `light "lamp"`), for messages.
-    pub prim_names: Vec<String>,
-    pub light_names: Vec<String>,
-    pub lights: Vec<Light>,
-    pub bvh: Bvh,
-    pub bounds: Aabb,
+    pub bands: Bands,
+    pub sampling: WavelengthSampling,
     pub integrator: IntegratorSettings,
     pub output: OutputSettings,
     pub plan: EffectPlan,
@@ -92,19 +62,6 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// The material of primitive `prim`, if it has one.
-    pub fn material_of(&self, prim: u32) -> Option<&Material> {
-        self.prims[prim as usize].material.map(|m| &self.materials[m as usize])
-    }
-
-    /// The area light that primitive `prim` emits as, if any.
-    pub fn area_light_of(&self, prim: u32) -> Option<&AreaLight> {
-        match self.prims[prim as usize].light.map(|l| &self.lights[l as usize]) {
-            Some(Light::Area(a)) => Some(a),
-            _ => None,
-        }
-    }
-
     /// Overrides the photon counts (both maps) and the seed, and decides the plan again.
     pub fn apply_overrides(&mut self, photons: Option<u64>, seed: Option<u64>) {
         if let Some(n) = photons {
@@ -114,38 +71,13 @@ impl Scene {
         if let Some(s) = seed {
             self.integrator.seed = s;
         }
-        self.plan = decide_plan(self);
+        self.plan = decide_plan(&self.world, &self.integrator, &self.sensors, self.sampling, &self.bands);
     }
 
-    /// The medium at point `p`: found by a ray from `p`; the side of the first surface it meets
-    /// that `p` is on decides (interior when `p` is behind the surface's normal). Points that
-    /// see no surface are in the world medium.
-    pub fn medium_at(&self, p: DVec3) -> Option<u32> {
-        let dir = DVec3::new(0.285_745, 0.903_105, 0.320_528).normalize();
-        match self.bvh.intersect(&self.shapes, &crate::geometry::Ray::new(p, dir), f64::INFINITY) {
-            None => self.global_medium,
-            Some(hit) => {
-                let prim = &self.prims[hit.prim as usize];
-                if dir.dot(hit.normal) > 0.0 { prim.interior } else { prim.exterior }
-            }
-        }
-    }
-
-    /// Whether a path passes through primitive `prim` when it is not reflected (glass and
-    /// index-matched boundaries) rather than stopping at it.
-    pub fn is_passable(&self, prim: u32) -> bool {
-        self.material_of(prim).is_none_or(Material::is_refractive) && self.prims[prim as usize].light.is_none()
-    }
-
-    /// The medium a path enters when it passes through primitive `prim` travelling along `dir`.
-    pub fn medium_across(&self, prim: u32, dir: DVec3, normal: DVec3) -> Option<u32> {
-        let p = &self.prims[prim as usize];
-        if dir.dot(normal) < 0.0 { p.interior } else { p.exterior }
-    }
-
-    /// The medium with index `m`.
-    pub fn medium(&self, m: Option<u32>) -> Option<&Medium> {
-        m.map(|i| &self.media[i as usize])
+    /// How curved paths are followed, when the plan follows them (`None`: every path is
+    /// straight).
+    pub fn curved(&self) -> Option<&CurvedSettings> {
+        self.plan.curved_paths.on.then_some(&self.integrator.curved)
     }
 
     /// A short label for messages and reports: the file path or "default scene".
@@ -174,24 +106,8 @@ pub fn default_scene() -> Result<Scene> {
 /// `default_name` is the output stem when `[output] name` is absent.
 pub fn load_scene_str(source: &str, file: &Path, dir: &Path, default_name: &str) -> Result<Scene> {
     let ctx = Ctx::new(file, source, dir);
-    let raw: RawScene = toml::from_str(source).map_err(|e| toml_error(&ctx, &e))?;
+    let raw: RawScene = toml::from_str(source).map_err(|e| ctx.toml_error(&e))?;
     build(&ctx, &raw, default_name)
-}
-
-fn toml_error(ctx: &Ctx, e: &toml::de::Error) -> Error {
-    let message = e.message().trim().to_string();
-    let Some(span) = e.span() else {
-        return Error::input(Some(Location::file(&ctx.file)), message);
-    };
-    let loc = ctx.loc(&span);
-    // Name the key written on the offending line, since serde's type errors do not.
-    let line = loc.line.and_then(|l| ctx.source.lines().nth(l - 1)).unwrap_or("");
-    let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
-    let message = match key {
-        Some(k) if !message.contains(&format!("`{k}`")) => format!("field `{k}`: {message}"),
-        _ => message,
-    };
-    Error::input(Some(loc), message)
 }
 
 fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
@@ -234,58 +150,60 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     curved_integrator(ctx, raw, &media, &mut integrator)?;
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
     let bvh = Bvh::build(&shapes);
-    let mut scene = Scene {
-        file: None,
-        camera,
-        bands,
-        sampling,
-        material_names,
+    let reach = Reach::around(&bounds.include(camera.position));
+    let names = WorldNames { materials: material_names, media: medium_names, prims: prim_names, lights: light_names };
+    let mut world = World {
         materials,
-        medium_names,
         media,
         global_medium,
-        camera_medium: None,
-        light_media: Vec::new(),
         shapes,
         prims,
-        prim_names,
-        light_names,
         lights,
+        light_media: Vec::new(),
         bvh,
         bounds,
+        reach,
+        names,
+    };
+    world.light_media = world.lights.iter().map(|l| world.medium_at(l.representative_point())).collect();
+    let plan = decide_plan(&world, &integrator, &sensors, sampling, &bands);
+    let camera_medium = world.medium_at(camera.position);
+    let mut scene = Scene {
+        world,
+        file: None,
+        camera,
+        camera_medium,
+        bands,
+        sampling,
         integrator,
         output,
-        plan: EffectPlan::default(),
+        plan,
         sensors,
         warnings,
     };
-    scene.camera_medium = scene.medium_at(scene.camera.position);
-    scene.light_media = scene.lights.iter().map(|l| scene.medium_at(l.representative_point())).collect();
-    scene.plan = decide_plan(&scene);
     aim_beams(&mut scene);
     Ok(scene)
 }
 
 /// Where paths curve, lights at infinity aimed at a target get a projection map (see
-/// [`crate::photon::projection`]), so their photons reach the target along bent paths.
+/// [`crate::raypath::projection`]), so their photons reach the target along bent paths.
 fn aim_beams(scene: &mut Scene) {
-    if !scene.plan.curved_paths.on {
-        return;
-    }
-    let maps: Vec<(usize, Option<crate::light::BeamCells>)> = scene
+    let Some(curved) = scene.curved() else { return };
+    let world = &scene.world;
+    let maps: Vec<(usize, Option<crate::light::BeamCells>)> = world
         .lights
         .iter()
         .enumerate()
         .filter_map(|(i, l)| match l {
             Light::Directional(d) if d.target.is_some() => {
-                Some((i, crate::photon::projection::build(scene, d, scene.light_media[i])))
+                Some((i, crate::raypath::projection::build(world, curved, d, world.light_media[i])))
             }
             _ => None,
         })
         .collect();
     for (i, cells) in maps {
-        let name = scene.light_names[i].clone();
-        if let Light::Directional(d) = &mut scene.lights[i] {
+        let name = scene.world.names.lights[i].clone();
+        if let Light::Directional(d) = &mut scene.world.lights[i] {
             match cells {
                 Some(c) => d.cells = Some(c),
                 None => scene.warnings.push(format!(
@@ -375,7 +293,14 @@ fn check_index_fields(ctx: &Ctx, raw: &RawScene, media: &[Medium], bands: &Bands
     let world = Aabb { min: c - DVec3::splat(r), max: c + DVec3::splat(r) };
     for (rec, m) in raw.medium.iter().zip(media) {
         if let (Some(v), Some(f)) = (&rec.get_ref().index, &m.index) {
-            index::check_over(ctx, v, &format!("medium \"{}\"", m.name), f, (bands.min_nm, bands.max_nm), &world)?;
+            refractive_index::check_over(
+                ctx,
+                v,
+                &format!("medium \"{}\"", m.name),
+                f,
+                (bands.min_nm, bands.max_nm),
+                &world,
+            )?;
         }
     }
     Ok(())
@@ -497,26 +422,32 @@ impl Names<'_> {
     }
 }
 
-fn decide_plan(scene: &Scene) -> EffectPlan {
-    let used: Vec<(&str, &Material)> = (0..scene.materials.len())
-        .filter(|m| scene.prims.iter().any(|p| p.material == Some(*m as u32)))
-        .map(|m| (scene.material_names[m].as_str(), &scene.materials[m]))
+fn decide_plan(
+    world: &World,
+    integrator: &IntegratorSettings,
+    sensors: &[crate::sensor::NamedSensor],
+    sampling: WavelengthSampling,
+    bands: &Bands,
+) -> EffectPlan {
+    let used: Vec<(&str, &Material)> = (0..world.materials.len())
+        .filter(|m| world.prims.iter().any(|p| p.material == Some(*m as u32)))
+        .map(|m| (world.names.materials[m].as_str(), &world.materials[m]))
         .collect();
-    let used_media: Vec<&Medium> = (0..scene.media.len())
+    let used_media: Vec<&Medium> = (0..world.media.len())
         .filter(|m| {
             let m = Some(*m as u32);
-            scene.global_medium == m || scene.prims.iter().any(|p| p.interior == m || p.exterior == m)
+            world.global_medium == m || world.prims.iter().any(|p| p.interior == m || p.exterior == m)
         })
-        .map(|m| &scene.media[m])
+        .map(|m| &world.media[m])
         .collect();
     let facts = plan::SceneFacts {
         used_materials: used,
         used_media,
-        sampling: scene.sampling,
-        bands: scene.bands.count,
-        photon_sensors: !scene.sensors.is_empty(),
+        sampling,
+        bands: bands.count,
+        photon_sensors: !sensors.is_empty(),
     };
-    EffectPlan::decide(&facts, &scene.integrator)
+    EffectPlan::decide(&facts, integrator)
 }
 
 fn list_names(names: &[String]) -> String {

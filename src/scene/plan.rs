@@ -30,7 +30,8 @@ pub struct EffectPlan {
     pub global_map: Decision,
     /// Photons that reached a diffuse surface through specular surfaces only (L S+ D).
     pub caustic_map: Decision,
-    /// Direct light on diffuse surfaces by shadow rays.
+    /// Direct light on diffuse surfaces and single scattering in media by shadow rays
+    /// (next-event estimation).
     pub shadow_rays: Decision,
     /// Indirect light by gathering the global map from a set of rays at each shading point.
     pub final_gather: Decision,
@@ -78,10 +79,14 @@ impl EffectPlan {
                 Decision::on(format!("specular material \"{sp}\" can focus light onto diffuse \"{d}\""))
             }
         };
-        let shadow_rays = match diffuse {
-            None => Decision::off("no diffuse surface to light"),
-            Some(_) if photon_direct => Decision::off("direct = \"photon_map\""),
-            Some(_) => Decision::on("direct = \"shadow_rays\": direct light on diffuse surfaces by shadow rays"),
+        let scattering = facts.used_media.iter().find(|m| m.scatters()).map(|m| m.name.as_str());
+        let shadow_rays = match (diffuse, scattering) {
+            _ if photon_direct => Decision::off("direct = \"photon_map\": direct light comes from the photon maps"),
+            (None, None) => Decision::off("no diffuse surface or scattering medium receives direct light"),
+            (d, m) => Decision::on(format!(
+                "direct = \"shadow_rays\": {} by shadow rays",
+                lit_by_shadow_rays(d, m, "direct light on diffuse", "single scattering in")
+            )),
         };
         let final_gather = match (s.final_gather, global_map.on) {
             (true, true) => {
@@ -123,14 +128,20 @@ impl EffectPlan {
     /// The plan of the reference path tracer: no photon maps; direct light by next-event
     /// estimation.
     fn path_tracing(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
+        let diffuse = facts.used_materials.iter().find(|(_, m)| m.is_diffuse()).map(|(n, _)| *n);
+        let scattering = facts.used_media.iter().find(|m| m.scatters()).map(|m| m.name.as_str());
         let off = || Decision::off("method = \"path\": unbiased path tracing uses no photon maps");
         let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
         EffectPlan {
             global_map: off(),
             caustic_map: off(),
-            shadow_rays: Decision::on(
-                "method = \"path\": next-event estimation at every diffuse surface and medium interaction",
-            ),
+            shadow_rays: match (diffuse, scattering) {
+                (None, None) => Decision::off("no diffuse surface or scattering medium receives direct light"),
+                (d, m) => Decision::on(format!(
+                    "method = \"path\": next-event estimation ({})",
+                    lit_by_shadow_rays(d, m, "at diffuse", "at collisions in")
+                )),
+            },
             final_gather: off(),
             dispersion_splitting: Decision::off(if multi {
                 "method = \"path\": each path follows one randomly chosen wavelength"
@@ -166,6 +177,19 @@ impl std::fmt::Display for EffectPlan {
             writeln!(f, "  {:<22} {:<3}  {}", name, if d.on { "on" } else { "off" }, d.why)?;
         }
         Ok(())
+    }
+}
+
+/// What shadow rays light: "<surface_words> \"white\" and <medium_words> \"fog\"", naming an
+/// example diffuse material and scattering medium where there are any.
+fn lit_by_shadow_rays(diffuse: Option<&str>, medium: Option<&str>, surface_words: &str, medium_words: &str) -> String {
+    match (diffuse, medium) {
+        (Some(d), Some(m)) => {
+            format!("{surface_words} surfaces (e.g. \"{d}\") and {medium_words} media (e.g. \"{m}\")")
+        }
+        (Some(d), None) => format!("{surface_words} surfaces (e.g. \"{d}\")"),
+        (None, Some(m)) => format!("{medium_words} media (e.g. \"{m}\")"),
+        (None, None) => "nothing".to_string(),
     }
 }
 
@@ -247,7 +271,7 @@ fn volume_map_decision(media: &[&Medium], photon_sensors: bool, s: &IntegratorSe
             m.name
         )),
         (Some(m), DirectLighting::ShadowRays, _) => Decision::on(format!(
-            "photons interacting in \"{}\" after a scattering or a surface are stored: single scattering by shadow rays, multiple scattering from the map",
+            "photons interacting in \"{}\" are stored at every interaction; camera paths read only those that arrived after a scattering or a surface (single scattering comes from shadow rays, multiple scattering from the map)",
             m.name
         )),
     }

@@ -204,6 +204,8 @@ pub struct RawLight {
     pub c0_toward: S<[f64; 3]>,
     pub rotation_deg: S<[f64; 3]>,
     pub emitter: S<String>,
+    /// `type = "luminaire"` with a GLDF file: the variant id.
+    pub variant: S<String>,
     pub elevation_deg: S<f64>,
     pub azimuth_deg: S<f64>,
     pub angular_diameter_deg: S<f64>,

@@ -25,11 +25,11 @@
 //! samples = 64                  # optional: shadow rays per band for Ed(0+)
 //! ```
 
-use super::context::{Ctx, R};
 use super::raw::RawSensor;
 use super::settings::{DirectLighting, IntegratorSettings};
-use crate::present_fields;
 use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor};
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use toml::Spanned;
 
 const KINDS: &[&str] = &["illuminance_plane", "ocean_profile"];

@@ -1,13 +1,15 @@
 //! Camera, `[output]` and `[integrator]`: validated settings.
 
-use super::context::{Ctx, R};
 use super::raw::{RawCamera, RawIntegrator, RawOutput};
 use crate::geometry::Aabb;
-use crate::output::png::Exposure;
-use crate::render::Camera;
+use crate::geometry::Camera;
+use crate::ode::CurvedSettings;
+use crate::photon_map::Filter;
 use crate::spectrum::{Bands, MAX_BANDS};
+use crate::tonemap::Exposure;
 use crate::tonemap::ToneSettings;
 use crate::tonemap::region::Region;
+use crate::validate::{Ctx, R};
 use serde::Serialize;
 use toml::{Spanned, Value};
 
@@ -43,52 +45,6 @@ pub enum Method {
     PhotonMap,
     /// Unbiased volumetric path tracing: the reference estimator.
     Path,
-}
-
-/// The kernel of a photon-density estimate.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Filter {
-    /// Uniform weights over the disc.
-    Box,
-    /// Jensen's cone filter w = 1 − d/(k r), normalised by 1 − 2/(3k).
-    Cone { k: f64 },
-    /// Epanechnikov kernel w = 2(1 − d²/r²), normalised over the disc.
-    Epanechnikov,
-}
-
-/// How curved paths are followed (used only where a medium's refractive index varies).
-#[derive(Clone, Debug, Serialize)]
-pub struct CurvedSettings {
-    /// The integrator of the ray equation.
-    #[serde(skip)]
-    pub method: crate::raypath::ode::Method,
-    /// "dopri5", "rk4" or "euler".
-    pub ode: &'static str,
-    /// Dormand–Prince tolerances (relative, and absolute in m and in units of n).
-    pub rtol: f64,
-    pub atol: f64,
-    /// Fixed step of RK4 and Euler, m.
-    pub step_m: f64,
-    /// Largest step, m (infinite: the world's size bounds it).
-    pub max_step_m: f64,
-    /// Chords stay within this distance of the arc, m; surface crossings are located to it.
-    pub arc_tolerance_m: f64,
-}
-
-impl Default for CurvedSettings {
-    fn default() -> Self {
-        let (rtol, atol) = (1e-9, 1e-9);
-        CurvedSettings {
-            method: crate::raypath::ode::Method::dormand_prince(rtol, atol),
-            ode: "dopri5",
-            rtol,
-            atol,
-            step_m: 1.0,
-            max_step_m: f64::INFINITY,
-            arc_tolerance_m: 1e-4,
-        }
-    }
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -311,7 +267,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
 
 /// `ode`, `ode_rtol`, `ode_atol`, `ode_step_m`, `ode_max_step_m`, `arc_tolerance_m`.
 fn curved(ctx: &Ctx, r: &RawIntegrator) -> R<CurvedSettings> {
-    use crate::raypath::ode::Method as Ode;
+    use crate::ode::Method as Ode;
     let mut c = CurvedSettings::default();
     let positive = |v: &Option<Spanned<f64>>, name: &str, d: f64| -> R<f64> {
         v.as_ref().map_or(Ok(d), |v| ctx.number(v, name, 0.0, f64::INFINITY, true))

@@ -1,11 +1,11 @@
 //! `[[shape]]` records → shapes. A box becomes six quads and a mesh its triangles; every
 //! resulting shape refers to the record's material.
 
-use super::context::{Ctx, R};
 use super::raw::RawShape;
 use crate::geometry::mesh::load_obj;
 use crate::geometry::{Disk, Quad, Shape, Sphere, Triangle};
-use crate::present_fields;
+use crate::validate::present_fields;
+use crate::validate::{Ctx, R};
 use glam::{DMat3, DVec3};
 use toml::Spanned;
 

@@ -9,8 +9,8 @@
 //!   `values = [...]`, or `file = "data.csv"` (two columns: wavelength_nm, value; `#` comments and
 //!   one header row allowed); plus an optional `scale = k` multiplier.
 
-use super::context::{Ctx, R};
 use crate::spectrum::{RgbSigmoid, Spectrum, Tabulated, named_illuminant};
+use crate::validate::{Ctx, R};
 use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::{Spanned, Value};
@@ -187,7 +187,7 @@ fn from_csv(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Sp
     let path = ctx.dir.join(file);
     let text = std::fs::read_to_string(&path)
         .map_err(|e| ctx.err(span, format!("{what}: cannot read spectrum file {}: {e}", path.display())))?;
-    let (nm, values) = parse_two_column_csv(&text).map_err(|(line, msg)| {
+    let (nm, values) = crate::spectrum::table::parse_two_column_csv(&text).map_err(|(line, msg)| {
         crate::error::Error::input(
             Some(crate::error::Location { file: path.clone(), line: Some(line), column: None }),
             format!("{what}: {msg}"),
@@ -196,36 +196,6 @@ fn from_csv(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Sp
     Tabulated::new(nm, values)
         .map(Spectrum::Tabulated)
         .map_err(|e| ctx.err(span, format!("{what}: spectrum file {}: {e}", path.display())))
-}
-
-/// Two numeric columns (wavelength_nm, value); `#` comment lines and blank lines are skipped, and
-/// the first non-comment row may be a header. Errors carry the 1-based line.
-pub fn parse_two_column_csv(text: &str) -> Result<(Vec<f64>, Vec<f64>), (usize, String)> {
-    let (mut nm, mut values) = (Vec::new(), Vec::new());
-    let mut seen_row = false;
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let cols: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
-        let parsed: Option<Vec<f64>> = cols.iter().take(2).map(|c| c.parse().ok()).collect();
-        match parsed {
-            Some(p) if p.len() == 2 => {
-                nm.push(p[0]);
-                values.push(p[1]);
-            }
-            _ if !seen_row => {}
-            _ => {
-                return Err((i + 1, format!("expected two numbers (wavelength_nm, value), found \"{line}\"")));
-            }
-        }
-        seen_row = true;
-    }
-    if nm.is_empty() {
-        return Err((1, "no data rows (wavelength_nm, value)".into()));
-    }
-    Ok((nm, values))
 }
 
 /// Checks that a spectrum covers the range and has allowed values there.
@@ -261,20 +231,5 @@ fn tabulated_domain(s: &Spectrum) -> Option<(f64, f64)> {
         Spectrum::Tabulated(t) => Some(t.domain_nm()),
         Spectrum::Scaled(_, b) => tabulated_domain(b),
         _ => None,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn csv_skips_comments_and_a_header_and_reports_bad_lines() {
-        let (nm, v) = parse_two_column_csv("# source: x\nwavelength_nm,value\n400,0.1\n500, 0.2\n").unwrap();
-        assert_eq!(nm, vec![400.0, 500.0]);
-        assert_eq!(v, vec![0.1, 0.2]);
-        let e = parse_two_column_csv("400,0.1\n500,abc\n").unwrap_err();
-        assert_eq!(e.0, 2);
-        assert!(parse_two_column_csv("# nothing\n").is_err());
     }
 }

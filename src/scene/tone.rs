@@ -17,12 +17,12 @@
 //! Without any of these keys the PNG is the plain exposure preview, as before. The field of view
 //! is the camera's.
 
-use super::context::{Ctx, R};
 use super::raw::RawOutput;
-use crate::output::png::Exposure;
-use crate::render::Camera;
+use crate::geometry::Camera;
+use crate::tonemap::Exposure;
 use crate::tonemap::region::Region;
 use crate::tonemap::{ToneOptions, ToneSettings};
+use crate::validate::{Ctx, R};
 use std::ops::Range;
 use toml::Value;
 

@@ -18,19 +18,7 @@
 //! E_v ≈ K_m Σ_b E_e(λ_b) ȳ(λ_b) Δλ_b, an unbiased estimate. Columns: `E_lx`, `E_direct_lx`,
 //! `E_indirect_lx`.
 
-use super::Reading;
-use crate::geometry::{Frame, Hit};
-use crate::raypath::{Propagator, RayState};
-use crate::render::Lanes;
-use crate::render::eye::{EyeTracer, Scratch};
-use crate::rng::{Rng, Stream};
-use crate::sampling::cosine_hemisphere;
-use crate::scene::{Scene, WavelengthSampling};
-use crate::spectrum::cie::cmf_1931;
-use crate::spectrum::colour::K_M;
 use glam::DVec3;
-use rayon::prelude::*;
-use std::f64::consts::PI;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct IlluminancePlane {
@@ -51,73 +39,5 @@ impl IlluminancePlane {
     /// The centre of cell (i, j).
     pub fn point(&self, i: usize, j: usize) -> DVec3 {
         self.origin + (i as f64 + 0.5) / self.nx as f64 * self.u + (j as f64 + 0.5) / self.ny as f64 * self.v
-    }
-
-    /// Measures every point; sensor `index` seeds its random streams.
-    pub fn evaluate(&self, scene: &Scene, tracer: &EyeTracer, name: &str, index: u64) -> Reading {
-        let n = self.nx * self.ny;
-        let values: Vec<(f64, f64)> = (0..n)
-            .into_par_iter()
-            .map_init(Scratch::default, |sc, k| {
-                let task = (index << 40) | k as u64;
-                let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, task);
-                self.at(scene, tracer, self.point(k % self.nx, k / self.nx), &mut rng, sc)
-            })
-            .collect();
-        let points = (0..n).map(|k| self.point(k % self.nx, k / self.nx)).collect();
-        let direct: Vec<f64> = values.iter().map(|v| v.0).collect();
-        let indirect: Vec<f64> = values.iter().map(|v| v.1).collect();
-        let total = direct.iter().zip(&indirect).map(|(a, b)| a + b).collect();
-        Reading {
-            name: name.to_string(),
-            quantity: "illuminance",
-            unit: "lx",
-            nx: self.nx,
-            ny: self.ny,
-            points,
-            columns: vec![("E_lx".into(), total), ("E_direct_lx".into(), direct), ("E_indirect_lx".into(), indirect)],
-        }
-    }
-
-    /// Direct and indirect illuminance at `p`, lx.
-    fn at(&self, scene: &Scene, tracer: &EyeTracer, p: DVec3, rng: &mut Rng, sc: &mut Scratch) -> (f64, f64) {
-        let (mut direct, mut indirect) = (0.0, 0.0);
-        let prop = Propagator::new(scene);
-        let here = Hit { t: 0.0, point: p, normal: self.normal, prim: u32::MAX };
-        let medium = scene.medium_at(crate::geometry::spawn_origin(p, self.normal, self.normal));
-        let frame = Frame::from_normal(self.normal);
-        for _ in 0..self.samples {
-            let lanes = Lanes::new(&scene.bands, WavelengthSampling::Bands, rng.uniform());
-            // K_m ȳ(λ) Δλ per lane, divided among the samples: lux per W m⁻² nm⁻¹.
-            let w = scene.bands.width_nm() * K_M / self.samples as f64;
-            let lux: Vec<f64> = lanes.nm[..lanes.len].iter().map(|l| w * cmf_1931(*l)[1]).collect();
-            for light in &scene.lights {
-                let Some(inc) = light.incident(p, rng.uniform2()) else { continue };
-                let cos = inc.wi.dot(self.normal);
-                if cos <= 0.0 {
-                    continue;
-                }
-                let nm = &lanes.nm[..lanes.len];
-                let Some(tr) = prop.shadow(p, Some(&here), inc.wi, inc.dist, medium, nm, rng) else { continue };
-                let s = &light.spectrum().spectrum;
-                for ((l, y), t) in nm.iter().zip(&lux).zip(&tr) {
-                    direct += y * s.eval(*l) * inc.weight * cos * t;
-                }
-            }
-            for _ in 0..self.gather_rays {
-                let d = frame.to_world(cosine_hemisphere(rng.uniform2()));
-                let state = RayState {
-                    position: crate::geometry::spawn_origin(p, self.normal, d),
-                    dir: d,
-                    wavelength_nm: None,
-                    medium,
-                };
-                let l = tracer.gather_radiance(&state, &lanes, rng, sc);
-                for (l, y) in l[..lanes.len].iter().zip(&lux) {
-                    indirect += y * PI * l / self.gather_rays as f64;
-                }
-            }
-        }
-        (direct, indirect)
     }
 }

@@ -6,19 +6,15 @@
 //! (illuminance in lux on a grid, as lighting engineers' calculation surfaces). Irradiance or
 //! radiance sensors (the ocean issue) are new variants producing the same kind of reading.
 //!
-//! Sensors run after the photon pass, reading the same photon maps as the eye pass.
+//! Sensors run after the photon pass, reading the same photon maps as the eye pass; the renderer
+//! evaluates them (`render::sensors`).
 
-mod false_colour;
 mod illuminance_plane;
-mod ocean_profile;
+pub mod ocean_profile;
 
-pub use false_colour::{false_colour_png, viridis};
 pub use illuminance_plane::IlluminancePlane;
 pub use ocean_profile::{OceanProfile, ProfileReading, ProfileRow};
 
-use crate::render::eye::EyeTracer;
-use crate::render::maps::Maps;
-use crate::scene::Scene;
 use glam::DVec3;
 use std::io::{self, Write};
 use std::path::Path;
@@ -52,23 +48,12 @@ pub struct Reading {
     pub columns: Vec<(String, Vec<f64>)>,
 }
 
-/// Mean, minimum, maximum and uniformity U₀ = min/mean of a column.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Stats {
-    pub mean: f64,
-    pub min: f64,
-    pub max: f64,
-    pub uniformity: f64,
-}
+pub use crate::raster::false_colour::Stats;
 
 impl Reading {
     /// Statistics of the first column.
     pub fn stats(&self) -> Stats {
-        let v = &self.columns[0].1;
-        let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
-        let min = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        Stats { mean, min, max, uniformity: if mean > 0.0 { min / mean } else { 0.0 } }
+        Stats::of(&self.columns[0].1)
     }
 
     /// One row per point: i, j, x, y, z (m), then each column.
@@ -91,35 +76,22 @@ impl Reading {
 
     /// The false-colour map of the first column with a colour bar and its statistics.
     pub fn write_png(&self, path: &Path) -> io::Result<()> {
-        false_colour_png(self, path)
+        use crate::raster::false_colour::{ColourMap, Grid, Look, Rows, Scale, write_png};
+        let values = &self.columns[0].1;
+        let stats = self.stats();
+        let grid = Grid { nx: self.nx, ny: self.ny, values, rows: Rows::Upward };
+        let look = Look {
+            scale: Scale::linear_to(stats.max),
+            map: ColourMap::Viridis,
+            unit: self.unit,
+            heading: Some((format!("{} {}", self.name, self.quantity), stats.line(self.unit))),
+            cell: (560 / self.nx.max(1)).min(440 / self.ny.max(1)).max(1),
+            background: crate::raster::WHITE,
+            text: crate::raster::BLACK,
+            text_scale: 1,
+        };
+        write_png(&grid, &look, path)
     }
-}
-
-/// Evaluates every sensor of the scene against the photon maps.
-pub fn evaluate_all(scene: &Scene, maps: &Maps) -> Vec<Reading> {
-    let tracer = EyeTracer::new(scene, maps);
-    scene
-        .sensors
-        .iter()
-        .enumerate()
-        .filter_map(|(i, s)| match &s.sensor {
-            Sensor::IlluminancePlane(p) => Some(p.evaluate(scene, &tracer, &s.name, i as u64)),
-            Sensor::OceanProfile(_) => None,
-        })
-        .collect()
-}
-
-/// Evaluates every ocean profile sensor of the scene against the volume map.
-pub fn evaluate_profiles(scene: &Scene, maps: &Maps) -> Vec<ProfileReading> {
-    scene
-        .sensors
-        .iter()
-        .enumerate()
-        .filter_map(|(i, s)| match &s.sensor {
-            Sensor::OceanProfile(p) => Some(p.evaluate(scene, maps, &s.name, i as u64)),
-            Sensor::IlluminancePlane(_) => None,
-        })
-        .collect()
 }
 
 /// A file-name-safe version of a sensor name.

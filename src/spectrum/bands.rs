@@ -6,6 +6,9 @@ use serde::Serialize;
 pub const MAX_BANDS: usize = 64;
 
 /// `count` equal-width bands covering [min_nm, max_nm].
+/// Per-band values, `bands.count` of them used.
+pub type BandValues = [f64; MAX_BANDS];
+
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Bands {
     pub min_nm: f64,

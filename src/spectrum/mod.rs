@@ -7,18 +7,21 @@
 
 mod bands;
 mod blackbody;
-pub mod check;
 pub mod cie;
 pub mod cie_data;
 pub mod colour;
+pub mod exr;
+mod image;
 mod rgb_sigmoid;
 mod sampler;
 pub mod solar;
 mod solar_data;
+pub mod table;
 mod tabulated;
 
-pub use bands::{Bands, MAX_BANDS};
+pub use bands::{BandValues, Bands, MAX_BANDS};
 pub use blackbody::planck_radiance;
+pub use image::SpectralImage;
 pub use rgb_sigmoid::RgbSigmoid;
 pub use sampler::SpectrumSampler;
 pub use tabulated::Tabulated;

@@ -6,11 +6,11 @@
 //!   luminances, so 1 % of the pixels clip; s = 1 for a black image. Scaling the scene by k
 //!   scales L₉₉ by k, so the displayed image does not change.
 //!
-//! The same rule as the PNG preview of [`crate::output::png`].
+//! The same rule as the PNG preview of [`super::preview`].
 
+use super::preview::AUTO_PERCENTILE;
+pub use super::preview::Exposure;
 use super::{Display, ToneCurve};
-use crate::output::png::AUTO_PERCENTILE;
-pub use crate::output::png::Exposure;
 
 /// y = scale · L.
 #[derive(Clone, Copy, Debug)]

@@ -22,8 +22,8 @@
 use super::matrix::{Mat3, diagonal, invert, mul, mul_vec, xy_to_xyz};
 use super::scene_image::SceneImage;
 use super::spectral_weights::BandWeights;
-use crate::output::exr::{BAND_MAX_ATTRIBUTE, BAND_MIN_ATTRIBUTE};
 use crate::spectrum::colour::linear_srgb_to_xyz;
+use crate::spectrum::exr::{BAND_MAX_ATTRIBUTE, BAND_MIN_ATTRIBUTE};
 use exr::prelude::{AttributeValue, FlatSamples, Text};
 use std::path::Path;
 

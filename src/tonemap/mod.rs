@@ -18,27 +18,24 @@
 //!    comes from rods (Pattanaik) is shown as a grey.
 //! 5. **Display**: XYZ_d → linear sRGB, clipped to [0, 1], sRGB transfer function, 8 bits.
 //!
-//! Or, instead of 2–5, **false colour** ([`false_colour`]): luminance on a log scale with a
+//! Or, instead of 2–5, **false colour** ([`crate::raster::false_colour`]): luminance on a log scale with a
 //! legend. [`region`] exports luminance and illuminance of a pixel rectangle as CSV.
 //!
-//! `morgana tonemap IN.exr --out OUT.png [options]` runs this on a file ([`cli`]); `render` runs
+//! `morgana tonemap IN.exr --out OUT.png [options]` runs this on a file (`crate::cli::tonemap`); `render` runs
 //! it on its own image when `[output]` asks for it ([`write_png`]).
 
 pub mod acuity;
 pub mod blur;
 pub mod chromatic;
 pub mod cie_scotopic_data;
-pub mod cli;
 pub mod delta_e;
 pub mod exposure;
 pub mod exr_read;
-pub mod false_colour;
-pub mod font;
 pub mod foveal;
 pub mod matrix;
 pub mod mesopic;
 pub mod pattanaik;
-pub mod png_out;
+pub mod preview;
 pub mod region;
 pub mod reinhard;
 pub mod scene_image;
@@ -49,10 +46,11 @@ pub mod threshold;
 pub mod ward_histogram;
 pub mod white;
 
+pub use preview::Exposure;
 pub use scene_image::SceneImage;
 pub use settings::{Operator, ToneOptions, ToneSettings};
 
-use crate::output::SpectralImage;
+use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::{srgb_encode, xyz_to_linear_srgb};
 use chromatic::adaptation_matrix;
 use foveal::FovealImage;
@@ -92,10 +90,7 @@ pub struct ToneOutput {
 pub fn tonemap(input: &SceneImage, settings: &ToneSettings) -> ToneOutput {
     if settings.false_colour {
         let lum = input.luminances();
-        let (width, height, rgb) = false_colour::false_colour(&lum, input.width, input.height);
-        let scale = false_colour::LogScale::for_luminance(&lum);
-        let note = format!("false colour: luminance 10^{} to 10^{} cd/m2, log scale", scale.lo_decade, scale.hi_decade);
-        return ToneOutput { width, height, rgb, notes: vec![note] };
+        return false_colour(&lum, input.width, input.height);
     }
     let mut img = input.clone();
     let mut notes = Vec::new();
@@ -106,6 +101,31 @@ pub fn tonemap(input: &SceneImage, settings: &ToneSettings) -> ToneOutput {
     let curve = prepare(&img, &luminance, &rod, settings, &mut notes);
     let rgb = encode(&img, &luminance, &rod, curve.as_ref());
     ToneOutput { width: img.width, height: img.height, rgb, notes }
+}
+
+/// Luminance in cd m⁻² as a meter would read it (before any adaptation or tone mapping), on a
+/// logarithmic scale of whole decades with the luminance ramp and a legend
+/// ([`crate::raster::false_colour`]).
+fn false_colour(lum: &[f64], width: usize, height: usize) -> ToneOutput {
+    use crate::raster::false_colour::{ColourMap, Grid, Look, Rows, Scale, draw};
+    let scale = Scale::log_decades_for(lum);
+    let grid = Grid { nx: width, ny: height, values: lum, rows: Rows::Downward };
+    let look = Look {
+        scale,
+        map: ColourMap::Ramp,
+        unit: "cd/m2",
+        heading: None,
+        cell: 1,
+        background: crate::raster::BLACK,
+        text: crate::raster::WHITE,
+        text_scale: if height >= 160 { 2 } else { 1 },
+    };
+    let canvas = draw(&grid, &look);
+    let note = match scale {
+        Scale::LogDecades { lo, hi } => format!("false colour: luminance 10^{lo} to 10^{hi} cd/m2, log scale"),
+        Scale::Linear { top } => format!("false colour: luminance 0 to {top} cd/m2"),
+    };
+    ToneOutput { width: canvas.width, height: canvas.height, rgb: canvas.pixels.concat(), notes: vec![note] }
 }
 
 /// Step 2: chromatic adaptation of `img` from its scene white to the display white, as
@@ -229,6 +249,6 @@ pub fn write_png(
     settings: &ToneSettings,
 ) -> std::io::Result<Vec<String>> {
     let out = tonemap(&SceneImage::from_spectral(image), settings);
-    png_out::write_rgb8(path, out.width, out.height, &out.rgb)?;
+    crate::raster::png::write_rgb8(path, out.width, out.height, &out.rgb)?;
     Ok(out.notes)
 }

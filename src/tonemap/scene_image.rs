@@ -8,7 +8,7 @@
 
 use super::scotopic::scotopic_from_xyz;
 use super::spectral_weights::BandWeights;
-use crate::output::SpectralImage;
+use crate::spectrum::SpectralImage;
 
 /// Where the scotopic luminance came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use glam::DVec3;
-use morgana::raypath::ode::{Integrator, Method, OdeState, Step};
+use morgana::ode::{Integrator, Method, OdeState, Step};
 
 /// n = n0 + a·y.
 pub fn linear(n0: f64, a: f64) -> impl Fn(DVec3) -> (f64, DVec3) + Copy {

@@ -3,8 +3,9 @@
 #![allow(dead_code)]
 
 use morgana::media::phase::PhaseFunction;
+use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
-use morgana::testing::chi2::{chi2_test, gauss_legendre};
+use morgana::testing::chi2::chi2_test;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! A warm or cold bubble: T += ΔT·(1 − r²/R²)³ for r < R, zero outside; C² at r = R (see
-//! [`crate::media::index::Bump`] for the same kernel on n).
+//! [`crate::field::Bump`] for the same kernel on n).
 
-use crate::media::index::Bump;
+use crate::field::Bump;
 use glam::DVec3;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,9 +1,9 @@
 //! A 3-D temperature perturbation from a lattice file (quantity `delta_temperature_k`, see
-//! [`crate::media::index::grid_file`]): T += ΔT(x), interpolated trilinearly or by Catmull–Rom,
+//! [`crate::field::grid_file`]): T += ΔT(x), interpolated trilinearly or by Catmull–Rom,
 //! and zero outside the lattice. The file's face values must be zero, so the edit fades out where
 //! the lattice ends and n stays continuous there.
 
-use crate::media::index::{Beyond, Interpolation, Lattice};
+use crate::field::{Beyond, Interpolation, Lattice};
 use glam::DVec3;
 
 /// Largest |ΔT| accepted on a face, K.
@@ -27,7 +27,7 @@ impl GridEdit {
             ));
         }
         let (vlo, vhi) = lattice.value_range();
-        let o = crate::media::index::catmull_rom_overshoot(&lattice, interpolation);
+        let o = crate::field::catmull_rom_overshoot(&lattice, interpolation);
         Ok(GridEdit { lattice, interpolation, range: (vlo.min(0.0) - o, vhi.max(0.0) + o) })
     }
 

@@ -6,7 +6,7 @@
 //! radius R; the scene frame puts c at (0, −R, 0), so the observer is at (0, h₀, 0)). A ray
 //! leaves at apparent altitude a above the observer's horizontal plane and follows Fermat's ray
 //! equation d/ds(n dr/ds) = ∇n through the atmosphere's n(λ, x), integrated by Dormand–Prince
-//! RK5(4)7M ([`crate::raypath::ode`]) with a tight tolerance (rtol = atol = 10⁻¹², converged:
+//! RK5(4)7M ([`crate::ode`]) with a tight tolerance (rtol = atol = 10⁻¹², converged:
 //! tests/refraction.rs). Above the atmosphere's top n ≡ 1 and the path is straight, so the
 //! direction d on leaving is the star's true direction; the *true altitude* is its angle above
 //! the observer's horizontal plane, t = atan2(d·û, |d − (d·û)û|) (û the observer's vertical),
@@ -22,7 +22,7 @@
 //!
 //! [`formulas`] holds the classical formulas the traced values are compared with (Bennett 1982,
 //! Saemundsson 1986, their pressure–temperature factor); [`sun`] the apparent shape of the sun
-//! near the horizon; [`report`] the table and CSV of `morgana refraction`; [`cli`] its command
+//! near the horizon; [`report`] the table and CSV of `morgana refraction`
 //! line.
 //!
 //! # References
@@ -30,7 +30,6 @@
 //!   ch. III (the refraction integral, Laplace's series).
 //! - A. T. Young 2004, "Sunset science. IV. Low-altitude refraction", Astron. J. 127:3622.
 
-pub mod cli;
 pub mod formulas;
 pub mod report;
 pub mod sun;

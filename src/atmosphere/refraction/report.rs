@@ -6,8 +6,8 @@
 use super::formulas::{bennett_rad, conditions_factor, saemundsson_rad};
 use super::sun::{Flattening, SUN_DIAMETER_RAD, flattened_disc};
 use super::{ARCSEC_PER_RAD, Outcome, Trace, Tracer};
+use crate::atomic::Staged;
 use crate::error::{Error, Result};
-use crate::output::atomic::Staged;
 use std::fmt::Write as _;
 use std::path::Path;
 

@@ -4,7 +4,7 @@
 
 use crate::atmosphere::{Atmosphere, Earth};
 use crate::error::{Error, Result};
-use crate::raypath::ode::{Integrator, Method, OdeState, RayY, Step};
+use crate::ode::{Integrator, Method, OdeState, RayY, Step};
 use glam::DVec3;
 
 /// Tolerances and limits of the tracer.

@@ -15,8 +15,8 @@ pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
 pub use spherical_exponential::SphericalExponential;
 
+use crate::atomic::Staged;
 use crate::error::{Error, Result};
-use crate::output::atomic::Staged;
 use glam::DVec3;
 
 /// Samples `f` on an `n`-point lattice over [min, max] and writes it as an `.mgrid` file,

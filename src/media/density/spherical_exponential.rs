@@ -7,7 +7,7 @@
 //! 16-point rule with relative error below 10⁻¹² — and delta tracking uses the exact maximum of d
 //! on each piece (at its point closest to the centre).
 
-use crate::testing::chi2::gauss_legendre;
+use crate::quadrature::gauss_legendre;
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -51,8 +51,8 @@ impl Fa7 {
     /// Reads A₀ from a CSV of `lex_nm,A0_per_nm` rows (comment lines start with `#`).
     pub fn from_csv(path: &Path) -> Result<Fa7, String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        let (nm, a0) =
-            crate::scene::parse_two_column_csv(&text).map_err(|(line, e)| format!("{}:{line}: {e}", path.display()))?;
+        let (nm, a0) = crate::spectrum::table::parse_two_column_csv(&text)
+            .map_err(|(line, e)| format!("{}:{line}: {e}", path.display()))?;
         if a0.iter().any(|a| !(a.is_finite() && *a >= 0.0)) {
             return Err(format!("{}: A0 values must be finite and non-negative", path.display()));
         }

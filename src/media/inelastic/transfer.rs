@@ -17,9 +17,9 @@
 //! 16-point Gauss–Legendre quadrature on panels of at most 2 nm.
 
 use super::Inelastic;
-use crate::photon_map::BandValues;
+use crate::quadrature::gauss_legendre;
+use crate::spectrum::BandValues;
 use crate::spectrum::Bands;
-use crate::testing::chi2::gauss_legendre;
 
 /// Spacing of the excitation nodes, nm.
 pub const NODE_STEP_NM: f64 = 1.0;

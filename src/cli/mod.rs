@@ -1,0 +1,66 @@
+//! The `morgana` commands, one file each: what a subcommand reads from its arguments, which
+//! library calls it makes, and what it prints. `main.rs` only parses the command line, calls
+//! [`run`] and turns errors into exit codes (0 success, 2 bad input, 1 internal failure).
+//!
+//! This is the top layer: a command may use any module of the library; nothing in the library
+//! uses a command.
+
+pub mod accuracy;
+pub mod check;
+pub mod colour_check;
+pub mod grid;
+pub mod luminaire;
+pub mod refraction;
+pub mod render;
+pub mod tonemap;
+pub mod trace;
+
+use crate::error::Result;
+use crate::scene::{Scene, default_scene, load_scene_file};
+use std::path::Path;
+
+/// A comma-separated vector of three finite numbers, `x,y,z` (clap's value parser for points
+/// and directions).
+pub fn parse_vec3(s: &str) -> std::result::Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| format!("{e}"))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(format!("expected three finite numbers x,y,z, found \"{s}\"")),
+    }
+}
+
+/// The scene at `path`, or the embedded default scene; its warnings are printed on stderr.
+pub fn load(path: Option<&Path>) -> Result<Scene> {
+    let scene = match path {
+        Some(p) => load_scene_file(p),
+        None => default_scene(),
+    }?;
+    print_warnings(&scene);
+    Ok(scene)
+}
+
+/// Prints a scene's warnings (things that do not stop a run) on stderr.
+pub fn print_warnings(scene: &Scene) {
+    for w in &scene.warnings {
+        eprintln!("morgana: note: {w}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vectors_need_three_finite_numbers() {
+        assert_eq!(parse_vec3("1, -2,3e2"), Ok([1.0, -2.0, 300.0]));
+        assert!(parse_vec3("1,2").is_err());
+        assert!(parse_vec3("1,2,3,4").is_err());
+        assert!(parse_vec3("1,nan,3").is_err());
+        assert!(parse_vec3("1,inf,3").is_err());
+        assert!(parse_vec3("1,x,3").is_err());
+    }
+}

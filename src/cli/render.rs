@@ -1,0 +1,86 @@
+//! `morgana render [SCENE]`: renders a scene (the embedded default scene when none is given)
+//! into `--out`, on one process or on every rank of an MPI job; rank 0 writes the outputs.
+
+use crate::distributed::{self, Comm, MapMemory, Schedule};
+use crate::error::{Error, Result};
+use crate::render::{RenderOptions, render_on};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The command line of `morgana render`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct RenderArgs {
+    /// Scene file (TOML).
+    pub scene: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Photons to emit for each photon map (overrides [integrator] photons and caustic_photons).
+    #[arg(long)]
+    pub photons: Option<u64>,
+    /// Random seed (overrides [integrator] seed).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Worker threads (default: all cores). The output does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// No progress bars.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Photon-map memory each rank may hold, e.g. 8G or 512M (default: what its host has
+    /// available, shared by the ranks there). Every rank holds every map.
+    #[arg(long, value_parser = crate::distributed::budget::parse_bytes)]
+    pub max_map_memory: Option<u64>,
+    /// How rank 0 hands out eye-pass rows under MPI: "dynamic" (guided self-scheduling) or
+    /// "static" (interleaved blocks). The image does not depend on it.
+    #[arg(long, default_value = "dynamic", value_parser = parse_schedule)]
+    pub schedule: Schedule,
+}
+
+/// Renders on every rank of this run's comm (one process, or an MPI job under `mpirun`); rank
+/// 0 writes the outputs and returns the lines to print. Errors are collective: every rank ends
+/// with the same exit code, and only rank 0 prints.
+pub fn run(args: &RenderArgs) -> Result<String> {
+    let start = Instant::now();
+    let map_memory = args.max_map_memory.map_or(MapMemory::Available, MapMemory::Limit);
+    let dist = distributed::Options { map_memory, schedule: args.schedule };
+    let comm = Comm::start()?;
+    let result = render_and_write(&comm, args, &dist, start);
+    let root = comm.is_root();
+    drop(comm); // MPI_Finalize on every rank, also after an error
+    match result {
+        Err(e) if !root => std::process::exit(e.exit_code()),
+        r => r,
+    }
+}
+
+fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options, start: Instant) -> Result<String> {
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = args.threads {
+        if t == 0 {
+            return Err(Error::input(None, "--threads must be at least 1"));
+        }
+        builder = builder.num_threads(t);
+    }
+    let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
+    let scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
+    if comm.is_root() {
+        super::print_warnings(&scene);
+        if comm.size() > 1 && !args.quiet {
+            eprintln!("morgana: {} ranks ({}), eye pass {:?}", comm.size(), comm.kind(), dist.schedule);
+        }
+    }
+    let rendered = pool.install(|| render_on(comm, &scene, &RenderOptions { quiet: args.quiet }, dist))?;
+    let Some(rendered) = rendered else { return Ok(String::new()) };
+    let threads = pool.current_num_threads();
+    let outputs = crate::output::write_outputs(&scene, &rendered, &args.out, threads, start.elapsed().as_secs_f64())?;
+    Ok(outputs.iter().map(|p| format!("wrote {}\n", p.display())).collect())
+}
+
+fn parse_schedule(s: &str) -> std::result::Result<Schedule, String> {
+    match s {
+        "dynamic" => Ok(Schedule::Dynamic),
+        "static" => Ok(Schedule::Static),
+        _ => Err(format!("expected \"dynamic\" or \"static\", found \"{s}\"")),
+    }
+}

@@ -1,0 +1,129 @@
+//! The photon pass as the renderer runs it: shoot, build the maps the effect plan asks for, and
+//! precompute irradiance for final gathering — on one rank or many ([`crate::distributed`]).
+
+use super::progress;
+use super::stats::{MapReport, Phases};
+use crate::distributed::{self, Rank, assemble, photons::Shot};
+use crate::error::Result;
+use crate::photon::MapKind;
+use crate::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
+use crate::scene::Scene;
+use crate::timing::Span;
+
+/// Every stride-th global photon gets a precomputed irradiance estimate (Christensen uses 4).
+pub const IRRADIANCE_STRIDE: usize = 4;
+
+/// The photon maps of a render.
+#[derive(Default)]
+pub struct Maps {
+    pub global: Option<PhotonMap>,
+    pub caustic: Option<PhotonMap>,
+    pub volume: Option<PhotonMap>,
+    pub irradiance: Option<IrradianceCache>,
+}
+
+/// Runs the photon passes the plan asks for, on every rank of `rank`'s comm: each rank shoots
+/// its share of the batches and every rank assembles the whole maps (see
+/// [`crate::distributed`]). Fails, on every rank, if a map would not fit in the rank's budget.
+pub fn build(
+    rank: &mut Rank,
+    scene: &Scene,
+    quiet: bool,
+    phases: &mut Phases,
+    reports: &mut Vec<MapReport>,
+) -> Result<Maps> {
+    let s = &scene.integrator;
+    let plan = &scene.plan;
+    let mut maps = Maps::default();
+    if plan.global_map.on || plan.volume_map.on {
+        let shot = shoot(rank, scene, MapKind::Global, s.photons, "global", quiet, phases);
+        if plan.global_map.on {
+            let (map, report) = build_map(rank, &shot.sink.surface, "global", s.photons, &shot, phases)?;
+            reports.push(report);
+            maps.global = Some(map);
+        }
+        if plan.volume_map.on {
+            let (map, report) = build_map(rank, &shot.sink.volume, "volume", s.photons, &shot, phases)?;
+            reports.push(report);
+            maps.volume = Some(map);
+        }
+    }
+    if plan.caustic_map.on {
+        let shot = shoot(rank, scene, MapKind::Caustic, s.caustic_photons, "caustic", quiet, phases);
+        let (map, report) = build_map(rank, &shot.sink.surface, "caustic", s.caustic_photons, &shot, phases)?;
+        reports.push(report);
+        maps.caustic = Some(map);
+    }
+    if plan.final_gather.on
+        && let Some(global) = &maps.global
+    {
+        let est = Estimator {
+            map: global,
+            k: s.k,
+            max_radius: s.max_radius_m,
+            filter: s.filter,
+            bands: scene.bands,
+            paths: Paths::All,
+        };
+        let (cache, gathered) = assemble::irradiance(rank.comm, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
+        rank.report.irradiance_received_bytes += gathered.received_bytes;
+        maps.irradiance = Some(cache);
+        phases.push("irradiance precompute", gathered.compute);
+        phases.push("irradiance gather", gathered.gather);
+        phases.push("irradiance cache build", gathered.build);
+    }
+    Ok(maps)
+}
+
+/// This rank's share of a pass (statistics summed over ranks), with its time as "NAME photon
+/// tracing".
+fn shoot(
+    rank: &mut Rank,
+    scene: &Scene,
+    kind: MapKind,
+    emitted: u64,
+    name: &str,
+    quiet: bool,
+    phases: &mut Phases,
+) -> Shot {
+    let batches = crate::photon::batch_count(emitted);
+    progress::note(
+        quiet,
+        rank.comm.size(),
+        &format!("{name} photons: {batches} batches over {} ranks", rank.comm.size()),
+    );
+    let t = Span::start();
+    let (_, mine) = distributed::photons::my_share(rank.comm, emitted);
+    let pb = progress::bar(quiet, mine, &format!("{name} photons"));
+    let shot = distributed::photons::shoot(rank.comm, scene, kind, emitted, name, &|n| pb.inc(n));
+    pb.finish_and_clear();
+    phases.add(&format!("{name} photon tracing"), t);
+    rank.report.photons.push(shot.mine.clone());
+    shot
+}
+
+/// The map of every rank's `records`, timed as "NAME map gather" (bounds, encoding, budget check
+/// and all-gather) and "NAME map build" (the kd-tree).
+fn build_map(
+    rank: &mut Rank,
+    records: &[PhotonRecord],
+    name: &str,
+    emitted: u64,
+    shot: &Shot,
+    phases: &mut Phases,
+) -> Result<(PhotonMap, MapReport)> {
+    let (map, gathered) = assemble::photon_map(rank.comm, &mut rank.budget, name, records)?;
+    phases.push(&format!("{name} map gather"), gathered.gather);
+    let build_s = phases.push(&format!("{name} map build"), gathered.build);
+    rank.report.map_received_bytes += gathered.received_bytes;
+    let report = MapReport {
+        map: name.to_string(),
+        emitted,
+        stored: map.len() as u64,
+        memory_bytes: map.memory_bytes() as u64,
+        trace_seconds: shot.mine.trace_seconds,
+        build_seconds: build_s,
+        stats: shot.stats.clone(),
+    };
+    Ok((map, report))
+}

@@ -1,0 +1,163 @@
+//! The one validation context for TOML documents (scenes, atmosphere files): turns spans into
+//! `file:line:column` errors, names the field of a TOML or type error, checks which fields a
+//! typed record uses, and reads values with range checks.
+
+use crate::error::{Error, Location};
+use glam::DVec3;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// The document being validated.
+pub struct Ctx<'a> {
+    pub file: PathBuf,
+    pub source: &'a str,
+    /// Directory that relative paths in the document are resolved against.
+    pub dir: PathBuf,
+}
+
+pub type R<T> = Result<T, Error>;
+
+impl<'a> Ctx<'a> {
+    pub fn new(file: &Path, source: &'a str, dir: &Path) -> Ctx<'a> {
+        Ctx { file: file.to_path_buf(), source, dir: dir.to_path_buf() }
+    }
+
+    /// The location of `span`; the file alone for the empty span at 0 (no place in the text).
+    pub fn loc(&self, span: &Range<usize>) -> Location {
+        if span.is_empty() && span.start == 0 {
+            Location::file(&self.file)
+        } else {
+            Location::at_offset(&self.file, self.source, span.start)
+        }
+    }
+
+    /// A TOML syntax or type error, naming the key written on the offending line (serde's type
+    /// errors do not).
+    pub fn toml_error(&self, e: &toml::de::Error) -> Error {
+        let message = e.message().trim().to_string();
+        let Some(span) = e.span() else {
+            return Error::input(Some(Location::file(&self.file)), message);
+        };
+        let loc = Location::at_offset(&self.file, self.source, span.start);
+        let line = loc.line.and_then(|l| self.source.lines().nth(l - 1)).unwrap_or("");
+        let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
+        let message = match key {
+            Some(k) if !message.contains(&format!("`{k}`")) => format!("field `{k}`: {message}"),
+            _ => message,
+        };
+        Error::input(Some(loc), message)
+    }
+
+    /// An input error at `span`.
+    pub fn err(&self, span: &Range<usize>, message: impl Into<String>) -> Error {
+        Error::input(Some(self.loc(span)), message)
+    }
+
+    /// The value of a required field, or an error at the owner's span.
+    pub fn require<'v, T>(
+        &self,
+        f: &'v Option<Spanned<T>>,
+        name: &str,
+        owner: &Range<usize>,
+        what: &str,
+    ) -> R<&'v Spanned<T>> {
+        f.as_ref().ok_or_else(|| self.err(owner, format!("{what}: missing field `{name}`")))
+    }
+
+    /// Rejects fields present in `present` but absent from `allowed`.
+    pub fn only(&self, present: &[(&str, Option<Range<usize>>)], allowed: &[&str], what: &str) -> R<()> {
+        for (name, span) in present {
+            if let Some(span) = span
+                && !allowed.contains(name)
+            {
+                return Err(self.err(
+                    span,
+                    format!("{what}: field `{name}` is not used here; allowed fields: {}", allowed.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A finite number within [lo, hi] (bounds inclusive unless `open` says otherwise).
+    pub fn number(&self, v: &Spanned<f64>, what: &str, lo: f64, hi: f64, open: bool) -> R<f64> {
+        let x = *v.get_ref();
+        let ok = x.is_finite() && if open { x > lo && x < hi } else { x >= lo && x <= hi };
+        if ok {
+            return Ok(x);
+        }
+        let range = match (open, hi.is_infinite()) {
+            (true, true) => format!("greater than {lo}"),
+            (false, true) => format!("at least {lo}"),
+            (true, false) => format!("strictly between {lo} and {hi}"),
+            (false, false) => format!("between {lo} and {hi}"),
+        };
+        Err(self.err(&v.span(), format!("{what} = {x} is out of range: it must be {range}")))
+    }
+
+    /// A finite number in (lo, hi]: above `lo`, at most `hi`.
+    pub fn number_above(&self, v: &Spanned<f64>, what: &str, lo: f64, hi: f64) -> R<f64> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > lo && x <= hi {
+            return Ok(x);
+        }
+        let range =
+            if hi.is_infinite() { format!("greater than {lo}") } else { format!("greater than {lo} and at most {hi}") };
+        Err(self.err(&v.span(), format!("{what} = {x} is out of range: it must be {range}")))
+    }
+
+    /// An integer within [lo, hi].
+    pub fn integer(&self, v: &Spanned<i64>, what: &str, lo: i64, hi: i64) -> R<i64> {
+        let x = *v.get_ref();
+        if (lo..=hi).contains(&x) {
+            Ok(x)
+        } else {
+            Err(self.err(&v.span(), format!("{what} = {x} is out of range: allowed {lo} to {hi}")))
+        }
+    }
+
+    /// A finite vector.
+    pub fn vec3(&self, v: &Spanned<[f64; 3]>, what: &str) -> R<DVec3> {
+        let a = v.get_ref();
+        if a.iter().all(|x| x.is_finite()) {
+            Ok(DVec3::from_array(*a))
+        } else {
+            Err(self.err(&v.span(), format!("{what} = {a:?} must have three finite numbers")))
+        }
+    }
+
+    /// A finite non-zero vector, normalised.
+    pub fn direction(&self, v: &Spanned<[f64; 3]>, what: &str) -> R<DVec3> {
+        let d = self.vec3(v, what)?;
+        if d.length_squared() > 0.0 {
+            Ok(d.normalize())
+        } else {
+            Err(self.err(&v.span(), format!("{what} must not be the zero vector")))
+        }
+    }
+
+    /// One of the allowed strings.
+    pub fn choice<'s>(&self, v: &'s Spanned<String>, what: &str, allowed: &[&str]) -> R<&'s str> {
+        let s = v.get_ref().as_str();
+        if allowed.contains(&s) {
+            Ok(s)
+        } else {
+            Err(self.err(&v.span(), format!("{what} \"{s}\" is not known; allowed: {}", allowed.join(", "))))
+        }
+    }
+
+    /// A path from the document, resolved relative to its directory.
+    pub fn path(&self, v: &Spanned<String>) -> PathBuf {
+        let p = Path::new(v.get_ref());
+        if p.is_absolute() { p.to_path_buf() } else { self.dir.join(p) }
+    }
+}
+
+/// `(name, span)` pairs of a record's optional fields, for [`Ctx::only`].
+macro_rules! present_fields {
+    ($rec:expr; $($field:ident),* $(,)?) => {
+        [$( (stringify!($field), $rec.$field.as_ref().map(|v| v.span())) ),*]
+    };
+}
+pub(crate) use present_fields;
