@@ -7,10 +7,9 @@ use common::{mean_and_sem, render_with, scene};
 use morgana::sensor::ProfileReading;
 use std::path::PathBuf;
 
+/// The folder of morgana's built-in ocean tables (embedded in the binary; read here as files).
 fn ocean_data() -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ocean");
-    assert!(d.join("pope_fry_1997_water_absorption.csv").is_file(), "shared ocean data missing at {}", d.display());
-    d
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/media/ocean/data")
 }
 
 /// A value of a two-column table, linear between rows (the test's own reader).
@@ -82,8 +81,9 @@ spectrum = "D65"
 irradiance_w_m2 = 100.0
 "#;
 
+/// The ocean scene with morgana's built-in tables (no data_dir).
 fn ocean_scene(extra: &str) -> String {
-    OCEAN_SCENE.replace("DATA", &format!("data_dir = \"{}\"\n{extra}", ocean_data().display()))
+    OCEAN_SCENE.replace("DATA", extra)
 }
 
 #[test]
@@ -122,10 +122,37 @@ fn sea_water_has_the_published_coefficients() {
 }
 
 #[test]
+fn a_data_dir_of_ones_own_tables_replaces_the_built_in_ones() {
+    // The same tables as files give the same medium; one changed value changes it.
+    let dir = std::env::temp_dir().join(format!("morgana_ocean_tables_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in morgana::media::ocean::builtin::TABLES {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let with_dir = |extra: &str| scene(&ocean_scene(&format!("data_dir = \"{}\"\n{extra}", dir.display())));
+    let (built_in, own) = (scene(&ocean_scene("")), with_dir(""));
+    for l in [412.0, 500.0, 650.0] {
+        assert_eq!(built_in.media[0].sigma_t(l), own.media[0].sigma_t(l), "σ_t({l})");
+    }
+    let pf = morgana::media::ocean::builtin::POPE_FRY_FILE;
+    let text = std::fs::read_to_string(dir.join(pf)).unwrap().replace("500,0.0204", "500,0.0304");
+    std::fs::write(dir.join(pf), text).unwrap();
+    let changed = with_dir("");
+    let d = changed.media[0].sigma_t(500.0) - built_in.media[0].sigma_t(500.0);
+    assert!((d - 0.01).abs() < 1e-12, "a_w(500) raised by {d}");
+    // A folder without one of the tables names the file and the way back to the built-in ones.
+    std::fs::remove_file(dir.join(morgana::media::ocean::builtin::BRICAUD_FILE)).unwrap();
+    let e = common::scene_error(&ocean_scene(&format!("data_dir = \"{}\"", dir.display())));
+    assert!(e.contains("test.toml:") && e.contains("bricaud_1998") && e.contains("remove data_dir"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn a_missing_ocean_data_folder_is_a_clear_error() {
     let toml = OCEAN_SCENE.replace("DATA", "data_dir = \"no/such/folder\"");
     let e = common::scene_error(&toml);
-    assert!(e.contains("test.toml:") && e.contains("ocean data folder") && e.contains("data_dir"), "{e}");
+    assert!(e.contains("test.toml:") && e.contains("no/such/folder") && e.contains("not a folder"), "{e}");
+    assert!(e.contains("remove data_dir to use morgana's built-in ocean tables"), "{e}");
     let e = common::scene_error(&OCEAN_SCENE.replace("DATA", "chl_mg_m3 = -1.0"));
     assert!(e.contains("chl_mg_m3") || e.contains("duplicate"), "{e}");
 }

@@ -133,7 +133,7 @@ pub(super) fn phase(
     range: (f64, f64),
 ) -> R<PhaseFunction> {
     let span = v.span();
-    let named = ["isotropic", "rayleigh", "pure_water", "raman"];
+    let named = ["isotropic", "rayleigh", "pure_water", "raman", "petzold"];
     let kind = match v.get_ref() {
         Value::String(s) => {
             return match s.as_str() {
@@ -141,6 +141,7 @@ pub(super) fn phase(
                 "rayleigh" => Ok(PhaseFunction::rayleigh()),
                 "pure_water" => Ok(PhaseFunction::pure_water()),
                 "raman" => Ok(PhaseFunction::raman()),
+                "petzold" => Ok(crate::media::ocean::builtin::petzold()),
                 other => Err(ctx.err(
                     &span,
                     format!(
