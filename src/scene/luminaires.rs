@@ -4,7 +4,7 @@
 //! [[light]]
 //! name = "desk lamp"
 //! type = "luminaire"
-//! file = "../../shared/data/luminaires/ldt/eulumdatpy_sample4.ldt"  # relative to the scene
+//! file = "../luminaires/office_linear_led.ldt"  # relative to the scene
 //! position = [1.0, 2.8, 1.5]   # the photometric centre, m
 //! # orientation: nothing (hanging: nadir −Y, C0 +X), or an aim —
 //! # direction = [0, -1, 0.2] or look_at = [x, y, z], with optional c0_toward = [1, 0, 0] —
