@@ -325,3 +325,30 @@ fn bad_inelastic_components_are_errors_at_their_line() {
     let e = common::scene_error(&base("").replace("inelastic = []\n", "chl_mg_m3 = 1.0\n"));
     assert!(e.contains("chl_mg_m3") && e.contains("type = \"ocean\""), "{e}");
 }
+
+/// The built-in tables are usable by name in any medium: `sigma_a = "pope_fry_1997"` is Pope &
+/// Fry's table (read here from the CSV by the test's own reader) and `phase = "petzold"` is the
+/// built-in average-particle phase function; a wrong name lists the right ones.
+#[test]
+fn builtin_tables_are_named_spectra_and_phase_functions() {
+    let medium = |sigma_a: &str, phase: &str| {
+        OCEAN_SCENE.replace(
+            "type = \"ocean\"\nchl_mg_m3 = 2.0\ncdom_a440_per_m = 0.1\nDATA\n",
+            &format!("sigma_a = {sigma_a}\nsigma_s = 0.1\nphase = {phase}\n"),
+        )
+    };
+    let s = scene(&medium("\"pope_fry_1997\"", "\"petzold\""));
+    let m = &s.media[0];
+    for l in [400.0, 412.5, 551.0, 700.0] {
+        let want = table("pope_fry_1997_water_absorption.csv", l) + 0.1;
+        assert!((m.sigma_t(l) / want - 1.0).abs() < 1e-12, "σ_t({l}) = {} vs {want}", m.sigma_t(l));
+    }
+    let petzold = morgana::media::ocean::builtin::petzold();
+    for mu in [1.0, 0.999, 0.9, 0.0, -1.0] {
+        assert_eq!(m.phase.eval(500.0, mu), petzold.eval(500.0, mu), "p(μ = {mu})");
+    }
+    let e = common::scene_error(&medium("\"pope_fry\"", "\"petzold\""));
+    assert!(e.contains("no spectrum named \"pope_fry\"") && e.contains("pope_fry_1997"), "{e}");
+    let e = common::scene_error(&medium("0.01", "\"petzoldd\""));
+    assert!(e.contains("petzoldd") && e.contains("petzold"), "{e}");
+}
