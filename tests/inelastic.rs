@@ -12,10 +12,9 @@ use morgana::rng::{Rng, Stream};
 use morgana::testing::chi2::chi2_1d;
 use std::path::PathBuf;
 
+/// The folder of morgana's built-in ocean tables (embedded in the binary; read here as files).
 fn ocean_data() -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ocean");
-    assert!(d.join("hawes_1992_cdom_fluorescence_FA7.csv").is_file(), "shared ocean data missing at {}", d.display());
-    d
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/media/ocean/data")
 }
 
 #[test]
@@ -65,7 +64,7 @@ fn raman_sampler_draws_its_density_and_shifts_488_to_about_584() {
     assert!((total - 1.0).abs() < 1e-6, "single band ∫ = {total}");
 }
 
-/// η_Y of Hawes' FA7 by the formula of the shared CSV, with A₀ linear between the table's rows:
+/// η_Y of Hawes' FA7 by the formula of the built-in CSV's header, with A₀ linear between the table's rows:
 /// an implementation independent of the library's.
 fn fa7_formula(rows: &[(f64, f64)], lex: f64, lem: f64) -> f64 {
     let j = rows.windows(2).position(|w| (w[0].0..=w[1].0).contains(&lex));

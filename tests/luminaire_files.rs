@@ -5,7 +5,10 @@
 //!   the raw numbers by a parser and quadrature independent of the reader (relative files state
 //!   only the lamp flux, absolute files none).
 //!
-//! `cargo test --release --test luminaire_files -- --nocapture` prints the mismatches.
+//! `cargo test --release --test luminaire_files -- --nocapture` prints the mismatches. Without
+//! `../shared` these tests skip (tests/common/shared.rs); the CIE LED spectra are the project's own.
+
+mod common;
 
 use morgana::luminaire::{PhotometricType, Photometry, Symmetry, load_file};
 use std::path::PathBuf;
@@ -65,6 +68,9 @@ fn downward_percent(p: &Photometry) -> f64 {
 
 #[test]
 fn eulumdatpy_sample1_isym4_two_lamp_sets() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample1.ldt",
         maker: "Tulux",
@@ -84,6 +90,9 @@ fn eulumdatpy_sample1_isym4_two_lamp_sets() {
 
 #[test]
 fn eulumdatpy_sample2_isym2() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample2.ldt",
         maker: "Regent",
@@ -104,6 +113,9 @@ fn eulumdatpy_sample2_isym2() {
 
 #[test]
 fn eulumdatpy_sample3_isym0() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample3.ldt",
         maker: "Regent",
@@ -121,6 +133,9 @@ fn eulumdatpy_sample3_isym0() {
 
 #[test]
 fn eulumdatpy_sample4_isym4() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample4.ldt",
         maker: "ZUMTOBEL",
@@ -142,6 +157,9 @@ fn eulumdatpy_sample4_isym4() {
 
 #[test]
 fn eulumdatpy_sample5_bom_rotational_absolute() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample5.ldt",
         maker: "ERCO GmbH",
@@ -160,6 +178,9 @@ fn eulumdatpy_sample5_bom_rotational_absolute() {
 
 #[test]
 fn eulumdatpy_sample8_ityp1_fine_gamma() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample8.ldt",
         maker: "LEDiL Oy",
@@ -177,6 +198,9 @@ fn eulumdatpy_sample8_ityp1_fine_gamma() {
 
 #[test]
 fn eulumdatpy_sample10_up_down_pendant() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/eulumdatpy_sample10.ldt",
         maker: "Waldmann",
@@ -194,6 +218,9 @@ fn eulumdatpy_sample10_up_down_pendant() {
 
 #[test]
 fn ledvance_sym_30_crlf() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/ledvance_4058075580596_SYM_30.ldt",
         maker: "LEDVANCE GmbH",
@@ -211,6 +238,9 @@ fn ledvance_sym_30_crlf() {
 
 #[test]
 fn ledvance_asym_8_planes() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     check_ldt(Ldt {
         file: "ldt/ledvance_4058075580657_ASYM_50X110.ldt",
         maker: "LEDVANCE GmbH",
@@ -227,6 +257,9 @@ fn ledvance_asym_8_planes() {
 
 #[test]
 fn ledvance_sym_10_narrow_beam() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/ledvance_4058075580664_SYM_10.ldt",
         maker: "LEDVANCE GmbH",
@@ -244,6 +277,9 @@ fn ledvance_sym_10_narrow_beam() {
 
 #[test]
 fn lidrs_prolicht_20_planes_and_a_wrong_dff() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let p = check_ldt(Ldt {
         file: "ldt/lidrs_prolicht_E30-0019.ldt",
         maker: "Ingemann",
@@ -371,6 +407,9 @@ fn check_ies_flux(rel: &str, p: &Photometry) {
 
 #[test]
 fn aec_italo_absolute_street_light() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let rel = "ies/aec_ITALO_1_5P5_S05_3.140-3M.IES";
     let p = load(rel);
     assert_eq!(p.format, "IES LM-63-2002");
@@ -389,6 +428,9 @@ fn aec_italo_absolute_street_light() {
 
 #[test]
 fn luxion_floodlight_relative_lumens() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let rel = "ies/luxion_floodlight_12W_3000K_54deg.ies";
     let p = load(rel);
     assert_eq!(p.manufacturer, "LUXION");
@@ -404,6 +446,9 @@ fn luxion_floodlight_relative_lumens() {
 
 #[test]
 fn lm63_2002_spec_example_tilt_include() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let rel = "ies/lm63_2002_spec_example_tilt_include.ies";
     let p = load(rel);
     assert_eq!(p.format, "IES LM-63-2002");
@@ -419,6 +464,9 @@ fn lm63_2002_spec_example_tilt_include() {
 
 #[test]
 fn eulumdatrs_absolute_led() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let rel = "ies/eulumdatrs_edge_ABSOLUTE_LED.ies";
     let p = load(rel);
     assert!(p.absolute);

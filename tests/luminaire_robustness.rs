@@ -9,6 +9,8 @@
 //! - The same for this project's TM-33-18, TM-33-23 and GLDF test files (the containers mutated
 //!   as bytes, or rebuilt around a mutated product.xml, EULUMDAT or spectrum entry).
 
+mod common;
+
 use morgana::error::Error;
 use morgana::luminaire::{Photometry, Symmetry, WebSampler, read_bytes, summary};
 use morgana::rng::{Rng, Stream};
@@ -19,7 +21,8 @@ fn shared(rel: &str) -> PathBuf {
 }
 
 fn bytes(rel: &str) -> Vec<u8> {
-    std::fs::read(shared(rel)).unwrap()
+    let path = shared(rel);
+    std::fs::read(&path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
 }
 
 fn read(b: &[u8], name: &str) -> Photometry {
@@ -32,6 +35,9 @@ fn text(rel: &str) -> String {
 
 #[test]
 fn latin1_crlf_a_leading_blank_line_and_junk_after_the_table() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let original = read(&bytes("ldt/eulumdatpy_sample2.ldt"), "a.ldt");
     let t = text("ldt/eulumdatpy_sample2.ldt").replacen("Regent", "Régent Lüchtung", 1);
     let t = format!("\n{t}\nEND OF DATA — exported by hand\n").replace('\n', "\r\n");
@@ -47,6 +53,9 @@ fn latin1_crlf_a_leading_blank_line_and_junk_after_the_table() {
 /// sample3 (Isym 0, γ every 5°) with Dg = 0 and the γ-angles above 90° thinned to every 10°.
 #[test]
 fn uneven_gamma_steps_with_dg_zero() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let original = read(&bytes("ldt/eulumdatpy_sample3.ldt"), "a.ldt");
     let source = text("ldt/eulumdatpy_sample3.ldt");
     let lines: Vec<&str> = source.lines().collect();
@@ -87,6 +96,9 @@ fn uneven_gamma_steps_with_dg_zero() {
 /// sample3's planes C270…C345, C0…C90 written as an Isym 3 file.
 #[test]
 fn isym_3_stores_planes_from_c270() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let original = read(&bytes("ldt/eulumdatpy_sample3.ldt"), "a.ldt");
     let source = text("ldt/eulumdatpy_sample3.ldt");
     let lines: Vec<&str> = source.lines().collect();
@@ -111,6 +123,9 @@ fn isym_3_stores_planes_from_c270() {
 
 #[test]
 fn ies_with_a_bom_blank_lines_latin1_one_long_line_and_junk() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let rel = "ies/aec_ITALO_1_5P5_S05_3.140-3M.IES";
     let original = read(&bytes(rel), "a.ies");
     let t = text(rel).replace("\r\n", "\n");
@@ -190,8 +205,11 @@ fn mutate(src: &[u8], rng: &mut Rng) -> Vec<u8> {
 fn all_files() -> Vec<String> {
     let mut out = Vec::new();
     for dir in ["ies", "ldt"] {
-        for e in std::fs::read_dir(shared(dir)).unwrap() {
-            out.push(format!("{dir}/{}", e.unwrap().file_name().to_string_lossy()));
+        let path = shared(dir);
+        let entries = std::fs::read_dir(&path).unwrap_or_else(|e| panic!("cannot list {}: {e}", path.display()));
+        for e in entries {
+            let e = e.unwrap_or_else(|e| panic!("cannot list {}: {e}", path.display()));
+            out.push(format!("{dir}/{}", e.file_name().to_string_lossy()));
         }
     }
     out.sort();
@@ -200,6 +218,9 @@ fn all_files() -> Vec<String> {
 
 #[test]
 fn mutated_real_files_load_or_fail_cleanly_never_panic() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     // MORGANA_MUTANTS=5000 for a longer search.
     let per_file: u64 = std::env::var("MORGANA_MUTANTS").ok().and_then(|v| v.parse().ok()).unwrap_or(150);
     let (mut ok, mut rejected) = (0, 0);
@@ -245,6 +266,9 @@ fn mutated_real_files_load_or_fail_cleanly_never_panic() {
 
 #[test]
 fn a_truncated_file_names_the_field_it_stopped_in() {
+    if common::shared::shared_data("luminaires").is_none() {
+        return;
+    }
     let t = text("ldt/eulumdatpy_sample10.ldt");
     let cut: String = t.lines().take(20).map(|l| format!("{l}\n")).collect();
     let e = read_bytes(cut.as_bytes(), Path::new("cut.ldt")).unwrap_err().to_string();

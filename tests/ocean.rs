@@ -7,10 +7,9 @@ use common::{mean_and_sem, render_with, scene};
 use morgana::sensor::ProfileReading;
 use std::path::PathBuf;
 
+/// The folder of morgana's built-in ocean tables (embedded in the binary; read here as files).
 fn ocean_data() -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ocean");
-    assert!(d.join("pope_fry_1997_water_absorption.csv").is_file(), "shared ocean data missing at {}", d.display());
-    d
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/media/ocean/data")
 }
 
 /// A value of a two-column table, linear between rows (the test's own reader).
@@ -82,8 +81,9 @@ spectrum = "D65"
 irradiance_w_m2 = 100.0
 "#;
 
+/// The ocean scene with morgana's built-in tables (no data_dir).
 fn ocean_scene(extra: &str) -> String {
-    OCEAN_SCENE.replace("DATA", &format!("data_dir = \"{}\"\n{extra}", ocean_data().display()))
+    OCEAN_SCENE.replace("DATA", extra)
 }
 
 #[test]
@@ -123,10 +123,37 @@ fn sea_water_has_the_published_coefficients() {
 }
 
 #[test]
+fn a_data_dir_of_ones_own_tables_replaces_the_built_in_ones() {
+    // The same tables as files give the same medium; one changed value changes it.
+    let dir = std::env::temp_dir().join(format!("morgana_ocean_tables_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in morgana::media::ocean::builtin::TABLES {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let with_dir = |extra: &str| scene(&ocean_scene(&format!("data_dir = \"{}\"\n{extra}", dir.display())));
+    let (built_in, own) = (scene(&ocean_scene("")), with_dir(""));
+    for l in [412.0, 500.0, 650.0] {
+        assert_eq!(built_in.world.media[0].sigma_t(l), own.world.media[0].sigma_t(l), "σ_t({l})");
+    }
+    let pf = morgana::media::ocean::builtin::POPE_FRY_FILE;
+    let text = std::fs::read_to_string(dir.join(pf)).unwrap().replace("500,0.0204", "500,0.0304");
+    std::fs::write(dir.join(pf), text).unwrap();
+    let changed = with_dir("");
+    let d = changed.world.media[0].sigma_t(500.0) - built_in.world.media[0].sigma_t(500.0);
+    assert!((d - 0.01).abs() < 1e-12, "a_w(500) raised by {d}");
+    // A folder without one of the tables names the file and the way back to the built-in ones.
+    std::fs::remove_file(dir.join(morgana::media::ocean::builtin::BRICAUD_FILE)).unwrap();
+    let e = common::scene_error(&ocean_scene(&format!("data_dir = \"{}\"", dir.display())));
+    assert!(e.contains("test.toml:") && e.contains("bricaud_1998") && e.contains("remove data_dir"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn a_missing_ocean_data_folder_is_a_clear_error() {
     let toml = OCEAN_SCENE.replace("DATA", "data_dir = \"no/such/folder\"");
     let e = common::scene_error(&toml);
-    assert!(e.contains("test.toml:") && e.contains("ocean data folder") && e.contains("data_dir"), "{e}");
+    assert!(e.contains("test.toml:") && e.contains("no/such/folder") && e.contains("not a folder"), "{e}");
+    assert!(e.contains("remove data_dir to use morgana's built-in ocean tables"), "{e}");
     let e = common::scene_error(&OCEAN_SCENE.replace("DATA", "chl_mg_m3 = -1.0"));
     assert!(e.contains("chl_mg_m3") || e.contains("duplicate"), "{e}");
 }
@@ -298,4 +325,31 @@ fn bad_inelastic_components_are_errors_at_their_line() {
     }
     let e = common::scene_error(&base("").replace("inelastic = []\n", "chl_mg_m3 = 1.0\n"));
     assert!(e.contains("chl_mg_m3") && e.contains("type = \"ocean\""), "{e}");
+}
+
+/// The built-in tables are usable by name in any medium: `sigma_a = "pope_fry_1997"` is Pope &
+/// Fry's table (read here from the CSV by the test's own reader) and `phase = "petzold"` is the
+/// built-in average-particle phase function; a wrong name lists the right ones.
+#[test]
+fn builtin_tables_are_named_spectra_and_phase_functions() {
+    let medium = |sigma_a: &str, phase: &str| {
+        OCEAN_SCENE.replace(
+            "type = \"ocean\"\nchl_mg_m3 = 2.0\ncdom_a440_per_m = 0.1\nDATA\n",
+            &format!("sigma_a = {sigma_a}\nsigma_s = 0.1\nphase = {phase}\n"),
+        )
+    };
+    let s = scene(&medium("\"pope_fry_1997\"", "\"petzold\""));
+    let m = &s.world.media[0];
+    for l in [400.0, 412.5, 551.0, 700.0] {
+        let want = table("pope_fry_1997_water_absorption.csv", l) + 0.1;
+        assert!((m.sigma_t(l) / want - 1.0).abs() < 1e-12, "σ_t({l}) = {} vs {want}", m.sigma_t(l));
+    }
+    let petzold = morgana::media::ocean::builtin::petzold();
+    for mu in [1.0, 0.999, 0.9, 0.0, -1.0] {
+        assert_eq!(m.phase.eval(500.0, mu), petzold.eval(500.0, mu), "p(μ = {mu})");
+    }
+    let e = common::scene_error(&medium("\"pope_fry\"", "\"petzold\""));
+    assert!(e.contains("no spectrum named \"pope_fry\"") && e.contains("pope_fry_1997"), "{e}");
+    let e = common::scene_error(&medium("0.01", "\"petzoldd\""));
+    assert!(e.contains("petzoldd") && e.contains("petzold"), "{e}");
 }

@@ -12,7 +12,7 @@
 //! cdom_yield = 0.01            # CDOM yield; omit for FA7's own Γ(λ'), 0 = off
 //! raman = true                 # Raman scattering by water
 //! particle_phase = "petzold"   # or { type = "hg", g = 0.924 }
-//! data_dir = "../shared/data/ocean"   # the shared tables; see below
+//! # data_dir = "my_tables"     # optional: a folder of one's own tables; see below
 //!
 //! [[medium]]
 //! name = "dye"
@@ -26,14 +26,15 @@
 //!
 //! A component's `sigma_a` (fluorescence) or `sigma_s` (Raman) adds to the medium's extinction.
 //! `emission` is `{ type = "gaussian", peak_nm, sigma_nm }` or `{ type = "fa7", file }` (CDOM,
-//! Hawes 1992; `file` defaults to the ocean data folder's FA7 table, `yield` then defaults to
+//! Hawes 1992; `file` defaults to morgana's built-in FA7 table, `yield` then defaults to
 //! FA7's own Γ). A Raman `band` is "walrafen" or `{ shift_cm = 3357, fwhm_cm = .. }`.
 //! `accounting` is "photon_number" (default for fluorescence: energy × λ'/λ) or "energy"
 //! (default for Raman); see `src/media/inelastic/component.rs`.
 //!
-//! The ocean data folder is `data_dir` (relative to the scene file) when given, else the
-//! environment variable `MORGANA_OCEAN_DATA`, else `../shared/data/ocean` beside the morgana
-//! source tree this binary was built from; a missing folder is an error naming what was tried.
+//! The ocean tables are morgana's built-in ones (`src/media/ocean/builtin.rs`, each citing its
+//! source) unless the medium names `data_dir`: a folder (relative to the scene file) holding
+//! files with the built-in tables' names and layout. A missing folder or file is an error
+//! naming it. Nothing is read from outside the binary otherwise (no environment variable).
 
 use super::media::{Table, phase};
 use super::raw::RawMedium;
@@ -41,13 +42,11 @@ use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::media::inelastic::{
     Accounting, BandTransfer, Component, Fa7, GaussianEmission, Process, RamanShift, Redistribution, Yield,
 };
-use crate::media::ocean::{self, OceanParams, ParticlePhase};
+use crate::media::ocean::{self, OceanData, OceanParams, ParticlePhase};
 use crate::media::{Medium, phase::PhaseFunction};
 use crate::spectrum::Bands;
 use crate::validate::present_fields;
 use crate::validate::{Ctx, R};
-use std::ops::Range;
-use std::path::PathBuf;
 use toml::{Spanned, Value};
 
 const OCEAN_FIELDS: &[&str] = &[
@@ -73,34 +72,21 @@ pub fn reject_ocean_fields(ctx: &Ctx, m: &RawMedium, what: &str) -> R<()> {
     Ok(())
 }
 
-/// The folder of the shared ocean tables (see the module documentation).
-pub fn data_dir(ctx: &Ctx, given: Option<&Spanned<String>>, span: &Range<usize>, what: &str) -> R<PathBuf> {
-    let mut tried = Vec::new();
-    let candidates: Vec<PathBuf> = match given {
-        Some(d) => vec![ctx.path(d)],
-        None => {
-            let mut c = Vec::new();
-            if let Some(env) = std::env::var_os("MORGANA_OCEAN_DATA") {
-                c.push(PathBuf::from(env));
-            }
-            c.push(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ocean"));
-            c
-        }
-    };
-    for c in candidates {
-        if c.join(ocean::water::POPE_FRY).is_file() {
-            return Ok(c);
-        }
-        tried.push(c.display().to_string());
+/// Where the ocean tables come from (see the module documentation).
+pub fn data_dir(ctx: &Ctx, given: Option<&Spanned<String>>, what: &str) -> R<OceanData> {
+    let Some(d) = given else { return Ok(OceanData::BuiltIn) };
+    let dir = ctx.path(d);
+    if !dir.is_dir() {
+        return Err(ctx.err(
+            &d.span(),
+            format!(
+                "{what}: data_dir \"{}\" is not a folder (resolved to {}); remove data_dir to use morgana's built-in ocean tables",
+                d.get_ref(),
+                dir.display()
+            ),
+        ));
     }
-    Err(ctx.err(
-        span,
-        format!(
-            "{what}: the ocean data folder was not found (looked for {} in: {}); set data_dir = \"<folder>\" (relative to the scene file) or MORGANA_OCEAN_DATA",
-            ocean::water::POPE_FRY,
-            tried.join(", ")
-        ),
-    ))
+    Ok(OceanData::Folder(dir))
 }
 
 /// `[[medium]] type = "ocean"`.
@@ -110,8 +96,8 @@ pub fn ocean_medium(ctx: &Ctx, m: &RawMedium, kind: &Spanned<String>, name: &str
     let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo, phase, density, chl_mg_m3, cdom_a440_per_m, cdom_slope_per_nm, chl_yield, cdom_yield, raman, particle_phase, data_dir, inelastic);
     ctx.only(&present, OCEAN_FIELDS, &format!("{what} (ocean)"))?;
     let span = kind.span();
-    let dir = data_dir(ctx, m.data_dir.as_ref(), &span, &what)?;
-    let mut p = OceanParams::new(dir);
+    let data = data_dir(ctx, m.data_dir.as_ref(), &what)?;
+    let mut p = OceanParams::new(data);
     let num = |v: &Option<Spanned<f64>>, field: &str, default: f64, hi: f64| -> R<f64> {
         v.as_ref().map_or(Ok(default), |x| ctx.number(x, &format!("{what}: {field}"), 0.0, hi, false))
     };
@@ -260,13 +246,11 @@ fn emission(ctx: &Ctx, owner: &Table, v: Option<Spanned<Value>>, what: &str) -> 
         }
         "fa7" => {
             let t = Table::new(ctx, &v, ewhat.clone(), &["type", "file"])?;
-            let path = match t.t.get("file").and_then(Value::as_str) {
-                Some(f) => ctx.dir.join(f),
-                None => data_dir(ctx, None, &span, &ewhat)?.join(ocean::FA7_TABLE),
+            let fa7 = match t.t.get("file").and_then(Value::as_str) {
+                Some(f) => Fa7::from_csv(&ctx.dir.join(f)),
+                None => OceanData::BuiltIn.fa7(),
             };
-            Fa7::from_csv(&path)
-                .map(|f| Redistribution::Fa7(Box::new(f)))
-                .map_err(|e| ctx.err(&span, format!("{ewhat}: {e}")))
+            fa7.map(|f| Redistribution::Fa7(Box::new(f))).map_err(|e| ctx.err(&span, format!("{ewhat}: {e}")))
         }
         _ => Err(ctx.err(&span, format!("{ewhat}: needs type = \"gaussian\" (peak_nm, sigma_nm) or \"fa7\" (file)"))),
     }

@@ -4,7 +4,7 @@
 //! [[light]]
 //! name = "desk lamp"
 //! type = "luminaire"
-//! file = "../../shared/data/luminaires/ldt/eulumdatpy_sample4.ldt"  # relative to the scene
+//! file = "../luminaires/office_linear_led.ldt"  # relative to the scene
 //! # .ies (LM-63), .ldt (EULUMDAT), .xml (IES TM-33-18/-23) or .gldf; for a GLDF with several
 //! # variants, variant = "id" chooses one (else the first)
 //! position = [1.0, 2.8, 1.5]   # the photometric centre, m

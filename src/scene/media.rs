@@ -5,7 +5,8 @@
 //! name = "fog"
 //! sigma_a = 0.1          # m⁻¹ at density 1 (any spectrum), with sigma_s; or sigma_t with albedo
 //! sigma_s = 0.4
-//! phase = "isotropic"    # "rayleigh", "pure_water", "raman", or { type = "hg", g = 0.8 },
+//! phase = "isotropic"    # "rayleigh", "pure_water", "raman", "petzold" (built-in Mobley et al.
+//!                        # 1993 Table 2, src/media/ocean/data/), or { type = "hg", g = 0.8 },
 //!                        # { type = "schlick", k = 0.5 }, { type = "two_term_hg", w, g1, g2 },
 //!                        # { type = "tabulated", file = "petzold.csv" }, or
 //!                        # { type = "mixture", components = [{ sigma_s = .., phase = .. }, ..] }
@@ -123,7 +124,7 @@ fn elastic(
 }
 
 /// A string names a parameter-free phase function ("isotropic", "rayleigh", "pure_water",
-/// "raman"); a table has `type` — "hg" (g), "schlick" (k, or g), "two_term_hg" (w, g1, g2),
+/// "raman", "petzold": the built-in average-particle table); a table has `type` — "hg" (g), "schlick" (k, or g), "two_term_hg" (w, g1, g2),
 /// "tabulated" (file: CSV of angle_deg, value), "mixture" (components = [{ sigma_s, phase }]).
 pub(super) fn phase(
     ctx: &Ctx,
@@ -133,7 +134,7 @@ pub(super) fn phase(
     range: (f64, f64),
 ) -> R<PhaseFunction> {
     let span = v.span();
-    let named = ["isotropic", "rayleigh", "pure_water", "raman"];
+    let named = ["isotropic", "rayleigh", "pure_water", "raman", "petzold"];
     let kind = match v.get_ref() {
         Value::String(s) => {
             return match s.as_str() {
@@ -141,6 +142,7 @@ pub(super) fn phase(
                 "rayleigh" => Ok(PhaseFunction::rayleigh()),
                 "pure_water" => Ok(PhaseFunction::pure_water()),
                 "raman" => Ok(PhaseFunction::raman()),
+                "petzold" => Ok(crate::media::ocean::builtin::petzold()),
                 other => Err(ctx.err(
                     &span,
                     format!(

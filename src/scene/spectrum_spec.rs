@@ -2,8 +2,9 @@
 //!
 //! A spectrum value is one of:
 //! - a number: the same value at every wavelength;
-//! - a string: a spectrum defined under `[spectra]`, a CIE illuminant ("D65", "A", "E"), or
-//!   "solar": the extraterrestrial solar spectral irradiance (ASTM G173-03, W m⁻² nm⁻¹);
+//! - a string: a spectrum defined under `[spectra]`, a CIE illuminant ("D65", "A", "E"),
+//!   "solar": the extraterrestrial solar spectral irradiance (ASTM G173-03, W m⁻² nm⁻¹), or
+//!   "pope_fry_1997": pure-water absorption a_w, m⁻¹, 380–727.5 nm (built in, Pope & Fry 1997);
 //! - a table with exactly one of `constant = x`, `blackbody_k = T`, `rgb = [r, g, b]`
 //!   (linear sRGB albedo, reflectances only), `illuminant = "D65"`, `nm = [...]` with
 //!   `values = [...]`, or `file = "data.csv"` (two columns: wavelength_nm, value; `#` comments and
@@ -68,11 +69,14 @@ impl SpectrumLibrary<'_> {
         if name == "solar" {
             return Ok(Spectrum::Tabulated(crate::spectrum::solar::extraterrestrial()));
         }
+        if name == "pope_fry_1997" {
+            return Ok(Spectrum::Tabulated(crate::media::ocean::builtin::pope_fry()));
+        }
         let names: Vec<&str> = self.named.keys().map(String::as_str).collect();
         Err(ctx.err(
             span,
             format!(
-                "{what}: no spectrum named \"{name}\"; define it under [spectra] (defined: {}) or use a CIE illuminant (D65, A, E) or \"solar\" (ASTM G173 extraterrestrial, W m⁻² nm⁻¹)",
+                "{what}: no spectrum named \"{name}\"; define it under [spectra] (defined: {}) or use a CIE illuminant (D65, A, E), \"solar\" (ASTM G173 extraterrestrial, W m⁻² nm⁻¹) or \"pope_fry_1997\" (pure-water absorption, m⁻¹)",
                 if names.is_empty() { "none".to_string() } else { names.join(", ") }
             ),
         ))

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod shared;
+
 use morgana::render::{RenderOptions, Rendered, render};
 use morgana::scene::{Scene, load_scene_str};
 use std::path::Path;

@@ -1,5 +1,5 @@
 //! Helpers shared by the phase-function tests: quadrature over the sphere that copes with
-//! forward peaks, a chi-square test binned in log(1 − cos θ), and the shared Petzold table.
+//! forward peaks, a chi-square test binned in log(1 − cos θ), and the built-in Petzold table.
 #![allow(dead_code)]
 
 use morgana::media::phase::PhaseFunction;
@@ -9,16 +9,18 @@ use morgana::testing::chi2::chi2_test;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
-/// The shared Petzold table (next to the repository, in `../shared/data/ocean/`).
+/// morgana's built-in Petzold table (embedded in the binary; read here as a file).
 pub fn petzold_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ocean/petzold_average_particle_phase_function.csv")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/media/ocean/data/petzold_average_particle_phase_function.csv")
 }
 
 /// The Petzold table's (angle °, value sr⁻¹) rows, parsed here independently of the loader.
 pub fn petzold_rows() -> Vec<(f64, f64)> {
-    let text = std::fs::read_to_string(petzold_path()).expect("shared Petzold table");
-    text.lines()
-        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+    let text = std::fs::read_to_string(petzold_path()).expect("built-in Petzold table");
+    let rows: Vec<&str> = text.lines().filter(|l| !l.trim().is_empty() && !l.starts_with('#')).collect();
+    assert_eq!(rows[0], "angle_deg,phase_function_per_sr", "the table's header row");
+    rows[1..]
+        .iter()
         .map(|l| {
             let (a, v) = l.split_once(',').unwrap();
             (a.trim().parse().unwrap(), v.trim().parse().unwrap())
@@ -26,8 +28,9 @@ pub fn petzold_rows() -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The Petzold phase function scenes get by name ("petzold"): the embedded table.
 pub fn petzold() -> PhaseFunction {
-    PhaseFunction::tabulated_csv(&petzold_path()).unwrap_or_else(|e| panic!("{e}"))
+    morgana::media::ocean::builtin::petzold()
 }
 
 /// x = 1 − cos θ for θ in degrees, without cancellation.

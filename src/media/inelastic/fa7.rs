@@ -5,7 +5,7 @@
 //! η_Y(λ' → λ) = A₀(λ') exp{ −[ (1/λ − A₁/λ' − B₁) / (0.6 (A₂/λ' + B₂)) ]² }  (nm⁻¹, λ in nm),
 //!
 //! A₁ = 0.470, A₂ = 0.407, B₁ = 8.077·10⁻⁴ nm⁻¹, B₂ = −4.57·10⁻⁴ nm⁻¹, with A₀(λ') read from the
-//! shared table (`hawes_1992_cdom_fluorescence_FA7.csv`, linear between its rows, zero outside
+//! built-in table (`src/media/ocean/data/hawes_1992_cdom_fluorescence_FA7.csv`, linear between its rows, zero outside
 //! 310–550 nm). The quantum yield is Γ(λ') = ∫ η_Y dλ, the normalised emission spectrum
 //! η_Y/Γ, and the energy redistribution f_Y = η_Y λ'/λ (photon-number accounting).
 //!
@@ -21,7 +21,7 @@
 //! - Hawes, *Factors influencing the variability in the fluorescence signatures of marine
 //!   dissolved organic matter*, MS thesis, University of South Florida (1992), Table 3, FA7.
 //! - Mobley, *Light and Water* (1994), §5.12, Eq. 5.103 and Fig. 5.11; HydroLight's
-//!   `wrfuncs.f` (the constants, as quoted in the shared CSV's header).
+//!   `wrfuncs.f` (the constants and A₀; see the built-in CSV's header).
 
 use crate::rng::Rng;
 use crate::spectrum::{Spectrum, SpectrumSampler, Tabulated};
@@ -51,7 +51,12 @@ impl Fa7 {
     /// Reads A₀ from a CSV of `lex_nm,A0_per_nm` rows (comment lines start with `#`).
     pub fn from_csv(path: &Path) -> Result<Fa7, String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        let (nm, a0) = crate::spectrum::table::parse_two_column_csv(&text)
+        Fa7::from_csv_text(path, &text)
+    }
+
+    /// [`Fa7::from_csv`] of the file's text; `path` names it in errors.
+    pub fn from_csv_text(path: &Path, text: &str) -> Result<Fa7, String> {
+        let (nm, a0) = crate::spectrum::table::parse_two_column_csv(text)
             .map_err(|(line, e)| format!("{}:{line}: {e}", path.display()))?;
         if a0.iter().any(|a| !(a.is_finite() && *a >= 0.0)) {
             return Err(format!("{}: A0 values must be finite and non-negative", path.display()));

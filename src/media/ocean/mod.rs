@@ -1,5 +1,5 @@
-//! Sea water configured by its constituents' concentrations, built from published tables read at
-//! run time (`../shared/data/ocean/`, see its README for provenance).
+//! Sea water configured by its constituents' concentrations, built from published tables that
+//! morgana carries (see [`builtin`] for each table's source), or a scene's own folder of them.
 //!
 //! The medium, at wavelength λ (nm):
 //! - elastic absorption σ_a = a_w + max(0, a_p − a_φ) (water, non-algal particles);
@@ -27,18 +27,16 @@
 //! - Bricaud, Morel & Prieur, "Absorption by dissolved organic matter of the sea (yellow
 //!   substance) in the UV and visible domains", Limnol. Oceanogr. 26 (1981), 43–53.
 
+pub mod builtin;
 pub mod phytoplankton;
 pub mod tables;
 pub mod water;
 
-use super::inelastic::{Accounting, Component, Fa7, GaussianEmission, Process, RamanShift, Redistribution, Yield};
+use super::inelastic::{Accounting, Component, GaussianEmission, Process, RamanShift, Redistribution, Yield};
 use super::phase::{MixtureComponent, PhaseFunction};
 use super::{Coefficients, Medium, density::Density, inelastic::Inelastic};
 use crate::spectrum::{Spectrum, Tabulated};
-use std::path::PathBuf;
-
-pub const FA7_TABLE: &str = "hawes_1992_cdom_fluorescence_FA7.csv";
-pub const PETZOLD_TABLE: &str = "petzold_average_particle_phase_function.csv";
+pub use builtin::OceanData;
 
 /// The particles' phase function.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,14 +58,14 @@ pub struct OceanParams {
     pub cdom_yield: Option<f64>,
     pub raman: bool,
     pub particle_phase: ParticlePhase,
-    /// Folder of the shared ocean tables.
-    pub data_dir: PathBuf,
+    /// Where the tables come from (built in unless the scene names a `data_dir`).
+    pub data: OceanData,
 }
 
 impl OceanParams {
     /// Defaults: clear water (Chl 0.1 mg m⁻³, no CDOM), Φ_C = 0.02, FA7 yield, Raman on,
     /// Petzold particles.
-    pub fn new(data_dir: PathBuf) -> OceanParams {
+    pub fn new(data: OceanData) -> OceanParams {
         OceanParams {
             chl_mg_m3: 0.1,
             cdom_a440_per_m: 0.0,
@@ -76,7 +74,7 @@ impl OceanParams {
             cdom_yield: None,
             raman: true,
             particle_phase: ParticlePhase::Petzold,
-            data_dir,
+            data,
         }
     }
 }
@@ -93,16 +91,15 @@ pub fn raman_coefficient(wavelength_nm: f64) -> f64 {
 
 /// The sea-water medium over wavelengths `range` (nm).
 pub fn sea_water(name: &str, p: &OceanParams, range: (f64, f64)) -> Result<Medium, String> {
-    let dir = &p.data_dir;
-    let water = water::WaterAbsorption::read(dir)?;
-    let bricaud = phytoplankton::Bricaud::read(dir)?;
+    let water = water::WaterAbsorption::read(&p.data)?;
+    let bricaud = phytoplankton::Bricaud::read(&p.data)?;
     let chl = p.chl_mg_m3;
     let grid = |f: &dyn Fn(f64) -> f64| tabulate(range, f);
     let sigma_a = grid(&|l| water.at(l) + (bricaud.particles(chl, l) - bricaud.phytoplankton(chl, l)).max(0.0))?;
     let mut scatterers = vec![MixtureComponent::new(grid(&water::scattering)?, PhaseFunction::pure_water())];
     if chl > 0.0 {
         let phase = match p.particle_phase {
-            ParticlePhase::Petzold => PhaseFunction::tabulated_csv(&dir.join(PETZOLD_TABLE))?,
+            ParticlePhase::Petzold => p.data.petzold()?,
             ParticlePhase::HenyeyGreenstein(g) => PhaseFunction::henyey_greenstein(g)?,
         };
         scatterers.push(MixtureComponent::new(grid(&|l| phytoplankton::scattering(chl, l))?, phase));
@@ -124,7 +121,7 @@ pub fn sea_water(name: &str, p: &OceanParams, range: (f64, f64)) -> Result<Mediu
     let cdom_on = p.cdom_a440_per_m > 0.0 && p.cdom_yield != Some(0.0);
     let a_y = |l: f64| cdom_absorption(p.cdom_a440_per_m, p.cdom_slope_per_nm, l);
     if cdom_on {
-        let fa7 = Fa7::from_csv(&dir.join(FA7_TABLE))?;
+        let fa7 = p.data.fa7()?;
         components.push(Component {
             name: "CDOM fluorescence".into(),
             process: Process::Fluorescence,

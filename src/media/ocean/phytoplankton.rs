@@ -19,11 +19,9 @@
 //! - Loisel & Morel, "Light scattering and chlorophyll concentration in case 1 waters: a
 //!   reexamination", Limnol. Oceanogr. 43 (1998), 847–858.
 
-use super::tables::{clamped, column, numeric_rows};
+use super::builtin::{BRICAUD_FILE, OceanData};
+use super::tables::{clamped, column};
 use crate::spectrum::Tabulated;
-use std::path::Path;
-
-pub const BRICAUD: &str = "bricaud_1998_particle_phytoplankton_absorption.csv";
 
 /// Bricaud's coefficient tables.
 #[derive(Clone, Debug)]
@@ -35,9 +33,8 @@ pub struct Bricaud {
 }
 
 impl Bricaud {
-    pub fn read(dir: &Path) -> Result<Bricaud, String> {
-        let path = dir.join(BRICAUD);
-        let rows = numeric_rows(&path, 5)?;
+    pub fn read(data: &OceanData) -> Result<Bricaud, String> {
+        let (path, rows) = data.rows(BRICAUD_FILE, 5)?;
         Ok(Bricaud {
             ap: column(&path, &rows, 1)?,
             ep: column(&path, &rows, 2)?,

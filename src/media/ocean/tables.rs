@@ -1,5 +1,5 @@
-//! Reading the shared ocean tables (`../shared/data/ocean/`, see its README): every CSV keeps its
-//! provenance header in `#` lines, then a header row, then numbers.
+//! Reading the ocean tables (built in, see [`super::builtin`], or a scene's `data_dir`): every CSV
+//! keeps its provenance header in `#` lines, then a header row, then numbers.
 
 use crate::spectrum::Tabulated;
 use std::path::Path;
@@ -7,12 +7,12 @@ use std::path::Path;
 /// Rows of numbers of a CSV file with at least `columns` columns; `#` lines and non-numeric
 /// rows before the first numeric one (the header) are skipped. Errors name the file and line.
 pub fn numeric_rows(path: &Path, columns: usize) -> Result<Vec<Vec<f64>>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        format!(
-            "cannot read ocean table {}: {e} (set the medium's data_dir to the folder holding the shared ocean tables)",
-            path.display()
-        )
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read ocean table {}: {e}", path.display()))?;
+    numeric_rows_text(path, &text, columns)
+}
+
+/// [`numeric_rows`] of a table's text; `path` names it in errors.
+pub fn numeric_rows_text(path: &Path, text: &str, columns: usize) -> Result<Vec<Vec<f64>>, String> {
     let mut rows = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();

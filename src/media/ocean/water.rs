@@ -13,12 +13,9 @@
 //! - Morel, "Optical properties of pure water and pure sea water" (1974); Mobley, *Light and
 //!   Water* (1994), §3.6.
 
-use super::tables::{clamped, column, numeric_rows};
+use super::builtin::{OceanData, POPE_FRY_FILE, SMITH_BAKER_FILE};
+use super::tables::clamped;
 use crate::spectrum::Tabulated;
-use std::path::Path;
-
-pub const POPE_FRY: &str = "pope_fry_1997_water_absorption.csv";
-pub const SMITH_BAKER: &str = "smith_baker_1981_water_absorption.csv";
 
 /// The two absorption tables.
 #[derive(Clone, Debug)]
@@ -28,13 +25,11 @@ pub struct WaterAbsorption {
 }
 
 impl WaterAbsorption {
-    pub fn read(dir: &Path) -> Result<WaterAbsorption, String> {
-        let load = |name: &str| {
-            let path = dir.join(name);
-            let rows = numeric_rows(&path, 2)?;
-            column(&path, &rows, 1)
-        };
-        Ok(WaterAbsorption { pope_fry: load(POPE_FRY)?, smith_baker: load(SMITH_BAKER)? })
+    pub fn read(data: &OceanData) -> Result<WaterAbsorption, String> {
+        Ok(WaterAbsorption {
+            pope_fry: data.column(POPE_FRY_FILE, 2, 1)?,
+            smith_baker: data.column(SMITH_BAKER_FILE, 2, 1)?,
+        })
     }
 
     /// a_w(λ), m⁻¹.

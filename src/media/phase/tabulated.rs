@@ -21,9 +21,10 @@
 //! below it. The power law of the first segment is extended from θ₀ down to θ_c = θ₀/1000, and
 //! the value is held constant below θ_c (so the density stays finite at θ = 0, which a
 //! camera looking straight into a sunbeam will evaluate). For Petzold (β ∝ θ^−1.347 below
-//! 0.1°) this puts 5.18 % of the scattering below 0.1° and 0.019 % below θ_c = 10⁻⁴°, where
-//! p = 1.95·10⁷ sr⁻¹. The table's published normalisation supports the extension: the table
-//! integrates to 0.9925 with it and to 0.941 without it. [`TabulatedPhase::fraction_below_first_angle`] reports the share.
+//! 0.1°) this puts 5.19 % of the scattering below 0.1° and 0.019 % below θ_c = 10⁻⁴°, where
+//! p = 1.95·10⁷ sr⁻¹. The table's normalisation supports the extension: the built-in copy
+//! (`src/media/ocean/data/`, renormalised by its transcriber) integrates to 0.9995 with it and to
+//! 0.948 without it. [`TabulatedPhase::fraction_below_first_angle`] reports the share.
 //!
 //! # Normalisation and sampling
 //! The interpolated table is divided by its integral over the sphere (the raw integral is kept
@@ -80,7 +81,12 @@ impl TabulatedPhase {
     /// non-comment line may be a header. Errors name the file and line.
     pub fn from_csv(path: &Path) -> Result<TabulatedPhase, String> {
         let text = std::fs::read_to_string(path).map_err(|e| read_error_message(path, &e))?;
-        let (lines, angles, values) = parse_csv(path, &text)?;
+        Self::from_csv_text(path, &text)
+    }
+
+    /// [`TabulatedPhase::from_csv`] of the file's text; `path` names it in errors.
+    pub fn from_csv_text(path: &Path, text: &str) -> Result<TabulatedPhase, String> {
+        let (lines, angles, values) = parse_csv(path, text)?;
         Self::build(&angles, &values).map_err(|e| match e.row {
             Some(i) => format!("{}:{}: {}", path.display(), lines[i], e.message),
             None => format!("{}: {}", path.display(), e.message),
