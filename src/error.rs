@@ -82,8 +82,10 @@ pub enum Error {
 }
 
 impl Error {
+    /// Bad input at `location`; words of the message longer than [`MAX_ECHOED_CHARS`] (a
+    /// 100 KB string or a 309-digit number echoed from the input) are shortened.
     pub fn input(location: Option<Location>, message: impl Into<String>) -> Self {
-        Error::Input(InputError { location, message: message.into() })
+        Error::Input(InputError { location, message: clip_long_words(&message.into()) })
     }
 
     pub fn internal(message: impl Into<String>) -> Self {
@@ -118,9 +120,83 @@ impl From<InputError> for Error {
 
 pub type Result<T> = std::result::Result<T, Error>;
 
+/// The longest word of an input error's message echoed whole; longer ones keep their first
+/// [`ECHOED_HEAD_CHARS`] characters and say how long they were.
+pub const MAX_ECHOED_CHARS: usize = 200;
+/// See [`MAX_ECHOED_CHARS`].
+pub const ECHOED_HEAD_CHARS: usize = 60;
+
+fn clip_long_words(message: &str) -> String {
+    if message.chars().count() <= MAX_ECHOED_CHARS {
+        return message.to_string();
+    }
+    let mut out = String::with_capacity(message.len().min(4 * MAX_ECHOED_CHARS));
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let n = word.chars().count();
+        if n > MAX_ECHOED_CHARS {
+            out.extend(word.chars().take(ECHOED_HEAD_CHARS));
+            out.push_str(&format!("… ({n} characters)"));
+        } else {
+            out.push_str(word);
+        }
+        word.clear();
+    };
+    for c in message.chars() {
+        if c.is_whitespace() {
+            flush(&mut word, &mut out);
+            out.push(c);
+        } else {
+            word.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
+/// Reads a text file that must be UTF-8; invalid UTF-8 is an input error at the line and
+/// column of the first bad byte. `what` names the file's role ("scene file").
+pub fn read_utf8(path: &Path, what: &str) -> Result<String> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read {what}: {e}")))?;
+    String::from_utf8(bytes).map_err(|e| {
+        let good = e.utf8_error().valid_up_to();
+        let text = String::from_utf8_lossy(&e.as_bytes()[..good]).into_owned();
+        let (line, column) = line_column(&text, good);
+        Error::input(
+            Some(Location { file: path.to_path_buf(), line: Some(line), column: Some(column) }),
+            format!("{what} is not valid UTF-8 here (byte 0x{:02X}); save it as UTF-8", e.as_bytes()[good]),
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_words_are_clipped_and_short_messages_kept() {
+        let long = "x".repeat(100_000);
+        let e = Error::input(None, format!("field `name`: invalid value \"{long}\""));
+        let text = e.to_string();
+        assert!(text.len() < 200, "{}", text.len());
+        assert!(text.contains("(100002 characters)"), "{text}");
+        assert!(text.starts_with("field `name`: invalid value \"xxx"), "{text}");
+        let short = Error::input(None, "missing field `camera`").to_string();
+        assert_eq!(short, "missing field `camera`");
+    }
+
+    #[test]
+    fn invalid_utf8_is_located() {
+        let path = std::env::temp_dir().join(format!("morgana-utf8-{}.toml", std::process::id()));
+        std::fs::write(&path, b"a = 1\nb = \"\xFF\"\n").unwrap();
+        let e = read_utf8(&path, "scene file").unwrap_err();
+        std::fs::remove_file(&path).ok();
+        let Error::Input(e) = e else { panic!("an input error") };
+        let loc = e.location.expect("a location");
+        assert_eq!((loc.line, loc.column), (Some(2), Some(6)));
+        assert!(e.message.contains("0xFF"), "{}", e.message);
+    }
 
     #[test]
     fn line_column_counts_from_one_and_in_characters() {

@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 use morgana::cli;
+use std::io::Write;
 
 #[derive(Parser)]
 #[command(name = "morgana", version, about = "Spectral light transport through media that bend and re-colour light")]
@@ -49,7 +50,14 @@ fn main() {
         Command::Trace(args) => cli::trace::run(&args),
     };
     match result {
-        Ok(text) => print!("{text}"),
+        Ok(text) => {
+            // A closed pipe or a full disk is reported, not a panic (print! would panic).
+            let mut out = std::io::stdout().lock();
+            if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+                eprintln!("morgana: cannot write to standard output: {e}");
+                std::process::exit(1);
+            }
+        }
         Err(e) => {
             eprintln!("morgana: {e}");
             std::process::exit(e.exit_code());

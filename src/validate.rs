@@ -40,8 +40,15 @@ impl<'a> Ctx<'a> {
             return Error::input(Some(Location::file(&self.file)), message);
         };
         let loc = Location::at_offset(&self.file, self.source, span.start);
+        // The key is named only for an error on one `key = value` line: not for one spanning
+        // the document (a missing table) and never from a comment.
+        let whole_document = span.start == 0 && span.end >= self.source.trim_end().len();
         let line = loc.line.and_then(|l| self.source.lines().nth(l - 1)).unwrap_or("");
-        let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| !k.is_empty() && !k.starts_with('['));
+        let line = line.split('#').next().unwrap_or("");
+        let key = line
+            .split_once('=')
+            .map(|(k, _)| k.trim())
+            .filter(|k| !whole_document && !k.is_empty() && !k.starts_with('[') && !k.contains(['"', ' ']));
         let message = match key {
             Some(k) if !message.contains(&format!("`{k}`")) => format!("field `{k}`: {message}"),
             _ => message,

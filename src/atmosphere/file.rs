@@ -60,8 +60,7 @@ pub enum Files<'a> {
 
 /// Loads and validates an atmosphere file.
 pub fn load(path: &Path) -> Result<Atmosphere> {
-    let source = std::fs::read_to_string(path)
-        .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read atmosphere file: {e}")))?;
+    let source = crate::error::read_utf8(path, "atmosphere file")?;
     let dir = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     load_str(&source, path, &Files::Dir(dir))
 }

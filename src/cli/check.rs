@@ -9,11 +9,16 @@ use std::path::PathBuf;
 pub struct CheckArgs {
     /// Scene file (TOML); the embedded default scene when omitted.
     pub scene: Option<PathBuf>,
+    /// The output directory a render would write to: checked too (created by `render`, not by
+    /// `check`).
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
 }
 
 /// The text `morgana check` prints.
 pub fn run(args: &CheckArgs) -> Result<String> {
     let scene = super::load(args.scene.as_deref())?;
+    crate::output::check_destination(&scene, &args.out, false)?;
     let mut out = format!("{}: valid\n", scene.label());
     out.push_str(&format!(
         "  {}x{} pixels, {} bands over {}–{} nm ({:?} sampling), {} lights, {} shapes\n",
@@ -26,6 +31,7 @@ pub fn run(args: &CheckArgs) -> Result<String> {
         scene.world.lights.len(),
         scene.world.shapes.len()
     ));
+    out.push_str(&format!("  outputs: {} in {}\n", scene.output_file_names().join(", "), args.out.display()));
     out.push_str("effect plan:\n");
     out.push_str(&scene.plan.to_string());
     Ok(out)

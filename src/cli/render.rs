@@ -21,7 +21,7 @@ pub struct RenderArgs {
     /// Random seed (overrides [integrator] seed).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Worker threads (default: all cores). The output does not depend on it.
+    /// Worker threads (default: all cores; at most 1024). The output does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
     /// No progress bars.
@@ -54,16 +54,30 @@ pub fn run(args: &RenderArgs) -> Result<String> {
     }
 }
 
+/// The most worker threads `--threads` may ask for.
+pub const MAX_THREADS: usize = 1024;
+
 fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options, start: Instant) -> Result<String> {
+    if let Some(n) = args.photons {
+        crate::scene::check_photons_override(n)?;
+    }
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
-        if t == 0 {
-            return Err(Error::input(None, "--threads must be at least 1"));
+        if !(1..=MAX_THREADS).contains(&t) {
+            return Err(Error::input(
+                None,
+                format!(
+                    "--threads {t} is out of range: it must be between 1 and {MAX_THREADS} (the output does not depend on it)"
+                ),
+            ));
         }
         builder = builder.num_threads(t);
     }
     let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
     let scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
+    // Rank 0 writes the outputs: it checks where, before any work, and every rank learns.
+    let destination = if comm.is_root() { crate::output::check_destination(&scene, &args.out, true) } else { Ok(()) };
+    distributed::fault::agree(comm, destination)?;
     if comm.is_root() {
         super::print_warnings(&scene);
         if comm.size() > 1 && !args.quiet {
@@ -72,6 +86,9 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
     }
     let rendered = pool.install(|| render_on(comm, &scene, &RenderOptions { quiet: args.quiet }, dist))?;
     let Some(rendered) = rendered else { return Ok(String::new()) };
+    for w in &rendered.stats.warnings {
+        eprintln!("morgana: note: {w}");
+    }
     let threads = pool.current_num_threads();
     let outputs = crate::output::write_outputs(&scene, &rendered, &args.out, threads, start.elapsed().as_secs_f64())?;
     Ok(outputs.iter().map(|p| format!("wrote {}\n", p.display())).collect())

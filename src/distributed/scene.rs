@@ -66,9 +66,7 @@ fn read(path: Option<&Path>) -> Result<SceneText> {
     match path {
         None => Ok(SceneText { file: None, cwd, text: DEFAULT_SCENE.to_string() }),
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| {
-                Error::input(Some(crate::error::Location::file(p)), format!("cannot read scene file: {e}"))
-            })?;
+            let text = crate::error::read_utf8(p, "scene file")?;
             Ok(SceneText { file: Some(p.display().to_string()), cwd, text })
         }
     }

@@ -155,7 +155,8 @@ fn header(l: &mut Lines) -> Result<Header, ParseError> {
     }
     let (dff, _) = l.number(&field("22", "DFF, downward flux fraction, %"), 0.0, 100.0)?;
     let (lorl, _) = l.number(&field("23", "LORL, light output ratio luminaire, %"), 0.0, 100.0)?;
-    let (conversion, _) = l.number(&field("24", "conversion factor for luminous intensities"), 0.0, f64::INFINITY)?;
+    let (conversion, _) =
+        l.number(&field("24", "conversion factor for luminous intensities"), 0.0, super::MAX_MULTIPLIER)?;
     let (tilt_deg, _) = l.number(&field("25", "tilt of luminaire during measurement, °"), -180.0, 180.0)?;
     Ok(Header {
         company,
@@ -275,7 +276,7 @@ fn intensities(tok: &mut Tokens, h: &Header, c: &[f64], g: &[f64]) -> Result<Vec
         let mut values = Vec::with_capacity(h.ng);
         for gj in g {
             let what = field("30", &format!("luminous intensity at C{}° γ{gj}°, cd/1000 lm", c[i]));
-            values.push(tok.number_in(&what, 0.0, f64::INFINITY)?.0);
+            values.push(tok.number_in(&what, 0.0, super::MAX_TABLE_VALUE)?.0);
         }
         planes.push((c[i], values));
     }

@@ -183,7 +183,7 @@ fn params(tok: &mut Tokens) -> Result<Params, ParseError> {
             "a positive number, or -1 for absolute photometry",
         ));
     }
-    let (multiplier, line) = tok.number_in("LM-63 candela multiplier", 0.0, f64::INFINITY)?;
+    let (multiplier, line) = tok.number_in("LM-63 candela multiplier", 0.0, super::MAX_MULTIPLIER)?;
     positive(multiplier, line, "LM-63 candela multiplier")?;
     let (nv, _) = tok.integer_in("LM-63 number of vertical angles", 2, 3601)?;
     let (nh, _) = tok.integer_in("LM-63 number of horizontal angles", 1, 3601)?;
@@ -242,7 +242,7 @@ fn table(tok: &mut Tokens, h: &[f64], v: &[f64]) -> Result<Vec<Plane>, ParseErro
         let mut row = Vec::with_capacity(v.len());
         for vj in v {
             let field = format!("LM-63 candela value at horizontal angle {hi}°, vertical angle {vj}°");
-            row.push(tok.number_in(&field, 0.0, f64::INFINITY)?.0);
+            row.push(tok.number_in(&field, 0.0, super::MAX_TABLE_VALUE)?.0);
         }
         planes.push((*hi, row));
     }

@@ -144,6 +144,13 @@ pub struct Reader {
 }
 
 /// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt, .eul), …").
+/// The largest intensity-table value a photometric file may hold (cd, or cd/klm): a thousand
+/// times the brightest searchlights (~10⁹ cd). Larger values are input errors at their line,
+/// so that no multiplier can carry a table to infinity.
+pub const MAX_TABLE_VALUE: f64 = 1e12;
+/// The largest candela multiplier or conversion factor a photometric file may state.
+pub const MAX_MULTIPLIER: f64 = 1e6;
+
 pub fn supported_formats() -> String {
     Format::ALL
         .iter()

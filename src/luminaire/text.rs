@@ -170,7 +170,8 @@ pub fn range_text(lo: f64, hi: f64, integer: bool) -> String {
 
 /// A number as a person would write it (no trailing ".0" noise beyond what is needed).
 pub fn fmt_num(x: f64) -> String {
-    format!("{x}")
+    let a = x.abs();
+    if a != 0.0 && a.is_finite() && !(1e-6..1e15).contains(&a) { format!("{x:e}") } else { format!("{x}") }
 }
 
 #[cfg(test)]

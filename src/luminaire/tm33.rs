@@ -245,13 +245,14 @@ fn raw_intensity(n: Node) -> Result<RawIntensity, ParseError> {
     };
     let nh = count("NumberHorz", 1, "the number of horizontal angles (planes), 1 to 3601")?;
     let nv = count("NumberVert", 2, "the number of vertical angles, 2 to 3601")?;
-    let multiplier = child(n, "Multiplier").map(|m| xml::number(m, W, f64::MIN_POSITIVE, f64::INFINITY)).transpose()?;
+    let multiplier =
+        child(n, "Multiplier").map(|m| xml::number(m, W, f64::MIN_POSITIVE, super::MAX_MULTIPLIER)).transpose()?;
     let mut values = Vec::with_capacity((nh * nv).min(1 << 20));
     for d in children(n, "IntData") {
         values.push(IntValue {
             h: xml::attr_number(d, "h", W, -180.0, 360.0)?,
             v: xml::attr_number(d, "v", W, -90.0, 180.0)?,
-            cd: xml::number(d, W, 0.0, f64::INFINITY)?,
+            cd: xml::number(d, W, 0.0, super::MAX_TABLE_VALUE)?,
             line: xml::line(d),
         });
     }
@@ -270,7 +271,8 @@ fn raw_intensity(n: Node) -> Result<RawIntensity, ParseError> {
 
 fn raw_spectrum(s: Node) -> Result<RawSpectrum, ParseError> {
     let number = xml::integer(xml::require(s, "NumberWavelength", W, "the number of PwrData values")?, W, 2, 100_000)?;
-    let multiplier = child(s, "Multiplier").map(|m| xml::number(m, W, 0.0, f64::INFINITY)).transpose()?.unwrap_or(1.0);
+    let multiplier =
+        child(s, "Multiplier").map(|m| xml::number(m, W, 0.0, super::MAX_MULTIPLIER)).transpose()?.unwrap_or(1.0);
     let quantum =
         child(s, "Quantum").map(|q| xml::number(q, W, 0.0, f64::INFINITY)).transpose()?.is_some_and(|q| q != 0.0);
     let mut samples = Vec::new();

@@ -35,6 +35,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+/// The largest bending |k|·L of the test ray (its slope at the end is k·L).
+pub const MAX_BENDING: f64 = 100.0;
+
 /// The test ray: n = 1 + k·y, launched at the origin along +x, followed for `length_m`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Problem {
@@ -43,7 +46,9 @@ pub struct Problem {
 }
 
 impl Problem {
-    /// Checks k (finite, nonzero) and the length (finite, > 0, at most 10⁸ m).
+    /// Checks k (finite, nonzero), the length (finite, > 0, at most 10⁸ m) and the bending
+    /// |k|·L ≤ [`MAX_BENDING`] (beyond it the ray is within a fraction of a degree of vertical and
+    /// a fixed-step integrator's work grows without bound).
     pub fn new(k_per_m: f64, length_m: f64) -> Result<Problem> {
         if !(k_per_m.is_finite() && k_per_m != 0.0) {
             return Err(Error::input(
@@ -55,6 +60,16 @@ impl Problem {
             return Err(Error::input(
                 None,
                 format!("--length-m: found {length_m}; expected a path length in (0, 1e8] m"),
+            ));
+        }
+        if k_per_m.abs() * length_m > MAX_BENDING {
+            return Err(Error::input(
+                None,
+                format!(
+                    "--k {k_per_m} with --length-m {length_m}: |k|·L = {:.3e} is more than {MAX_BENDING} (the ray would turn to within {:.2}° of vertical); use a smaller gradient or a shorter path",
+                    k_per_m.abs() * length_m,
+                    (1.0 / MAX_BENDING).atan().to_degrees()
+                ),
             ));
         }
         Ok(Problem { k_per_m, length_m })

@@ -68,6 +68,12 @@ pub fn render_on(
     let quiet = opts.quiet || !comm.is_root();
     let mut stats = RenderStats::default();
     let maps = photon_pass::build(&mut rank, scene, quiet, &mut stats.phases, &mut stats.maps)?;
+    for m in stats.maps.iter().filter(|m| m.emitted > 0 && m.stored == 0) {
+        stats.warnings.push(format!(
+            "the {} photon map stored none of its {} photons: they all escaped or were absorbed before reaching what stores them, so the image lacks that light (check the lights' positions, directions and targets)",
+            m.map, m.emitted
+        ));
+    }
     if let Some(c) = &maps.irradiance {
         stats.irradiance_points = c.len() as u64;
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;

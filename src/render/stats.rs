@@ -18,6 +18,10 @@ pub struct MapReport {
 
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct RenderStats {
+    /// Things the run found that the user should know (e.g. a photon map the plan asked for
+    /// that stored no photon), printed on stderr and kept in `report.json`.
+    #[serde(rename = "run_warnings", skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     pub phases: Phases,
     pub maps: Vec<MapReport>,
     pub rays: RayCounts,

@@ -18,7 +18,10 @@ mod spectrum_spec;
 mod tone;
 
 pub use plan::{Decision, EffectPlan};
-pub use settings::{DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, Method, OutputSettings, WavelengthSampling};
+pub use settings::{
+    DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, MAX_PHOTONS, Method, OutputSettings, WavelengthSampling,
+    check_photons_override,
+};
 
 use crate::atmosphere::Earth;
 use crate::error::{Error, Location, Result};
@@ -35,6 +38,13 @@ use glam::DVec3;
 use raw::RawScene;
 use spectrum_spec::SpectrumLibrary;
 use std::path::{Path, PathBuf};
+
+/// The name of the run report every render writes.
+pub const REPORT_FILE: &str = "report.json";
+
+/// The longest output file name a scene may ask for, in bytes: file systems allow 255, and the
+/// staged temporary name adds a dot, the process id and a counter (see [`crate::atomic`]).
+pub const MAX_OUTPUT_NAME_BYTES: usize = 200;
 
 /// The embedded default scene: a spectral Cornell box with a glass and a mirror sphere.
 pub const DEFAULT_SCENE: &str = include_str!("default.toml");
@@ -80,6 +90,38 @@ impl Scene {
         self.plan.curved_paths.on.then_some(&self.integrator.curved)
     }
 
+    /// The names of the files a render of this scene writes, in the order they are written
+    /// (`report.json` last): the spectral EXR, the PNG, the region and pixel CSVs as
+    /// `[output]` asks, and each sensor's files.
+    pub fn output_file_names(&self) -> Vec<String> {
+        let o = &self.output;
+        let mut names = Vec::new();
+        let mut add = |on: bool, name: String| {
+            if on {
+                names.push(name);
+            }
+        };
+        add(o.exr, format!("{}.exr", o.name));
+        add(o.png, format!("{}.png", o.name));
+        add(o.region.is_some(), format!("{}.region.csv", o.name));
+        add(o.csv, format!("{}.csv", o.name));
+        for s in &self.sensors {
+            let stem = format!("{}_{}", o.name, crate::sensor::file_stem(&s.name));
+            match s.sensor {
+                crate::sensor::Sensor::IlluminancePlane(_) => {
+                    add(true, format!("{stem}.csv"));
+                    add(true, format!("{stem}.png"));
+                }
+                crate::sensor::Sensor::OceanProfile(_) => {
+                    add(true, format!("{stem}.csv"));
+                    add(true, format!("{stem}_derived.csv"));
+                }
+            }
+        }
+        names.push(REPORT_FILE.to_string());
+        names
+    }
+
     /// A short label for messages and reports: the file path or "default scene".
     pub fn label(&self) -> String {
         self.file.as_ref().map_or_else(|| "<embedded default scene>".to_string(), |p| p.display().to_string())
@@ -88,8 +130,7 @@ impl Scene {
 
 /// Loads and validates a scene file.
 pub fn load_scene_file(path: &Path) -> Result<Scene> {
-    let source = std::fs::read_to_string(path)
-        .map_err(|e| Error::input(Some(Location::file(path)), format!("cannot read scene file: {e}")))?;
+    let source = crate::error::read_utf8(path, "scene file")?;
     let dir = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene").to_string();
     let mut scene = load_scene_str(&source, path, &dir, &stem)?;
@@ -125,6 +166,16 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let mut warnings = Vec::new();
     for (i, rec) in raw.light.iter().enumerate() {
         let l = lights::light(ctx, &lib, rec, i, &bands, &geometry_bounds)?;
+        let power = l.light.power_w();
+        if !(power.is_finite() && power >= 0.0) {
+            return Err(ctx.err(
+                &rec.span(),
+                format!(
+                    "light \"{}\": its power over the scene's wavelengths is {power} W; give a finite emission and a light of non-zero size",
+                    l.name
+                ),
+            ));
+        }
         if let Light::Area(a) = &l.light {
             let material = match &l.material {
                 None => None,
@@ -181,8 +232,26 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         sensors,
         warnings,
     };
+    check_output_names(ctx, raw, &scene)?;
     aim_beams(&mut scene);
     Ok(scene)
+}
+
+/// Every file a render would write must have a name the file system takes (at most
+/// [`MAX_OUTPUT_NAME_BYTES`]); the error points at `[output] name` (or the scene, when the name
+/// came from the file's own).
+fn check_output_names(ctx: &Ctx, raw: &RawScene, scene: &Scene) -> Result<()> {
+    let Some(long) = scene.output_file_names().into_iter().find(|n| n.len() > MAX_OUTPUT_NAME_BYTES) else {
+        return Ok(());
+    };
+    let span = raw.output.as_ref().and_then(|o| o.get_ref().name.as_ref()).map_or(0..0, |n| n.span());
+    Err(ctx.err(
+        &span,
+        format!(
+            "[output] name: the output file \"{long}\" would be {} bytes long; file names are limited to {MAX_OUTPUT_NAME_BYTES} bytes here (shorten name or the sensor names)",
+            long.len()
+        ),
+    ))
 }
 
 /// Where paths curve, lights at infinity aimed at a target get a projection map (see

@@ -99,7 +99,17 @@ pub fn field(
         "atmosphere" => {
             let t = Table::new(ctx, v, iwhat.clone(), &keys(&["file", "name"]))?;
             let a = match (t.t.get("file").and_then(Value::as_str), t.t.get("name").and_then(Value::as_str)) {
-                (Some(f), None) => crate::atmosphere::load(&ctx.dir.join(f))?,
+                (Some(f), None) => {
+                    // A file that cannot be read is this field's error; an error inside a file that
+                    // can is located in that file.
+                    let path = ctx.dir.join(f);
+                    if let Err(e) = std::fs::metadata(&path) {
+                        return Err(
+                            ctx.err(&span, format!("{iwhat}: cannot read the atmosphere file {}: {e}", path.display()))
+                        );
+                    }
+                    crate::atmosphere::load(&path)?
+                }
                 (None, Some(n)) => {
                     crate::atmosphere::Atmosphere::builtin(n).map_err(|e| ctx.err(&span, format!("{iwhat}: {e}")))?
                 }

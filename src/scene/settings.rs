@@ -47,6 +47,28 @@ pub enum Method {
     Path,
 }
 
+/// The wavelengths a scene may simulate, nm: from the vacuum ultraviolet to the far infrared.
+pub const MIN_WAVELENGTH_NM: f64 = 1.0;
+/// See [`MIN_WAVELENGTH_NM`].
+pub const MAX_WAVELENGTH_NM: f64 = 100_000.0;
+
+/// The most photons a map may emit (2⁴⁰), in a scene file and on the command line alike.
+pub const MAX_PHOTONS: u64 = 1 << 40;
+
+/// Checks a `--photons` override: 1 to [`MAX_PHOTONS`] (a scene switches a map off with
+/// `photons = 0` in `[integrator]`, not from the command line).
+pub fn check_photons_override(n: u64) -> crate::error::Result<()> {
+    if (1..=MAX_PHOTONS).contains(&n) {
+        return Ok(());
+    }
+    Err(crate::error::Error::input(
+        None,
+        format!(
+            "--photons {n} is out of range: it must be between 1 and {MAX_PHOTONS} (2^40) photons per map; to switch a map off set photons = 0 or caustic_photons = 0 in [integrator]"
+        ),
+    ))
+}
+
 #[derive(Clone, Debug, Serialize)]
 pub struct IntegratorSettings {
     pub method: Method,
@@ -135,8 +157,9 @@ pub fn output(
     };
     let span = o.span();
     let o = o.get_ref();
-    let min_nm = o.min_nm.as_ref().map_or(Ok(380.0), |v| ctx.number(v, "min_nm", 0.0, f64::INFINITY, true))?;
-    let max_nm = o.max_nm.as_ref().map_or(Ok(780.0), |v| ctx.number(v, "max_nm", 0.0, f64::INFINITY, true))?;
+    let nm = |v: &Spanned<f64>, what: &str| ctx.number(v, what, MIN_WAVELENGTH_NM, MAX_WAVELENGTH_NM, false);
+    let min_nm = o.min_nm.as_ref().map_or(Ok(380.0), |v| nm(v, "min_nm"))?;
+    let max_nm = o.max_nm.as_ref().map_or(Ok(780.0), |v| nm(v, "max_nm"))?;
     let count = o.bands.as_ref().map_or(Ok(16), |v| ctx.integer(v, "bands", 1, MAX_BANDS as i64))? as usize;
     let bands = Bands::new(min_nm, max_nm, count).map_err(|e| ctx.err(&span, format!("[output]: {e}")))?;
     let sampling = match &o.sampling {
@@ -222,8 +245,9 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
             _ => Method::PhotonMap,
         };
     }
-    s.photons = int(&r.photons, "photons", 0, 1 << 40, s.photons as i64)? as u64;
-    s.caustic_photons = int(&r.caustic_photons, "caustic_photons", 0, 1 << 40, s.caustic_photons as i64)? as u64;
+    s.photons = int(&r.photons, "photons", 0, MAX_PHOTONS as i64, s.photons as i64)? as u64;
+    s.caustic_photons =
+        int(&r.caustic_photons, "caustic_photons", 0, MAX_PHOTONS as i64, s.caustic_photons as i64)? as u64;
     s.k = int(&r.k, "k", 1, 100_000, s.k as i64)? as usize;
     s.caustic_k = int(&r.caustic_k, "caustic_k", 1, 100_000, s.caustic_k as i64)? as usize;
     s.volume_k = int(&r.volume_k, "volume_k", 1, 100_000, s.volume_k as i64)? as usize;

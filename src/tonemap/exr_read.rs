@@ -36,12 +36,37 @@ pub fn read_exr(path: &Path) -> Result<SceneImage, String> {
         other => format!("not a readable OpenEXR file ({other}); give an EXR written by morgana render"),
     })?;
     let chroma = image.attributes.chromaticities;
+    for layer in &image.layer_data {
+        check_finite(layer)?;
+    }
     if let Some(layer) = image.layer_data.iter().find(|l| !spectral_channels(l).is_empty()) {
         return read_spectral(layer);
     }
     match image.layer_data.first() {
         Some(layer) => read_tristimulus(layer, chroma),
         None => Err("the file has no image layer".into()),
+    }
+}
+
+/// Refuses a layer holding NaN or infinite samples, naming the first (pixel and channel) and
+/// how many there are: a tone-mapped picture of them would be meaningless.
+fn check_finite(layer: &FlatLayer) -> Result<(), String> {
+    let w = layer.size.0.max(1);
+    let mut first = None;
+    let mut count = 0usize;
+    for c in &layer.channel_data.list {
+        for (p, v) in c.sample_data.values_as_f32().enumerate() {
+            if !v.is_finite() {
+                count += 1;
+                first.get_or_insert((p % w, p / w, c.name.to_string(), v));
+            }
+        }
+    }
+    match first {
+        None => Ok(()),
+        Some((x, y, channel, v)) => Err(format!(
+            "pixel ({x}, {y}) of channel {channel} is {v}, and {count} samples in all are not finite; the tone mapper needs finite radiance"
+        )),
     }
 }
 

@@ -1,0 +1,252 @@
+//! Regressions of issue 15: hostile or extreme input and faults found by trying morgana as a new
+//! user would. Each test is named after what broke; each failed before its fix. The command
+//! line is run as a user runs it (the built `morgana` binary), and every refusal must be exit
+//! code 2 with a message naming the flag, file or field — never a panic, a hang or a partial
+//! output.
+
+mod common;
+
+use morgana::render::{RenderOptions, render};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+const SCENE: &str = r#"[camera]
+position = [0.0, 1.0, 3.0]
+look_at = [0.0, 0.5, 0.0]
+fov_deg = 40.0
+width = 4
+height = 4
+
+[integrator]
+photons = 2000
+caustic_photons = 2000
+spp = 1
+gather_rays = 2
+
+[[material]]
+name = "white"
+type = "lambertian"
+reflectance = 0.7
+
+[[shape]]
+type = "quad"
+origin = [-1.0, 0.0, -1.0]
+u = [0.0, 0.0, 2.0]
+v = [2.0, 0.0, 0.0]
+material = "white"
+
+[[light]]
+type = "point"
+position = [0.0, 2.0, 0.0]
+spectrum = { blackbody_k = 4000 }
+power_w = 10.0
+"#;
+
+/// A fresh scratch directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("morgana-hostile-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn morgana(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_morgana")).current_dir(dir).args(args).output().expect("run morgana")
+}
+
+/// Runs `args` in `dir` and asserts exit code 2 with every one of `wants` in the message and
+/// no panic.
+fn refused(dir: &Path, args: &[&str], wants: &[&str]) -> String {
+    let out = morgana(dir, args);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    for w in wants {
+        assert!(err.contains(w), "{args:?}: missing {w:?} in: {err}");
+    }
+    err
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .map(|r| r.map(|e| e.unwrap().file_name().to_string_lossy().to_string()).collect())
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+#[test]
+fn photons_beyond_the_cap_are_refused_not_rendered_forever() {
+    let d = scratch("photons");
+    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    refused(&d, &["render", "s.toml", "--photons", "18446744073709551615", "--quiet"], &["--photons", "2^40"]);
+    refused(&d, &["render", "s.toml", "--photons", "0", "--quiet"], &["--photons 0"]);
+    assert!(!d.join("out").exists(), "no output directory for a refused run");
+}
+
+#[test]
+fn a_hundred_thousand_threads_are_refused() {
+    let d = scratch("threads");
+    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    refused(&d, &["render", "s.toml", "--threads", "100000", "--quiet"], &["--threads 100000", "1024"]);
+}
+
+#[test]
+fn accuracy_refuses_a_gradient_that_would_wind_the_ray_up() {
+    let d = scratch("accuracy");
+    refused(&d, &["accuracy", "--k", "1e300", "--quick"], &["--k", "|k|·L"]);
+}
+
+#[test]
+fn grid_refuses_a_billion_octaves_and_takes_negative_corners() {
+    let d = scratch("grid");
+    refused(&d, &["grid", "--out", "g.mgrid", "--octaves", "1000000000"], &["--octaves 1000000000", "24"]);
+    assert!(!d.join("g.mgrid").exists());
+    // The book's own example: clap must not read "-1,-1,-1" as a flag.
+    let out = morgana(&d, &["grid", "--out", "smoke.mgrid", "--res", "8", "--min", "-1,-1,-1", "--max", "1,1,1"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(d.join("smoke.mgrid").exists());
+}
+
+#[test]
+fn check_refuses_max_nm_1e308_at_once() {
+    let d = scratch("max-nm");
+    std::fs::write(d.join("s.toml"), format!("{SCENE}\n[output]\nmax_nm = 1e308\n")).unwrap();
+    refused(&d, &["check", "s.toml"], &["s.toml:", "max_nm"]);
+}
+
+#[test]
+fn a_full_or_closed_stdout_is_an_error_not_a_panic() {
+    let d = scratch("stdout");
+    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full");
+    let out = Command::new(env!("CARGO_BIN_EXE_morgana"))
+        .current_dir(&d)
+        .args(["check", "s.toml"])
+        .stdout(Stdio::from(full))
+        .output()
+        .expect("run morgana");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot write to standard output"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn output_problems_are_found_before_the_render() {
+    let d = scratch("out");
+    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    // --out naming a file.
+    std::fs::write(d.join("afile"), "x").unwrap();
+    refused(&d, &["render", "s.toml", "--out", "afile", "--quiet"], &["afile", "names a file"]);
+    refused(&d, &["check", "s.toml", "--out", "afile"], &["afile", "names a file"]);
+    // A directory where an output file goes (the render used to leave the EXR and no report).
+    std::fs::create_dir_all(d.join("o").join("s.png")).unwrap();
+    refused(&d, &["render", "s.toml", "--out", "o", "--quiet"], &["s.png", "directory is in the way"]);
+    assert_eq!(files_in(&d.join("o")), vec!["s.png".to_string()], "nothing written beside the obstacle");
+    // An [output] name too long for the file system, which `check` used to call valid.
+    let long = "n".repeat(300);
+    std::fs::write(d.join("long.toml"), format!("{SCENE}\n[output]\nname = \"{long}\"\n")).unwrap();
+    refused(&d, &["check", "long.toml"], &["long.toml:", "[output] name", "bytes"]);
+    refused(&d, &["render", "long.toml", "--quiet"], &["[output] name"]);
+}
+
+#[test]
+fn outputs_are_all_or_nothing_when_any_one_cannot_be_written() {
+    let scene = common::scene(&format!("{SCENE}\n[output]\nname = \"r\"\ncsv = true\n"));
+    let rendered = render(&scene, &RenderOptions { quiet: true });
+    let names = scene.output_file_names();
+    assert_eq!(names, ["r.exr", "r.png", "r.csv", "report.json"]);
+    for (k, name) in names.iter().enumerate() {
+        let d = scratch(&format!("commit-{k}"));
+        // A non-empty directory where output k goes: its rename fails after the others staged
+        // (and, for k > 0, after earlier ones were renamed into place).
+        std::fs::create_dir_all(d.join(name).join("keep")).unwrap();
+        let r = morgana::output::write_outputs(&scene, &rendered, &d, 1, 0.0);
+        let e = r.expect_err("a blocked output must fail the whole write");
+        assert!(e.to_string().contains(name.as_str()), "{e}");
+        assert_eq!(files_in(&d), vec![name.clone()], "output {k} ({name}) blocked: only the obstacle may remain");
+        assert_eq!(files_in(&d.join(name)), vec!["keep".to_string()]);
+    }
+}
+
+#[test]
+fn a_missing_atmosphere_file_names_the_scene_line_and_field() {
+    let d = scratch("atmosphere");
+    let scene = format!(
+        "{SCENE}\n[world]\nmedium = \"air\"\n\n[[medium]]\nname = \"air\"\nsigma_a = 0.0\nsigma_s = 0.0\nindex = {{ type = \"atmosphere\", file = \"nowhere.toml\" }}\n"
+    );
+    std::fs::write(d.join("s.toml"), scene).unwrap();
+    let err = refused(&d, &["check", "s.toml"], &["s.toml:", "nowhere.toml", "index"]);
+    assert!(!err.starts_with("morgana: nowhere.toml"), "{err}");
+}
+
+#[test]
+fn a_comment_with_an_equals_sign_is_never_named_as_a_field() {
+    let d = scratch("comment");
+    std::fs::write(d.join("s.toml"), "# radiance L_e = 2 W m-2 sr-1\n[output]\nbands = 4\n").unwrap();
+    let err = refused(&d, &["check", "s.toml"], &["camera"]);
+    assert!(!err.contains("# radiance"), "{err}");
+}
+
+#[test]
+fn invalid_utf8_is_located() {
+    let d = scratch("utf8");
+    let mut bytes = SCENE.as_bytes().to_vec();
+    let at = SCENE.find("white").unwrap();
+    bytes[at] = 0xFF;
+    std::fs::write(d.join("s.toml"), bytes).unwrap();
+    refused(&d, &["check", "s.toml"], &["s.toml:15:9:", "UTF-8", "0xFF"]);
+}
+
+#[test]
+fn long_strings_and_numbers_are_not_echoed_whole() {
+    let d = scratch("long");
+    let long = "x".repeat(100_000);
+    std::fs::write(d.join("s.toml"), SCENE.replace("type = \"lambertian\"", &format!("type = \"{long}\""))).unwrap();
+    let err = refused(&d, &["check", "s.toml"], &["s.toml:", "characters)"]);
+    assert!(err.len() < 2000, "{} bytes echoed", err.len());
+    let digits = "9".repeat(309);
+    std::fs::write(d.join("n.toml"), SCENE.replace("power_w = 10.0", &format!("power_w = {digits}"))).unwrap();
+    let err = refused(&d, &["check", "n.toml"], &["n.toml:"]);
+    assert!(err.len() < 2000, "{} bytes echoed", err.len());
+}
+
+#[test]
+fn a_luminaire_value_of_1e308_names_its_line() {
+    let d = scratch("ies");
+    let ies = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 0\n0 45 90\n0\n100 1e308 10\n";
+    std::fs::write(d.join("l.ies"), ies).unwrap();
+    refused(&d, &["luminaire", "l.ies"], &["l.ies:7", "1e308"]);
+}
+
+#[test]
+fn lights_of_infinite_power_are_refused_and_maps_that_store_nothing_are_noted() {
+    let d = scratch("power");
+    let area = "[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = [-0.1, 1.9, -0.1]\nu = [0.2, 0.0, 0.0]\nv = [0.0, 0.0, 0.2]\nspectrum = 1e300\nscale = 1e300\n";
+    std::fs::write(d.join("inf.toml"), format!("{SCENE}\n{area}")).unwrap();
+    refused(&d, &["check", "inf.toml"], &["inf.toml:", "light"]);
+    // A light far beyond the scene: its photons never reach the plate, and the run says so.
+    std::fs::write(d.join("far.toml"), SCENE.replace("position = [0.0, 2.0, 0.0]", "position = [0.0, -1e300, 0.0]"))
+        .unwrap();
+    let out = morgana(&d, &["render", "far.toml", "--quiet"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("stored none of its"), "{err}");
+}
+
+#[test]
+fn tonemap_refuses_nan_and_infinite_pixels() {
+    let d = scratch("tonemap");
+    let mut image = morgana::spectrum::SpectralImage {
+        width: 2,
+        height: 2,
+        bands: morgana::spectrum::Bands::new(400.0, 700.0, 2).unwrap(),
+        data: vec![0.1; 8],
+        rgb: vec![0.1; 12],
+    };
+    image.data[5] = f32::NAN;
+    morgana::spectrum::exr::write_spectral_exr(&d.join("nan.exr"), &image).unwrap();
+    refused(&d, &["tonemap", "nan.exr", "--out", "nan.png"], &["nan.exr", "pixel (0, 1)", "NaN"]);
+    assert!(!d.join("nan.png").exists());
+}
