@@ -25,7 +25,8 @@ pub struct RawAtmosphere {
     pub name: S<String>,
     /// `base`: the base atmosphere, `"usa76"`.
     pub base: S<String>,
-    /// `profile`: instead of `base`, a CSV table `altitude_m,temperature_k,pressure_pa`, relative to the file.
+    /// `profile`: instead of `base`, a CSV table `altitude_m,temperature_k,pressure_pa`, relative
+    /// to the file.
     pub profile: S<String>,
     /// `dispersion`: K(λ) of air, `"ciddor"` or `"cauchy_born_wolf"`.
     pub dispersion: S<String>,
@@ -62,7 +63,8 @@ pub struct RawEdit {
     pub centre: S<[f64; 3]>,
     /// `[[edit]] radius_m`: radius of a bubble, m.
     pub radius_m: S<f64>,
-    /// `[[edit]] file`: lattice file of a grid edit (quantity `delta_temperature_k`), relative to the file.
+    /// `[[edit]] file`: lattice file of a grid edit (quantity `delta_temperature_k`), relative to
+    /// the file.
     pub file: S<String>,
     /// `[[edit]] interpolation`: `"tricubic"` or `"trilinear"` (grid edits).
     pub interpolation: S<String>,

@@ -23,7 +23,8 @@ pub struct TableProfile {
 }
 
 impl TableProfile {
-    /// From rows (altitude m, temperature K, pressure Pa): altitudes strictly increasing, T and P positive.
+    /// From rows (altitude m, temperature K, pressure Pa): altitudes strictly increasing, T and P
+    /// positive.
     pub fn new(altitude_m: Vec<f64>, temperature_k: Vec<f64>, pressure_pa: Vec<f64>) -> Result<TableProfile, String> {
         if let Some(i) = temperature_k.iter().position(|t| t.is_nan() || *t <= 0.0) {
             return Err(format!("row {}: temperature {} K must be positive", i + 1, temperature_k[i]));

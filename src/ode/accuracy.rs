@@ -92,7 +92,8 @@ pub struct Plan {
     pub rk4_steps_m: Vec<f64>,
     /// Timing samples per configuration (the median is reported).
     pub samples: usize,
-    /// Shortest duration of one timing sample, s (the integration is repeated until it lasts this long).
+    /// Shortest duration of one timing sample, s (the integration is repeated until it lasts this
+    /// long).
     pub min_sample_s: f64,
     /// Rescale v to |v| = n after each step (see [`crate::ode::Integrator::with_projection`]).
     pub project: bool,

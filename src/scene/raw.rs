@@ -48,15 +48,18 @@ pub struct RawScene {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawWorld {
-    /// `[world] medium`: name of the `[[medium]]` filling space outside every closed shape, or `"vacuum"`.
+    /// `[world] medium`: name of the `[[medium]]` filling space outside every closed shape, or
+    /// `"vacuum"`.
     pub medium: S<String>,
-    /// `[world] earth`: `"flat"` or `"spherical"`; how heights of index fields and densities are measured.
+    /// `[world] earth`: `"flat"` or `"spherical"`; how heights of index fields and densities are
+    /// measured.
     pub earth: S<String>,
     /// `[world] earth_radius_m`: radius R of the spherical Earth, m (centre at (0, −R, 0)).
     pub earth_radius_m: S<f64>,
 }
 
-/// `[[medium]]`: a participating medium; plain coefficients, `type = "ocean"`, or both with `inelastic`.
+/// `[[medium]]`: a participating medium; plain coefficients, `type = "ocean"`, or both with
+/// `inelastic`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawMedium {
@@ -66,15 +69,18 @@ pub struct RawMedium {
     pub sigma_a: S<toml::Value>,
     /// `[[medium]] sigma_s`: scattering coefficient at density 1, m⁻¹ (a spectrum value).
     pub sigma_s: S<toml::Value>,
-    /// `[[medium]] sigma_t`: extinction coefficient at density 1, m⁻¹ (a spectrum value; with `albedo`).
+    /// `[[medium]] sigma_t`: extinction coefficient at density 1, m⁻¹ (a spectrum value; with
+    /// `albedo`).
     pub sigma_t: S<toml::Value>,
-    /// `[[medium]] albedo`: single-scattering albedo σ_s/σ_t (a spectrum value in [0, 1]; with `sigma_t`).
+    /// `[[medium]] albedo`: single-scattering albedo σ_s/σ_t (a spectrum value in [0, 1]; with
+    /// `sigma_t`).
     pub albedo: S<toml::Value>,
     /// `[[medium]] phase`: phase function, a name or a table with `type`.
     pub phase: S<toml::Value>,
     /// `[[medium]] density`: spatial density multiplying the coefficients, a table with `type`.
     pub density: S<toml::Value>,
-    /// `[[medium]] index`: refractive-index field light curves along, a number or a table with `type`.
+    /// `[[medium]] index`: refractive-index field light curves along, a number or a table with
+    /// `type`.
     pub index: S<toml::Value>,
     /// `type = "ocean"` builds sea water from the fields below (src/scene/inelastic.rs).
     #[serde(rename = "type")]
@@ -87,13 +93,16 @@ pub struct RawMedium {
     pub cdom_slope_per_nm: S<f64>,
     /// `[[medium]] chl_yield` (ocean): chlorophyll fluorescence quantum yield (0 = off).
     pub chl_yield: S<f64>,
-    /// `[[medium]] cdom_yield` (ocean): CDOM fluorescence quantum yield (omitted: FA7's own Γ(λ′); 0 = off).
+    /// `[[medium]] cdom_yield` (ocean): CDOM fluorescence quantum yield (omitted: FA7's own Γ(λ′);
+    /// 0 = off).
     pub cdom_yield: S<f64>,
     /// `[[medium]] raman` (ocean): whether water Raman scattering is on.
     pub raman: S<bool>,
-    /// `[[medium]] particle_phase` (ocean): phase function of the particles (`"petzold"` or a table).
+    /// `[[medium]] particle_phase` (ocean): phase function of the particles (`"petzold"` or a
+    /// table).
     pub particle_phase: S<toml::Value>,
-    /// `[[medium]] data_dir` (ocean): folder of tables replacing the built-in ones, relative to the scene file.
+    /// `[[medium]] data_dir` (ocean): folder of tables replacing the built-in ones, relative to the
+    /// scene file.
     pub data_dir: S<String>,
     /// Inelastic components of any medium: an array of tables.
     pub inelastic: S<toml::Value>,
@@ -129,7 +138,8 @@ pub struct RawOutput {
     pub min_nm: S<f64>,
     /// `[output] max_nm`: long end of the simulated wavelength range, nm.
     pub max_nm: S<f64>,
-    /// `[output] sampling`: `"bands"` (one jittered wavelength per band) or `"hero"` (4 stratified per path).
+    /// `[output] sampling`: `"bands"` (one jittered wavelength per band) or `"hero"` (4 stratified
+    /// per path).
     pub sampling: S<String>,
     /// `[output] exr`: write the spectral EXR.
     pub exr: S<bool>,
@@ -139,7 +149,8 @@ pub struct RawOutput {
     pub csv: S<bool>,
     /// `[output] exposure`: PNG exposure, `"auto"` or stops (EV).
     pub exposure: S<toml::Value>,
-    /// `[output] tonemap`: tone-reproduction operator of the PNG (`exposure`, `reinhard`, `ward_histogram`, `pattanaik`).
+    /// `[output] tonemap`: tone-reproduction operator of the PNG (`exposure`, `reinhard`,
+    /// `ward_histogram`, `pattanaik`).
     pub tonemap: S<String>,
     /// `[output] adapt_to`: scene white for chromatic adaptation, a name or an [x, y] chromaticity.
     pub adapt_to: S<toml::Value>,
@@ -147,15 +158,18 @@ pub struct RawOutput {
     pub cat: S<String>,
     /// `[output] adaptation_degree`: degree of chromatic adaptation D, 0 to 1.
     pub adaptation_degree: S<f64>,
-    /// `[output] adaptation_time_s`: time since the adaptation luminance changed, s (Pattanaik only).
+    /// `[output] adaptation_time_s`: time since the adaptation luminance changed, s (Pattanaik
+    /// only).
     pub adaptation_time_s: S<f64>,
-    /// `[output] adapt_from_cd_m2`: luminance the eye was adapted to before, cd m⁻² (Pattanaik only).
+    /// `[output] adapt_from_cd_m2`: luminance the eye was adapted to before, cd m⁻² (Pattanaik
+    /// only).
     pub adapt_from_cd_m2: S<f64>,
     /// `[output] scotopic`: rod vision, `auto`, `on` or `off`.
     pub scotopic: S<String>,
     /// `[output] false_colour`: write luminance on a log scale with a legend instead of a picture.
     pub false_colour: S<bool>,
-    /// `[output] region`: pixel rectangle [x0, y0, x1, y1] (x1, y1 exclusive) written to `NAME.region.csv`.
+    /// `[output] region`: pixel rectangle [x0, y0, x1, y1] (x1, y1 exclusive) written to
+    /// `NAME.region.csv`.
     pub region: S<[i64; 4]>,
 }
 
@@ -183,7 +197,8 @@ pub struct RawIntegrator {
     pub volume_max_radius: S<f64>,
     /// `[integrator] march_step`: largest ray-marching step in media, m.
     pub march_step: S<f64>,
-    /// `[integrator] direct`: `"shadow_rays"` or `"photon_map"`: how direct light on diffuse surfaces is found.
+    /// `[integrator] direct`: `"shadow_rays"` or `"photon_map"`: how direct light on diffuse
+    /// surfaces is found.
     pub direct: S<String>,
     /// `[integrator] final_gather`: gather indirect light with rays into the global map.
     pub final_gather: S<bool>,
@@ -275,7 +290,8 @@ pub struct RawShape {
     pub min: S<[f64; 3]>,
     /// `[[shape]] max`: upper corner of a box, m.
     pub max: S<[f64; 3]>,
-    /// `[[shape]] vertices`: the three corners of a triangle, m, counter-clockwise seen from the front.
+    /// `[[shape]] vertices`: the three corners of a triangle, m, counter-clockwise seen from the
+    /// front.
     pub vertices: S<Vec<[f64; 3]>>,
     /// `[[shape]] file`: OBJ file of a mesh, relative to the scene file.
     pub file: S<String>,
@@ -300,9 +316,11 @@ pub struct RawLight {
     pub spectrum: S<toml::Value>,
     /// `[[light]] power_w`: radiant flux within the scene's wavelength range, W.
     pub power_w: S<f64>,
-    /// `[[light]] scale`: multiplier making `spectrum` absolute (radiance, intensity or irradiance by type).
+    /// `[[light]] scale`: multiplier making `spectrum` absolute (radiance, intensity or irradiance
+    /// by type).
     pub scale: S<f64>,
-    /// `[[light]] irradiance_w_m2`: irradiance normal to the beam within the wavelength range, W m⁻² (directional, sun).
+    /// `[[light]] irradiance_w_m2` (directional, sun): irradiance normal to the beam within the
+    /// wavelength range, W m⁻².
     pub irradiance_w_m2: S<f64>,
     /// `[[light]] shape`: emitting shape of an area light, `quad`, `disk` or `sphere`.
     pub shape: S<String>,
@@ -324,7 +342,8 @@ pub struct RawLight {
     pub v: S<[f64; 3]>,
     /// `[[light]] position`: position of a point light, spot or luminaire's photometric centre, m.
     pub position: S<[f64; 3]>,
-    /// `[[light]] direction`: direction of travel of a directional light or sun; the axis of a spot; a luminaire's nadir.
+    /// `[[light]] direction`: direction of travel of a directional light or sun; the axis of a
+    /// spot; a luminaire's nadir.
     pub direction: S<[f64; 3]>,
     /// `[[light]] look_at`: point the spot or luminaire aims at, m (instead of `direction`).
     pub look_at: S<[f64; 3]>,
@@ -332,11 +351,13 @@ pub struct RawLight {
     pub cone_deg: S<f64>,
     /// `[[light]] falloff_start_deg`: half-angle where a spot's falloff begins, degrees.
     pub falloff_start_deg: S<f64>,
-    /// `[[light]] target_min`: lower corner of the box a directional light or sun or sky aims its photons at, m.
+    /// `[[light]] target_min`: lower corner of the box a directional light or sun or sky aims its
+    /// photons at, m.
     pub target_min: S<[f64; 3]>,
     /// `[[light]] target_max`: upper corner of that target box, m.
     pub target_max: S<[f64; 3]>,
-    /// `[[light]] file`: photometric file of a luminaire (IES, EULUMDAT, ...), relative to the scene file.
+    /// `[[light]] file`: photometric file of a luminaire (IES, EULUMDAT, ...), relative to the
+    /// scene file.
     pub file: S<String>,
     /// `[[light]] cct_k`: colour temperature of a luminaire's black-body spectrum, K.
     pub cct_k: S<f64>,
@@ -344,7 +365,8 @@ pub struct RawLight {
     pub flux_scale: S<f64>,
     /// `[[light]] c0_toward`: direction the luminaire's C0 half-plane points toward.
     pub c0_toward: S<[f64; 3]>,
-    /// `[[light]] rotation_deg`: a luminaire's Euler angles about the fixed X, then Y, then Z axes, degrees.
+    /// `[[light]] rotation_deg`: a luminaire's Euler angles about the fixed X, then Y, then Z axes,
+    /// degrees.
     pub rotation_deg: S<[f64; 3]>,
     /// `[[light]] emitter`: where a luminaire's photons start, `"point"` or `"opening"`.
     pub emitter: S<String>,
@@ -354,11 +376,13 @@ pub struct RawLight {
     pub elevation_deg: S<f64>,
     /// `[[light]] azimuth_deg`: sun azimuth, degrees (0 toward −z, 90 toward +x).
     pub azimuth_deg: S<f64>,
-    /// `[[light]] angular_diameter_deg`: apparent diameter of a directional light or the sun's disk, degrees.
+    /// `[[light]] angular_diameter_deg`: apparent diameter of a directional light or the sun's
+    /// disk, degrees.
     pub angular_diameter_deg: S<f64>,
     /// `[[light]] up`: zenith direction of a sky.
     pub up: S<[f64; 3]>,
-    /// `[[light]] horizon_deg`: elevation of a sky's lower edge above the plane normal to `up`, degrees.
+    /// `[[light]] horizon_deg`: elevation of a sky's lower edge above the plane normal to `up`,
+    /// degrees.
     pub horizon_deg: S<f64>,
 }
 
@@ -371,7 +395,8 @@ pub struct RawSensor {
     /// `[[sensor]] type`: `illuminance_plane` or `ocean_profile`.
     #[serde(rename = "type")]
     pub kind: S<String>,
-    /// `[[sensor]] origin`: a corner of the plane's grid, or the centre of the profile's square on the water surface, m.
+    /// `[[sensor]] origin`: a corner of the plane's grid, or the centre of the profile's square on
+    /// the water surface, m.
     pub origin: S<[f64; 3]>,
     /// `[[sensor]] u`: first edge of the grid or square, m.
     pub u: S<[f64; 3]>,
@@ -381,9 +406,11 @@ pub struct RawSensor {
     pub normal: S<[f64; 3]>,
     /// `[[sensor]] resolution`: grid points [nu, nv] of an illuminance plane.
     pub resolution: S<[i64; 2]>,
-    /// `[[sensor]] samples`: estimates averaged per point (plane), or shadow rays per band for Ed(0+) (profile).
+    /// `[[sensor]] samples`: estimates averaged per point (plane), or shadow rays per band for
+    /// Ed(0+) (profile).
     pub samples: S<i64>,
-    /// `[[sensor]] gather_rays`: rays for indirect light per sample of an illuminance plane (0: direct only).
+    /// `[[sensor]] gather_rays`: rays for indirect light per sample of an illuminance plane (0:
+    /// direct only).
     pub gather_rays: S<i64>,
     /// `type = "ocean_profile"` only.
     pub depths_m: S<Vec<f64>>,

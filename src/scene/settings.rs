@@ -47,7 +47,8 @@ pub enum Method {
     Path,
 }
 
-/// Validated `[integrator]`: photon counts, density estimates, eye sampling and curved-path stepping.
+/// Validated `[integrator]`: photon counts, density estimates, eye sampling and curved-path
+/// stepping.
 #[derive(Clone, Debug, Serialize)]
 pub struct IntegratorSettings {
     /// Photon mapping or the reference path tracer.

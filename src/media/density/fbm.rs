@@ -27,7 +27,8 @@ pub struct Fbm {
 }
 
 impl Fbm {
-    /// fBm with lacunarity 2 and gain 0.5; `frequency` in cycles per metre, `seed` draws the permutation.
+    /// fBm with lacunarity 2 and gain 0.5; `frequency` in cycles per metre, `seed` draws the
+    /// permutation.
     pub fn new(base: f64, amplitude: f64, frequency: f64, octaves: u32, seed: u64) -> Fbm {
         let mut p: Vec<u8> = (0..=255).collect();
         let mut rng = Rng::for_task(seed, Stream::Test, 0xF8B);

@@ -117,7 +117,8 @@ impl TemperatureGrid {
         (1.0 + k * rho, (k * rho) * (gp / pr - gt / t))
     }
 
-    /// Where ∇n can be non-zero: the lattice box at constant pressure with uniform face temperatures, everywhere otherwise.
+    /// Where ∇n can be non-zero: the lattice box at constant pressure with uniform face
+    /// temperatures, everywhere otherwise.
     pub fn gradient_region(&self) -> GradientRegion {
         match self.pressure {
             GridPressure::Constant { .. } if self.uniform_faces => GradientRegion::Box(self.lattice.bounds()),
