@@ -35,12 +35,16 @@ use super::matrix::{Mat3, diagonal, invert, mul, mul_vec};
 /// The cone-like space of the von Kries scaling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Cat {
+    /// Hunt–Pointer–Estévez LMS cone fundamentals (von Kries's own hypothesis).
     VonKries,
+    /// The linearised Bradford matrix.
     Bradford,
+    /// The CAT16 matrix of Li et al. (2017).
     Cat16,
 }
 
 impl Cat {
+    /// Every transform, in the order above.
     pub const ALL: [Cat; 3] = [Cat::VonKries, Cat::Bradford, Cat::Cat16];
 
     /// The matrix M from XYZ to the cone-like space.

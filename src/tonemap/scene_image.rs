@@ -22,12 +22,15 @@ pub enum ScotopicSource {
 /// Row-major pixels with absolute colorimetry.
 #[derive(Clone, Debug)]
 pub struct SceneImage {
+    /// Width, pixels.
     pub width: usize,
+    /// Height, pixels.
     pub height: usize,
     /// CIE 1931 XYZ, Y in cd m⁻² (non-finite inputs become 0).
     pub xyz: Vec<[f64; 3]>,
     /// Scotopic luminance, scotopic cd m⁻².
     pub scotopic: Vec<f64>,
+    /// Whether `scotopic` came from the spectrum or was estimated from XYZ.
     pub scotopic_source: ScotopicSource,
 }
 

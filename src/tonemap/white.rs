@@ -33,10 +33,15 @@ pub const WHITE_PATCH_FRACTION: f64 = 0.01;
 /// What the eye is adapted to in the scene.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AdaptTo {
+    /// No chromatic adaptation.
     None,
+    /// A given chromaticity (x, y).
     Chromaticity([f64; 2]),
+    /// A CIE illuminant by name (`A`, `E`, `D65`).
     Illuminant(String),
+    /// Grey world: the mean XYZ of all pixels.
     SceneAverage,
+    /// White patch: the mean XYZ of the brightest 1 % of pixels.
     WhitePatch,
 }
 
