@@ -18,10 +18,14 @@ use crate::rng::Rng;
 use glam::DVec3;
 use std::sync::Arc;
 
+/// A luminaire from measured photometry (see the module docs).
 #[derive(Clone, Debug)]
 pub struct LuminaireLight {
+    /// The intensity I_v(C, γ), cd, in the luminaire frame.
     pub web: Arc<PhotometricWeb>,
+    /// Draws emission directions with density I_v/Φ_v.
     pub sampler: Arc<WebSampler>,
+    /// Where the luminaire frame sits in the scene and which way it points.
     pub placement: Placement,
     /// Where photons start, in the luminaire frame ([`Opening::POINT`] for a point source).
     pub opening: Opening,
