@@ -37,7 +37,9 @@ pub struct RenderOptions {
 
 /// A finished render.
 pub struct Rendered {
+    /// The spectral radiance image, W m⁻² sr⁻¹ nm⁻¹ per band.
     pub image: SpectralImage,
+    /// Timings, photon and ray counts, for `report.json`.
     pub stats: RenderStats,
     /// What the scene's sensors measured.
     pub sensors: Vec<crate::sensor::Reading>,
