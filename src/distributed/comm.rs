@@ -19,7 +19,9 @@ use std::sync::Mutex;
 
 /// The processes of a render.
 pub enum Comm {
+    /// One process: rank 0 of 1.
     Local(LocalComm),
+    /// `MPI_COMM_WORLD` of an MPI job (feature `mpi`).
     #[cfg(feature = "mpi")]
     Mpi(MpiComm),
 }

@@ -50,9 +50,13 @@ pub struct Options {
 
 /// One rank's state through a render: its comm, map budget and report.
 pub struct Rank<'w> {
+    /// The processes of the render.
     pub comm: &'w Comm,
+    /// The map memory limit and the eye-pass schedule.
     pub options: Options,
+    /// The map memory this rank has used and may use, checked before each map is assembled.
     pub budget: Budget,
+    /// What this rank did, for `report.json`.
     pub report: RankReport,
 }
 
