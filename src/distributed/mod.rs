@@ -1,5 +1,5 @@
 //! Distributed rendering: the photon passes and the eye pass split across the ranks of a
-//! [`Comm`] — one process ([`Comm::Local`]) or an MPI job ([`Comm::Mpi`], feature `mpi`).
+//! [`Comm`] — one process ([`Comm::Local`]) or an MPI job (`Comm::Mpi`, feature `mpi`).
 //!
 //! The render runs the same code on every comm ([`crate::render::render_on`]); with one rank
 //! every collective hands back the rank's own data, so the single-process render *is* the

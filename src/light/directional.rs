@@ -38,7 +38,7 @@ pub struct DirectionalLight {
     /// The box the beam is aimed at, if the scene gave one.
     pub target: Option<crate::geometry::Aabb>,
     /// Where paths curve, the cells of the beam whose light reaches the target (a projection
-    /// map, see [`crate::photon::projection`]); `None`: the whole rectangle.
+    /// map, see [`crate::raypath::projection`]); `None`: the whole rectangle.
     pub cells: Option<BeamCells>,
 }
 

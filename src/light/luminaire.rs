@@ -72,7 +72,7 @@ impl LuminaireLight {
     }
 
     /// The luminaire seen from `p`: irradiance weight k I_v / d² toward a start point drawn from
-    /// `u` (the opening uses a third uniform taken from the low bits of u[0]).
+    /// `u` (the opening uses a third uniform taken from the low bits of `u[0]`).
     pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
         let origin = if self.opening.is_point() {
             self.placement.position

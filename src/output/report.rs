@@ -59,7 +59,7 @@ pub struct Wavelengths {
 pub struct Report<'a> {
     /// Version of morgana that rendered.
     pub morgana_version: &'static str,
-    /// The scene file, or "<embedded default scene>".
+    /// The scene file, or `<embedded default scene>`.
     pub scene: String,
     /// Random seed.
     pub seed: u64,

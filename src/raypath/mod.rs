@@ -11,7 +11,7 @@
 //! - in a medium with a refractive-index field ([`crate::media::refractive_index`]) the path follows
 //!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`crate::ode`]:
 //!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
-//!   arc tolerance ([`arc`]), and the same visitors and segment queries
+//!   arc tolerance (`arc`), and the same visitors and segment queries
 //!   ([`crate::geometry::Bvh::intersect`]) see those chords. Outside the field's
 //!   [`crate::field::GradientRegion`] the path is straight again, seamlessly (n is
 //!   continuous there).

@@ -2,7 +2,7 @@
 //! bend it — without scattering, to see where a pixel's ray goes (which surface a mirage pixel
 //! shows, how low a ray dips before it turns, which part of the sky it escapes to).
 //!
-//! The ray starts at `--from` in the medium found there ([`Scene::medium_at`]) with the
+//! The ray starts at `--from` in the medium found there ([`World::medium_at`]) with the
 //! direction `--dir` or toward `--toward`, at one wavelength. [`Propagator::next_event_with`]
 //! moves it from event to event; a visitor records every chord it is handed (one per
 //! integrator step in clear air away from geometry, finer near surfaces). At a boundary between

@@ -27,7 +27,7 @@
 //!   Application 42(6), 703–718.
 //! - D. Gutierrez, A. Muñoz, O. Anson, F. J. Serón (2005), "Non-linear Volume Photon Mapping",
 //!   Eurographics Symposium on Rendering, §6 (`../shared/papers/`); the operator itself is
-//!   described in their reference [GSMA04] (Gutierrez, Serón, Muñoz, Anson 2004), which is not
+//!   described in their reference \[GSMA04\] (Gutierrez, Serón, Muñoz, Anson 2004), which is not
 //!   available here, so this module implements the standard von Kries form it builds on.
 
 use super::matrix::{Mat3, diagonal, invert, mul, mul_vec};

@@ -4,7 +4,7 @@
 //! [`BandWeights`]: X, Y, Z from the CIE 1931 functions and the scotopic luminance from the
 //! CIE 1951 V′(λ), computed from the bands themselves), or from tristimulus values alone (an
 //! RGB EXR), when the scotopic luminance is estimated from XYZ
-//! ([`scotopic_from_xyz`](super::scotopic::scotopic_from_xyz)).
+//! ([`scotopic_from_xyz`]).
 
 use super::scotopic::scotopic_from_xyz;
 use super::spectral_weights::BandWeights;

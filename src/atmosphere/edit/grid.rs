@@ -19,7 +19,7 @@ pub struct GridEdit {
 }
 
 impl GridEdit {
-    /// Checks that ΔT is zero on the lattice faces (within [`FACE_TOLERANCE_K`]).
+    /// Checks that ΔT is zero on the lattice faces (within `FACE_TOLERANCE_K`, 10⁻⁶ K).
     pub fn new(lattice: Lattice, interpolation: Interpolation) -> Result<GridEdit, String> {
         let (lo, hi) = lattice.face_range();
         let worst = lo.abs().max(hi.abs());
