@@ -15,7 +15,8 @@ pub struct RenderArgs {
     /// Output directory.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Photons to emit for each photon map (overrides the scene's integrator photons and caustic_photons).
+    /// Photons to emit for each photon map (overrides the scene's integrator photons and
+    /// caustic_photons).
     #[arg(long)]
     pub photons: Option<u64>,
     /// Random seed (overrides the scene's integrator seed).

@@ -46,9 +46,9 @@ pub enum Ior {
     },
     /// Quan & Fry (1995) for water of salinity S (‰) at temperature T (°C).
     QuanFry {
-        /// Salinity S, ‰ (PSU), 0 to 35.
+        /// Salinity S, ‰ (PSU); the fit covers 0 to 35.
         salinity_psu: f64,
-        /// Temperature T, °C, 0 to 30.
+        /// Temperature T, °C; the fit covers 0 to 30.
         temperature_c: f64,
     },
 }

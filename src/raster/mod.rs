@@ -45,7 +45,7 @@ impl Canvas {
         }
     }
 
-    /// Pixel (x, y); panics outside the canvas.
+    /// Pixel (x, y), which must lie on the canvas.
     pub fn get(&self, x: usize, y: usize) -> Rgb {
         self.pixels[y * self.width + x]
     }

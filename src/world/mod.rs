@@ -17,7 +17,7 @@ use glam::DVec3;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Prim {
     /// Index of its material in [`World::materials`] (`None`: an index-matched boundary between
-    /// media).
+    /// media, or an area light without a material, which reflects nothing).
     pub material: Option<u32>,
     /// Index of the light it belongs to in [`World::lights`] (area lights).
     pub light: Option<u32>,
