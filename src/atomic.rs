@@ -18,7 +18,9 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// Dropping it uncommitted removes the temporary file.
 #[derive(Debug)]
 pub struct Staged {
+    /// The file the data is meant for.
     pub target: PathBuf,
+    /// The temporary file to write to, beside `target`.
     pub temp: PathBuf,
     committed: bool,
 }

@@ -9,12 +9,16 @@ use std::path::{Path, PathBuf};
 /// Where in an input file something was found (1-based line and column).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Location {
+    /// The file.
     pub file: PathBuf,
+    /// 1-based line, when known.
     pub line: Option<usize>,
+    /// 1-based column, when known.
     pub column: Option<usize>,
 }
 
 impl Location {
+    /// The file as a whole, without line or column.
     pub fn file(file: &Path) -> Self {
         Location { file: file.to_path_buf(), line: None, column: None }
     }
@@ -59,7 +63,9 @@ fn floor_char_boundary(s: &str, mut i: usize) -> usize {
 /// A user's input was wrong: a scene, a data file, a command-line value.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct InputError {
+    /// Where, when the error has a place in a file.
     pub location: Option<Location>,
+    /// What was wrong and what is allowed.
     pub message: String,
 }
 
@@ -88,6 +94,7 @@ impl Error {
         Error::Input(InputError { location, message: clip_long_words(&message.into()) })
     }
 
+    /// An internal failure (I/O on outputs, a broken invariant: not the input's fault).
     pub fn internal(message: impl Into<String>) -> Self {
         Error::Internal(message.into())
     }
@@ -118,6 +125,7 @@ impl From<InputError> for Error {
     }
 }
 
+/// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// The longest word of an input error's message echoed whole; longer ones keep their first

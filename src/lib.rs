@@ -12,6 +12,8 @@
 //! Units are SI (metres, seconds, watts); spectral quantities are per nanometre, and names carry
 //! units where they could be doubted (`wavelength_nm`, `power_w`).
 
+#![warn(missing_docs)]
+
 pub mod atmosphere;
 pub mod atomic;
 pub mod cli;

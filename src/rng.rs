@@ -13,12 +13,20 @@ use rand_pcg::Pcg64Mcg;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u64)]
 pub enum Stream {
+    /// Global-map photon batches (the volume map's photons come from this pass too).
     GlobalPhotons = 1,
+    /// Caustic-map photon batches.
     CausticPhotons = 2,
+    /// Eye samples, one task per pixel (gather rays draw from it as well).
     Eye = 3,
+    /// Reserved for gather rays (not drawn from today: they use [`Stream::Eye`]).
     Gather = 4,
+    /// Reserved for a volume photon pass (not drawn from today: volume photons come from the global
+    /// pass).
     VolumePhotons = 5,
+    /// Sensor evaluation.
     Sensor = 7,
+    /// Tests, and seeded procedural content (the fBm permutation).
     Test = 99,
 }
 

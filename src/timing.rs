@@ -35,6 +35,7 @@ pub struct Span {
 }
 
 impl Span {
+    /// A span starting now.
     pub fn start() -> Span {
         Span { wall: Instant::now(), cpu: process_cpu_seconds().unwrap_or(0.0) }
     }
@@ -62,8 +63,10 @@ fn parse_stat(line: &str) -> Option<f64> {
     Some((utime + stime) as f64 / TICKS_PER_SECOND)
 }
 
+/// One phase of a run and how long it took.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PhaseTime {
+    /// The phase's name, e.g. "global photon tracing".
     pub phase: String,
     /// Wall time.
     pub seconds: f64,

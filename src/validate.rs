@@ -10,15 +10,19 @@ use toml::Spanned;
 
 /// The document being validated.
 pub struct Ctx<'a> {
+    /// The document's path, as errors name it.
     pub file: PathBuf,
+    /// The document's text (spans index into it).
     pub source: &'a str,
     /// Directory that relative paths in the document are resolved against.
     pub dir: PathBuf,
 }
 
+/// The result of a validation step.
 pub type R<T> = Result<T, Error>;
 
 impl<'a> Ctx<'a> {
+    /// A context for `source`, read from `file`, resolving relative paths against `dir`.
     pub fn new(file: &Path, source: &'a str, dir: &Path) -> Ctx<'a> {
         Ctx { file: file.to_path_buf(), source, dir: dir.to_path_buf() }
     }

@@ -4,6 +4,7 @@
 use super::table_profile::TableProfile;
 use super::usa76::{self, State};
 
+/// The base atmosphere: T(z) and P(z) before any edit.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BaseProfile {
     /// The U.S. Standard Atmosphere 1976 (0–86 km).

@@ -20,7 +20,9 @@ pub const EARTH_RADIUS_M: f64 = 6_371_000.0;
 /// A sphere measured from its surface point under the scene origin (see the module notes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
+    /// Centre c of the sphere, m.
     pub centre: DVec3,
+    /// Radius R, m.
     pub radius_m: f64,
     /// Unit vector from the centre towards the scene origin (+y when the centre is the origin).
     up: DVec3,
@@ -32,7 +34,10 @@ pub struct Sphere {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Earth {
     /// Flat ground through the origin: h = p·up (up is a unit vector).
-    Flat { up: DVec3 },
+    Flat {
+        /// Unit normal of the ground plane, pointing up.
+        up: DVec3,
+    },
     /// A sphere: h = |p − centre| − radius.
     Spherical(Sphere),
 }

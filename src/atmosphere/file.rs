@@ -21,14 +21,24 @@ type S<T> = Option<Spanned<T>>;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawAtmosphere {
+    /// `name`: label in reports (default: the file stem).
     pub name: S<String>,
+    /// `base`: the base atmosphere, `"usa76"`.
     pub base: S<String>,
+    /// `profile`: instead of `base`, a CSV table `altitude_m,temperature_k,pressure_pa`, relative
+    /// to the file.
     pub profile: S<String>,
+    /// `dispersion`: K(λ) of air, `"ciddor"` or `"cauchy_born_wolf"`.
     pub dispersion: S<String>,
+    /// `co2_ppm`: CO₂ mole fraction, µmol/mol (Ciddor only).
     pub co2_ppm: S<f64>,
+    /// `top_m`: altitude where the atmosphere ends, m.
     pub top_m: S<f64>,
+    /// `earth`: `"spherical"` or `"flat"`, how height is measured.
     pub earth: S<String>,
+    /// `earth_radius_m`: sphere radius, m (spherical only).
     pub earth_radius_m: S<f64>,
+    /// `[[edit]]`: temperature edits, applied in order (they add).
     #[serde(default)]
     pub edit: Vec<Spanned<RawEdit>>,
 }
@@ -37,16 +47,26 @@ pub struct RawAtmosphere {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawEdit {
+    /// `[[edit]] type`: `offset`, `hot_surface`, `inversion`, `bubble` or `grid`.
     #[serde(rename = "type")]
     pub kind: S<String>,
+    /// `[[edit]] dT_k`: temperature change ΔT, K.
     #[serde(rename = "dT_k")]
     pub dt_k: S<f64>,
+    /// `[[edit]] z0_m`: e-folding height of a hot surface, m.
     pub z0_m: S<f64>,
+    /// `[[edit]] height_m`: height of an inversion's midpoint, m.
     pub height_m: S<f64>,
+    /// `[[edit]] thickness_m`: thickness parameter w of an inversion, m.
     pub thickness_m: S<f64>,
+    /// `[[edit]] centre`: centre of a bubble, m.
     pub centre: S<[f64; 3]>,
+    /// `[[edit]] radius_m`: radius of a bubble, m.
     pub radius_m: S<f64>,
+    /// `[[edit]] file`: lattice file of a grid edit (quantity `delta_temperature_k`), relative to
+    /// the file.
     pub file: S<String>,
+    /// `[[edit]] interpolation`: `"tricubic"` or `"trilinear"` (grid edits).
     pub interpolation: S<String>,
 }
 

@@ -25,12 +25,18 @@ use super::{AirDispersion, Earth, gas};
 use crate::field::GradientRegion;
 use glam::DVec3;
 
+/// An atmosphere (see the module docs for its refractive index).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Atmosphere {
+    /// Label in reports.
     pub name: String,
+    /// How height above the ground is measured.
     pub earth: Earth,
+    /// Temperature and pressure before the edits.
     pub base: BaseProfile,
+    /// Temperature edits; their ΔT add.
     pub edits: Vec<Edit>,
+    /// Gladstone–Dale law K(λ) of the air.
     pub dispersion: AirDispersion,
     top_m: f64,
     taper_m: f64,
@@ -39,12 +45,19 @@ pub struct Atmosphere {
 /// The local state of the (edited) air, with gradients.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AirPoint {
+    /// Height above the ground, m.
     pub height_m: f64,
+    /// Edited temperature T, K.
     pub temperature_k: f64,
+    /// ∇T, K m⁻¹.
     pub grad_temperature: DVec3,
+    /// Pressure P (the base atmosphere's), Pa.
     pub pressure_pa: f64,
+    /// ∇P, Pa m⁻¹.
     pub grad_pressure: DVec3,
+    /// Density ρ = P M₀/(R* T), kg m⁻³.
     pub density_kg_m3: f64,
+    /// ∇ρ, kg m⁻⁴.
     pub grad_density: DVec3,
 }
 
@@ -112,6 +125,7 @@ impl Atmosphere {
         Atmosphere::new(self.name, self.earth, self.base, self.edits, self.dispersion, top_m)
     }
 
+    /// Altitude where the atmosphere ends (n = 1 at and above it), m.
     pub fn top_m(&self) -> f64 {
         self.top_m
     }

@@ -15,6 +15,7 @@ use super::usa76::State;
 use crate::field::MonotoneCubic;
 use crate::spectrum::table::parse_numeric_columns;
 
+/// T(z) and P(z) from a table (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableProfile {
     temperature: MonotoneCubic,
@@ -22,6 +23,8 @@ pub struct TableProfile {
 }
 
 impl TableProfile {
+    /// From rows (altitude m, temperature K, pressure Pa): altitudes strictly increasing, T and P
+    /// positive.
     pub fn new(altitude_m: Vec<f64>, temperature_k: Vec<f64>, pressure_pa: Vec<f64>) -> Result<TableProfile, String> {
         if let Some(i) = temperature_k.iter().position(|t| t.is_nan() || *t <= 0.0) {
             return Err(format!("row {}: temperature {} K must be positive", i + 1, temperature_k[i]));

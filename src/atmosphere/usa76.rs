@@ -64,6 +64,7 @@ static LAYERS: LazyLock<[Layer; 7]> = LazyLock::new(|| {
 pub struct State {
     /// Molecular-scale temperature, K.
     pub temperature_k: f64,
+    /// Pressure, Pa.
     pub pressure_pa: f64,
     /// dT/dz, K m⁻¹ (per metre of the height the state was asked at).
     pub dt_dz: f64,

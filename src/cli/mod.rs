@@ -1,6 +1,7 @@
 //! The `morgana` commands, one file each: what a subcommand reads from its arguments, which
 //! library calls it makes, and what it prints. `main.rs` only parses the command line, calls
-//! [`run`] and turns errors into exit codes (0 success, 2 bad input, 1 internal failure).
+//! the subcommand's `run` (e.g. [`render::run`]) and turns errors into exit codes (0 success,
+//! 2 bad input, 1 internal failure).
 //!
 //! This is the top layer: a command may use any module of the library; nothing in the library
 //! uses a command.

@@ -15,10 +15,11 @@ pub struct RenderArgs {
     /// Output directory.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Photons to emit for each photon map (overrides [integrator] photons and caustic_photons).
+    /// Photons to emit for each photon map (overrides the scene's integrator photons and
+    /// caustic_photons).
     #[arg(long)]
     pub photons: Option<u64>,
-    /// Random seed (overrides [integrator] seed).
+    /// Random seed (overrides the scene's integrator seed).
     #[arg(long)]
     pub seed: Option<u64>,
     /// Worker threads (default: all cores; at most 1024). The output does not depend on it.

@@ -105,10 +105,15 @@ pub fn parse_exposure(s: &str) -> Option<Exposure> {
 /// The command's arguments, as given.
 #[derive(Clone, Debug, Default)]
 pub struct TonemapCommand {
+    /// The EXR to read (spectral or RGB).
     pub input: PathBuf,
+    /// The PNG to write.
     pub out: PathBuf,
+    /// Tone-reproduction options as given.
     pub options: ToneOptions,
+    /// `--region x0,y0,x1,y1`, unparsed.
     pub region: Option<String>,
+    /// `--csv FILE`: where the region's luminance goes.
     pub csv: Option<PathBuf>,
 }
 
@@ -124,12 +129,12 @@ fn option_error(e: OptionError) -> Error {
     Error::input(None, format!("{}: {}", flag(e.field), e.message))
 }
 
-/// Runs the command; returns the lines to print (what was written and how).
 /// What `morgana tonemap` prints: the lines of [`run`].
 pub fn run_args(args: &TonemapArgs) -> Result<String> {
     Ok(run(&args.command()?)?.iter().map(|l| format!("{l}\n")).collect())
 }
 
+/// Runs the command; returns the lines to print (what was written and how).
 pub fn run(cmd: &TonemapCommand) -> Result<Vec<String>> {
     let settings = cmd.options.validate().map_err(option_error)?;
     let region = match (&cmd.region, &cmd.csv) {

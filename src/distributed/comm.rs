@@ -2,7 +2,7 @@
 //! distributed render needs.
 //!
 //! [`Comm::Local`] is one process, rank 0 of 1: its collectives hand back the caller's own data
-//! and its messages go to itself. [`Comm::Mpi`] (feature `mpi`) is `MPI_COMM_WORLD` under
+//! and its messages go to itself. `Comm::Mpi` (feature `mpi`) is `MPI_COMM_WORLD` under
 //! `mpirun`. Everything above this file is written once against [`Comm`], so the single-process
 //! render runs the same distribution code as an MPI job, with one rank.
 //!
@@ -19,7 +19,9 @@ use std::sync::Mutex;
 
 /// The processes of a render.
 pub enum Comm {
+    /// One process: rank 0 of 1.
     Local(LocalComm),
+    /// `MPI_COMM_WORLD` of an MPI job (feature `mpi`).
     #[cfg(feature = "mpi")]
     Mpi(MpiComm),
 }

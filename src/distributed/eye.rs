@@ -30,15 +30,19 @@ pub type RenderRows<'a> = dyn Fn(Range<usize>) -> (Vec<f32>, RayCounts) + Sync +
 /// What one rank did in the eye pass.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct EyeWork {
+    /// Leases this rank rendered.
     pub leases: u64,
+    /// Rows this rank rendered.
     pub rows: u64,
     /// Rendering its leases.
     pub compute_seconds: f64,
     /// Waiting for a lease (workers: sending rows and waiting for the reply).
     pub wait_seconds: f64,
-    /// Bytes of tile messages this rank sent and received.
+    /// Bytes of tile messages this rank sent.
     pub sent_bytes: u64,
+    /// Bytes of tile messages this rank received.
     pub received_bytes: u64,
+    /// Rays this rank traced in the eye pass, by kind.
     pub rays: RayCounts,
 }
 
@@ -46,6 +50,7 @@ pub struct EyeWork {
 pub struct EyeOut {
     /// The image's band values in pixel order (rank 0 only).
     pub data: Option<Vec<f32>>,
+    /// What this rank did.
     pub work: EyeWork,
 }
 

@@ -23,6 +23,7 @@ impl Fnv64 {
     const OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0000_0100_0000_01b3;
 
+    /// The hash of no bytes (the FNV offset basis).
     pub fn new() -> Fnv64 {
         Fnv64(Self::OFFSET_BASIS)
     }
@@ -34,6 +35,7 @@ impl Fnv64 {
         }
     }
 
+    /// The fingerprint of the bytes written so far.
     pub fn finish(&self) -> u64 {
         self.0
     }

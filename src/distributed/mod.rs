@@ -1,5 +1,5 @@
 //! Distributed rendering: the photon passes and the eye pass split across the ranks of a
-//! [`Comm`] — one process ([`Comm::Local`]) or an MPI job ([`Comm::Mpi`], feature `mpi`).
+//! [`Comm`] — one process ([`Comm::Local`]) or an MPI job (`Comm::Mpi`, feature `mpi`).
 //!
 //! The render runs the same code on every comm ([`crate::render::render_on`]); with one rank
 //! every collective hands back the rank's own data, so the single-process render *is* the
@@ -50,9 +50,13 @@ pub struct Options {
 
 /// One rank's state through a render: its comm, map budget and report.
 pub struct Rank<'w> {
+    /// The processes of the render.
     pub comm: &'w Comm,
+    /// The map memory limit and the eye-pass schedule.
     pub options: Options,
+    /// The map memory this rank has used and may use, checked before each map is assembled.
     pub budget: Budget,
+    /// What this rank did, for `report.json`.
     pub report: RankReport,
 }
 

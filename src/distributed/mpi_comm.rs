@@ -44,14 +44,17 @@ impl MpiComm {
         SimpleCommunicator::world()
     }
 
+    /// This process's rank in `MPI_COMM_WORLD`.
     pub fn rank(&self) -> usize {
         self.rank
     }
 
+    /// Number of ranks in `MPI_COMM_WORLD`.
     pub fn size(&self) -> usize {
         self.size
     }
 
+    /// The processor name MPI reports for this rank (else the local host name).
     pub fn host(&self) -> String {
         self.host.clone()
     }
@@ -108,10 +111,12 @@ impl MpiComm {
         bytes
     }
 
+    /// See [`super::Comm::send`]: a blocking standard-mode send.
     pub fn send(&self, to: usize, tag: Tag, bytes: &[u8]) {
         self.comm().process_at_rank(to as i32).send_with_tag(bytes, tag as i32);
     }
 
+    /// See [`super::Comm::try_receive`]: a matched probe, then the receive.
     pub fn try_receive(&self, from: Option<usize>, tag: Tag) -> Option<(usize, Vec<u8>)> {
         let comm = self.comm();
         let probe = match from {
@@ -122,6 +127,7 @@ impl MpiComm {
         Some((status.source_rank() as usize, bytes))
     }
 
+    /// `MPI_Abort` on `MPI_COMM_WORLD` with `code`.
     pub fn abort(&self, code: i32) -> ! {
         self.comm().abort(code)
     }

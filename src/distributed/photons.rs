@@ -21,9 +21,13 @@ pub struct RankPhotons {
     pub pass: String,
     /// Batches `[first, end)` this rank shot.
     pub batches: [u64; 2],
+    /// Photons this rank emitted.
     pub emitted: u64,
+    /// Photons this rank stored on surfaces.
     pub stored_surface: u64,
+    /// Photons this rank stored in media.
     pub stored_volume: u64,
+    /// Wall time of this rank's tracing, s.
     pub trace_seconds: f64,
 }
 

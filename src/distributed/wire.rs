@@ -16,8 +16,6 @@ pub enum Tag {
 /// Largest piece (bytes per rank and round) of a streamed all-gather
 /// ([`super::Comm::all_gather_pieces`]): 64 MiB, so a round's receive buffer stays small next to
 /// the maps being assembled.
-/// Largest piece (bytes per rank and round) of [`Comm::all_gather_pieces`]: 64 MiB, so a
-/// round's receive buffer stays small next to the maps being assembled.
 pub const PIECE_CAP: u64 = 64 << 20;
 
 /// The pieces of one round of a streamed all-gather: for each rank with `counts[rank]` bytes,

@@ -4,15 +4,19 @@
 
 use glam::DVec3;
 
+/// A smooth local bump of n (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bump {
+    /// Centre, m.
     pub centre: DVec3,
+    /// Radius R, m (zero beyond it).
     pub radius_m: f64,
     /// δn at the centre.
     pub delta_n: f64,
 }
 
 impl Bump {
+    /// A bump; values finite and `radius_m` positive.
     pub fn new(centre: DVec3, radius_m: f64, delta_n: f64) -> Result<Bump, String> {
         if !(centre.is_finite() && delta_n.is_finite()) {
             return Err(format!("bump: centre {centre} and delta_n {delta_n} must be finite"));

@@ -22,6 +22,7 @@ use crate::error::{Error, Location, Result};
 use glam::DVec3;
 use std::path::Path;
 
+/// First line of an `.mfield` file.
 pub const FIELD_MAGIC: &str = "MORGANA-FIELD 1";
 
 /// What a lattice file holds.
@@ -34,6 +35,7 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// The name the `quantity` header line uses.
     pub fn name(&self) -> &'static str {
         match self {
             Quantity::TemperatureK => "temperature_k",
@@ -53,7 +55,9 @@ impl Quantity {
 /// How the values are stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Encoding {
+    /// Little-endian IEEE-754 doubles (`encoding f64le`).
     F64Le,
+    /// Whitespace-separated numbers (`encoding ascii`).
     Ascii,
 }
 

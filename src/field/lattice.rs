@@ -34,6 +34,7 @@ pub enum Interpolation {
 }
 
 impl Interpolation {
+    /// The name scene and atmosphere files use.
     pub fn name(&self) -> &'static str {
         match self {
             Interpolation::Trilinear => "trilinear",
@@ -54,8 +55,11 @@ pub enum Beyond {
 /// Values on a regular lattice.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lattice {
+    /// Lattice points per axis (x, y, z), each ≥ 2.
     pub dims: [usize; 3],
+    /// Position of lattice point (0, 0, 0), m.
     pub origin: DVec3,
+    /// Distance between neighbouring points per axis, m.
     pub spacing: DVec3,
     values: Vec<f64>,
 }
@@ -103,6 +107,7 @@ impl Lattice {
         Lattice::new(dims, origin, spacing, values)
     }
 
+    /// The values, x fastest, then y, then z.
     pub fn values(&self) -> &[f64] {
         &self.values
     }

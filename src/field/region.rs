@@ -13,9 +13,23 @@ pub enum GradientRegion {
     /// ∇n ≡ 0: straight lines everywhere.
     Nowhere,
     /// r_min ≤ |p − centre| ≤ r_max (r_min = 0 is a ball).
-    Shell { centre: DVec3, r_min: f64, r_max: f64 },
+    Shell {
+        /// Centre, m.
+        centre: DVec3,
+        /// Inner radius, m.
+        r_min: f64,
+        /// Outer radius, m.
+        r_max: f64,
+    },
     /// h_min ≤ p·up ≤ h_max (`up` a unit vector; either bound may be infinite).
-    Slab { up: DVec3, h_min: f64, h_max: f64 },
+    Slab {
+        /// Unit normal of the slab.
+        up: DVec3,
+        /// Lower bound of p·up, m (may be −∞).
+        h_min: f64,
+        /// Upper bound of p·up, m (may be +∞).
+        h_max: f64,
+    },
     /// An axis-aligned box.
     Box(Aabb),
     /// Any of several regions.

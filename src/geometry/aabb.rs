@@ -2,26 +2,35 @@
 
 use glam::DVec3;
 
+/// An axis-aligned box, m; empty when `min` exceeds `max` on some axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// Lower corner, m.
     pub min: DVec3,
+    /// Upper corner, m.
     pub max: DVec3,
 }
 
 impl Aabb {
+    /// The empty box: the identity of [`Aabb::union`].
     pub const EMPTY: Aabb = Aabb { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) };
+    /// The smallest box holding both.
     pub fn union(self, o: Aabb) -> Aabb {
         Aabb { min: self.min.min(o.min), max: self.max.max(o.max) }
     }
+    /// The smallest box holding this one and `p`.
     pub fn include(self, p: DVec3) -> Aabb {
         Aabb { min: self.min.min(p), max: self.max.max(p) }
     }
+    /// Centre, m.
     pub fn centre(&self) -> DVec3 {
         0.5 * (self.min + self.max)
     }
+    /// `max − min`, m.
     pub fn diagonal(&self) -> DVec3 {
         self.max - self.min
     }
+    /// True when the box holds no point.
     pub fn is_empty(&self) -> bool {
         self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
     }

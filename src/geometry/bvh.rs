@@ -16,6 +16,7 @@ mod traverse;
 
 use super::{Aabb, Hit, Ray, Shape};
 
+/// A bounding-volume hierarchy over a slice of shapes (see the module docs).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bvh {
     nodes: Vec<Node>,

@@ -8,11 +8,17 @@ use serde::Serialize;
 /// Pixel (0, 0) is the top-left corner of the image.
 #[derive(Clone, Debug, Serialize)]
 pub struct Camera {
+    /// Eye point (the pinhole), m.
     pub position: DVec3,
+    /// A point on the optical axis, m.
     pub look_at: DVec3,
+    /// Up direction as given; the image's vertical is its part orthogonal to the view.
     pub up: DVec3,
+    /// Full vertical field of view, degrees.
     pub fov_deg: f64,
+    /// Image width, pixels.
     pub width: usize,
+    /// Image height, pixels.
     pub height: usize,
     #[serde(skip)]
     basis: [DVec3; 3],

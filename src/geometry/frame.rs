@@ -5,8 +5,11 @@ use glam::DVec3;
 /// An orthonormal basis (s, t, n).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
+    /// First tangent (local x).
     pub s: DVec3,
+    /// Second tangent (local y).
     pub t: DVec3,
+    /// Normal (local z).
     pub n: DVec3,
 }
 
@@ -22,10 +25,12 @@ impl Frame {
         Frame { s, t, n }
     }
 
+    /// Local (x, y, z) to world coordinates.
     pub fn to_world(&self, v: DVec3) -> DVec3 {
         v.x * self.s + v.y * self.t + v.z * self.n
     }
 
+    /// World to local (x, y, z) coordinates.
     pub fn to_local(&self, v: DVec3) -> DVec3 {
         DVec3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
     }

@@ -24,15 +24,19 @@ pub use spawn::{SPAWN_ERROR_FACTOR, offset_origin};
 /// A ray: origin and unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
+    /// Origin, m.
     pub origin: DVec3,
+    /// Unit direction of travel.
     pub dir: DVec3,
 }
 
 impl Ray {
+    /// A ray from `origin` along `dir` (which the caller keeps unit).
     pub fn new(origin: DVec3, dir: DVec3) -> Ray {
         Ray { origin, dir }
     }
 
+    /// The point at distance `t` (m) along the ray.
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + t * self.dir
     }
@@ -43,6 +47,7 @@ impl Ray {
 pub struct Hit {
     /// Distance along the segment from its origin.
     pub t: f64,
+    /// The hit point, m.
     pub point: DVec3,
     /// Unit geometric normal on the shape's front side (outward for spheres; u×v for quads).
     pub normal: DVec3,

@@ -15,14 +15,20 @@ use super::{Incident, LightSpectrum};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
+    /// The side the shape's normal points to.
     Front,
+    /// The side opposite the normal.
     Back,
+    /// Both sides.
     Both,
 }
 
+/// A diffuse area emitter (see the module docs).
 #[derive(Clone, Debug)]
 pub struct AreaLight {
+    /// The emitting surface.
     pub shape: Shape,
+    /// Which sides emit.
     pub side: Side,
     /// Spectral radiance L_e(λ), W m⁻² sr⁻¹ nm⁻¹.
     pub emission: LightSpectrum,
@@ -33,6 +39,7 @@ impl AreaLight {
         if self.side == Side::Both { 2.0 } else { 1.0 }
     }
 
+    /// Φ = π A s ∫ L_e dλ within the scene's wavelength range, W.
     pub fn power_w(&self) -> f64 {
         std::f64::consts::PI * self.shape.area() * self.sides() * self.emission.integral()
     }

@@ -19,12 +19,15 @@ use glam::DVec3;
 
 use super::{Incident, LightSpectrum};
 
+/// Parallel light from infinitely far away, possibly a disc of finite angular size (see the module
+/// docs).
 #[derive(Clone, Debug)]
 pub struct DirectionalLight {
     /// Unit direction the light travels in.
     pub dir: DVec3,
     /// Centre and radius of the scene's bounding sphere.
     pub scene_centre: DVec3,
+    /// Radius of the scene's bounding sphere, m.
     pub scene_radius: f64,
     /// The beam's cross-section in the frame about `dir`: (s, t) ranges.
     pub beam: [[f64; 2]; 2],
@@ -35,7 +38,7 @@ pub struct DirectionalLight {
     /// The box the beam is aimed at, if the scene gave one.
     pub target: Option<crate::geometry::Aabb>,
     /// Where paths curve, the cells of the beam whose light reaches the target (a projection
-    /// map, see [`crate::photon::projection`]); `None`: the whole rectangle.
+    /// map, see [`crate::raypath::projection`]); `None`: the whole rectangle.
     pub cells: Option<BeamCells>,
 }
 
@@ -45,6 +48,7 @@ pub struct DirectionalLight {
 pub struct BeamCells {
     /// The grid's corner (s, t) and cell size, m.
     pub origin: [f64; 2],
+    /// Cell size along s and t, m.
     pub size: [f64; 2],
     /// The (i, j) indices of the cells that emit.
     pub cells: Vec<[u32; 2]>,
@@ -55,6 +59,7 @@ pub struct BeamCells {
 }
 
 impl BeamCells {
+    /// Emitting area of the beam: cells × cell area, m².
     pub fn area(&self) -> f64 {
         self.cells.len() as f64 * self.size[0] * self.size[1]
     }
@@ -145,6 +150,7 @@ impl DirectionalLight {
         self.scene_centre - self.dir * (1.001 * self.scene_radius) + s * frame.s + t * frame.t
     }
 
+    /// Φ = A_beam ∫ E dλ within the scene's wavelength range, W.
     pub fn power_w(&self) -> f64 {
         self.beam_area() * self.emission.integral()
     }

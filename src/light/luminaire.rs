@@ -18,10 +18,14 @@ use crate::rng::Rng;
 use glam::DVec3;
 use std::sync::Arc;
 
+/// A luminaire from measured photometry (see the module docs).
 #[derive(Clone, Debug)]
 pub struct LuminaireLight {
+    /// The intensity I_v(C, γ), cd, in the luminaire frame.
     pub web: Arc<PhotometricWeb>,
+    /// Draws emission directions with density I_v/Φ_v.
     pub sampler: Arc<WebSampler>,
+    /// Where the luminaire frame sits in the scene and which way it points.
     pub placement: Placement,
     /// Where photons start, in the luminaire frame ([`Opening::POINT`] for a point source).
     pub opening: Opening,
@@ -68,7 +72,7 @@ impl LuminaireLight {
     }
 
     /// The luminaire seen from `p`: irradiance weight k I_v / d² toward a start point drawn from
-    /// `u` (the opening uses a third uniform taken from the low bits of u[0]).
+    /// `u` (the opening uses a third uniform taken from the low bits of `u[0]`).
     pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
         let origin = if self.opening.is_point() {
             self.placement.position

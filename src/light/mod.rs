@@ -50,23 +50,31 @@ impl LightSpectrum {
     }
 }
 
+/// A light source, one variant per kind (see the module docs).
 #[derive(Clone, Debug)]
 pub enum Light {
+    /// A diffuse emitting quad, disk or sphere.
     Area(AreaLight),
+    /// An isotropic point.
     Point(PointLight),
+    /// A point with a cone and smooth falloff.
     Spot(SpotLight),
+    /// Parallel light (directional or sun), possibly of finite angular size.
     Directional(DirectionalLight),
     /// Measured photometry (IES LM-63, EULUMDAT); spectrum per candela.
     Luminaire(LuminaireLight),
-    /// Uniform radiance from the upper hemisphere at infinity.
+    /// Uniform radiance from every direction above its horizon, at infinity.
     Sky(SkyLight),
 }
 
 /// Where a photon starts: origin, unit direction, wavelength.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Emission {
+    /// Start point, m.
     pub origin: DVec3,
+    /// Unit direction of travel.
     pub dir: DVec3,
+    /// Wavelength, nm.
     pub wavelength_nm: f64,
     /// Unit normal of the emitting surface at `origin` (zero for point-like lights).
     pub normal: DVec3,
@@ -77,12 +85,17 @@ pub struct Emission {
 /// incident radiance divided by the sampling density.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Incident {
+    /// Unit direction from the receiving point toward the light.
     pub wi: DVec3,
+    /// Distance to the sampled point of the light, m (infinite for lights at infinity).
     pub dist: f64,
+    /// Incident radiance per unit of the light's spectrum, divided by the sampling density.
     pub weight: f64,
 }
 
 impl Light {
+    /// The light's absolute spectrum (radiance, intensity or irradiance by kind; see the module
+    /// docs).
     pub fn spectrum(&self) -> &LightSpectrum {
         match self {
             Light::Area(l) => &l.emission,

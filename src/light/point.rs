@@ -5,18 +5,22 @@ use glam::DVec3;
 
 use super::{Incident, LightSpectrum};
 
+/// An isotropic point light (see the module docs).
 #[derive(Clone, Debug)]
 pub struct PointLight {
+    /// Position, m.
     pub position: DVec3,
     /// Spectral intensity I(λ), W sr⁻¹ nm⁻¹.
     pub emission: LightSpectrum,
 }
 
 impl PointLight {
+    /// Φ = 4π ∫ I dλ within the scene's wavelength range, W.
     pub fn power_w(&self) -> f64 {
         4.0 * std::f64::consts::PI * self.emission.integral()
     }
 
+    /// A uniformly distributed unit direction of travel.
     pub fn emit_dir(&self, u: [f64; 2]) -> DVec3 {
         uniform_sphere(u)
     }

@@ -19,6 +19,7 @@ use std::f64::consts::PI;
 
 use super::{Incident, LightSpectrum};
 
+/// Uniform radiance from every direction above a horizon, at infinity (see the module docs).
 #[derive(Clone, Debug)]
 pub struct SkyLight {
     /// Unit zenith direction.
@@ -27,6 +28,7 @@ pub struct SkyLight {
     pub sin_horizon: f64,
     /// The sphere photons are aimed at.
     pub target_centre: DVec3,
+    /// Radius of the target sphere, m.
     pub target_radius: f64,
     /// Distance upstream of the target centre at which photons start (beyond every shape).
     pub start_distance: f64,
@@ -40,6 +42,7 @@ impl SkyLight {
         2.0 * PI * (1.0 - self.sin_horizon)
     }
 
+    /// Φ = Ω π r² ∫ L dλ within the scene's wavelength range, W.
     pub fn power_w(&self) -> f64 {
         self.solid_angle() * PI * self.target_radius * self.target_radius * self.emission.integral()
     }

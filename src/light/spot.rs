@@ -11,12 +11,16 @@ use std::f64::consts::PI;
 
 use super::{Incident, LightSpectrum};
 
+/// A spotlight (see the module docs).
 #[derive(Clone, Debug)]
 pub struct SpotLight {
+    /// Position, m.
     pub position: DVec3,
     /// Unit axis of the cone.
     pub axis: DVec3,
+    /// cos θ_total: no light beyond this half-angle.
     pub cos_total: f64,
+    /// cos θ_start: full intensity within this half-angle.
     pub cos_start: f64,
     /// On-axis spectral intensity I₀(λ), W sr⁻¹ nm⁻¹.
     pub emission: LightSpectrum,
@@ -40,6 +44,7 @@ impl SpotLight {
         2.0 * PI * ((1.0 - self.cos_start) + 0.5 * (self.cos_start - self.cos_total))
     }
 
+    /// Φ = Ω_S ∫ I₀ dλ within the scene's wavelength range, W.
     pub fn power_w(&self) -> f64 {
         self.falloff_solid_angle() * self.emission.integral()
     }

@@ -14,9 +14,11 @@ use super::web::{PhotometricWeb, WebAxes};
 /// Intensities along a plane pair (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlaneCurve {
+    /// Plane angle C of the positive angles, degrees (negative angles lie in C + 180°).
     pub c_deg: f64,
     /// Signed angles from −180° to 180°.
     pub angles_deg: Vec<f64>,
+    /// Intensity at each angle, cd.
     pub cd: Vec<f64>,
 }
 

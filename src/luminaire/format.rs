@@ -25,6 +25,7 @@ impl Format {
     /// Every format, in the order messages list them.
     pub const ALL: [Format; 5] = [Format::Lm63, Format::Eulumdat, Format::Tm33, Format::Gldf, Format::Tm14];
 
+    /// The format's name for messages.
     pub fn name(self) -> &'static str {
         match self {
             Format::Lm63 => ies::READER.name,

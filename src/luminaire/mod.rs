@@ -63,8 +63,12 @@ use std::path::Path;
 /// LM-63 photometric types (LM-63-2002 §3): how the web's angles are laid out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PhotometricType {
+    /// Type A: vertical angles are elevations, horizontal angles about the vertical axis
+    /// (automotive).
     A,
+    /// Type B: angles about the luminaire's horizontal transverse axis (floodlights).
     B,
+    /// Type C: C-planes about the vertical axis, γ from the nadir (most luminaires).
     C,
 }
 
@@ -73,10 +77,13 @@ pub enum PhotometricType {
 pub struct LampSet {
     /// Number of lamps (negative in EULUMDAT files that mark absolute photometry).
     pub count: i64,
+    /// Lamp type as the file names it.
     pub description: String,
     /// Total rated flux of the set, lm (`None` for absolute photometry).
     pub flux_lm: Option<f64>,
+    /// Colour temperature as the file writes it (free text).
     pub colour_temperature: String,
+    /// Colour rendering as the file writes it (free text).
     pub colour_rendering: String,
     /// Wattage including ballast, W.
     pub watts: Option<f64>,
@@ -89,21 +96,31 @@ pub struct Photometry {
     pub format: String,
     /// How the bytes were decoded (see [`text`]).
     pub encoding: &'static str,
+    /// Manufacturer as the file names it.
     pub manufacturer: String,
+    /// Luminaire name.
     pub luminaire: String,
+    /// Catalogue or luminaire number.
     pub catalogue: String,
+    /// Lamp sets as the file lists them; the first is the one the intensities refer to.
     pub lamps: Vec<LampSet>,
     /// Rated lamp flux the intensities refer to, lm (`None` for absolute photometry).
     pub lamp_flux_lm: Option<f64>,
     /// Luminaire flux the file states (EULUMDAT: LORL × lamp flux), lm.
     pub stated_flux_lm: Option<f64>,
+    /// Absolute photometry: the intensities are candela of this luminaire, not per rated lamp flux.
     pub absolute: bool,
+    /// How the file lays out its angles.
     pub photometric_type: PhotometricType,
+    /// The symmetry the file declares.
     pub symmetry: Symmetry,
     /// Planes × angles as stored in the file (before symmetry expansion).
     pub stored_grid: (usize, usize),
+    /// The luminous opening, from the file's dimensions.
     pub opening: Opening,
+    /// Input power the file states, W.
     pub input_watts: Option<f64>,
+    /// LM-63 lamp tilt data, when the file has any.
     pub tilt: Option<Tilt>,
     /// Downward flux fraction the file states, %.
     pub dff_percent: Option<f64>,
@@ -111,6 +128,7 @@ pub struct Photometry {
     pub lorl_percent: Option<f64>,
     /// Tilt of the luminaire during measurement (EULUMDAT field 25), degrees.
     pub measurement_tilt_deg: Option<f64>,
+    /// The intensity I(C, γ), cd, on the full grid.
     pub web: PhotometricWeb,
     /// Things a reader tolerated (junk after the table, a leading blank line, …).
     pub notes: Vec<String>,
@@ -132,6 +150,7 @@ impl Photometry {
 
 /// How a text format is recognised and read (LM-63, EULUMDAT, TM14; [`Format`] dispatches).
 pub struct Reader {
+    /// Format name for messages, e.g. "IES LM-63".
     pub name: &'static str,
     /// Lower-case file extensions, without the dot.
     pub extensions: &'static [&'static str],
@@ -143,7 +162,6 @@ pub struct Reader {
     pub implemented: bool,
 }
 
-/// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt, .eul), …").
 /// The largest intensity-table value a photometric file may hold (cd, or cd/klm): a thousand
 /// times the brightest searchlights (~10⁹ cd). Larger values are input errors at their line,
 /// so that no multiplier can carry a table to infinity.
@@ -151,6 +169,7 @@ pub const MAX_TABLE_VALUE: f64 = 1e12;
 /// The largest candela multiplier or conversion factor a photometric file may state.
 pub const MAX_MULTIPLIER: f64 = 1e6;
 
+/// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt, .eul), …").
 pub fn supported_formats() -> String {
     Format::ALL
         .iter()

@@ -27,28 +27,35 @@ use glam::DVec3;
 /// The shape of an opening (extents in [`Opening::size_m`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
+    /// No extent: all light leaves the photometric centre.
     Point,
     /// A flat shape spanning the two non-zero extents; `round` for an ellipse.
     Flat {
+        /// Ellipse (true) or rectangle (false).
         round: bool,
     },
+    /// A box with luminous sides.
     Box,
     /// A cylinder whose axis is coordinate `axis` (0 = x, 1 = y, 2 = z), elliptic across it.
     Cylinder {
+        /// Index of the axis, 0 = x, 1 = y, 2 = z.
         axis: usize,
     },
+    /// An ellipsoid (a sphere when the extents are equal).
     Ellipsoid,
 }
 
 /// A luminous opening in the luminaire frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Opening {
+    /// The shape.
     pub kind: Kind,
     /// Full extents along x (length), y (width), z (height), m.
     pub size_m: DVec3,
 }
 
 impl Opening {
+    /// The point opening at the photometric centre.
     pub const POINT: Opening = Opening { kind: Kind::Point, size_m: DVec3::ZERO };
 
     /// From LM-63 width, length, height in metres (signs as in the module docs). The second
@@ -93,6 +100,7 @@ impl Opening {
         Opening { kind, size_m: if kind == Kind::Point { DVec3::ZERO } else { size_m } }
     }
 
+    /// True for a point opening.
     pub fn is_point(&self) -> bool {
         self.kind == Kind::Point
     }

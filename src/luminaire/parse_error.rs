@@ -9,15 +9,20 @@ use std::path::{Path, PathBuf};
 /// the reader opened for it (an LM-63 `TILT=<file>`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParseError {
+    /// The file read (`None`: the file the caller opened).
     pub file: Option<PathBuf>,
+    /// 1-based line of the offending value (`None`: the file as a whole).
     pub line: Option<usize>,
     /// The field by its standard name, e.g. "EULUMDAT field 4, Mc (number of C-planes)".
     pub field: String,
+    /// What was found.
     pub found: String,
+    /// What the standard allows.
     pub expected: String,
 }
 
 impl ParseError {
+    /// An error at `line` of the file being read.
     pub fn new(line: usize, field: impl Into<String>, found: impl Into<String>, expected: impl Into<String>) -> Self {
         ParseError { file: None, line: Some(line), field: field.into(), found: found.into(), expected: expected.into() }
     }
@@ -43,6 +48,7 @@ impl ParseError {
         Error::input(Some(Location { file: path, line: self.line, column: None }), message)
     }
 
+    /// "field: found …, expected …", without the location.
     pub fn message(&self) -> String {
         format!("{}: found {}, expected {}", self.field, self.found, self.expected)
     }

@@ -14,6 +14,7 @@ use glam::{DMat3, DVec3};
 /// The luminaire frame in the scene: its origin (the photometric centre) and unit axes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
+    /// The photometric centre, m.
     pub position: DVec3,
     /// C0 (length axis).
     pub x: DVec3,
@@ -51,10 +52,12 @@ impl Placement {
         Placement { position, x: r * h.x, y: r * h.y, z: r * h.z }
     }
 
+    /// A direction or offset from the luminaire frame to the scene frame.
     pub fn to_world(&self, local: DVec3) -> DVec3 {
         local.x * self.x + local.y * self.y + local.z * self.z
     }
 
+    /// A direction or offset from the scene frame to the luminaire frame.
     pub fn to_local(&self, world: DVec3) -> DVec3 {
         DVec3::new(world.dot(self.x), world.dot(self.y), world.dot(self.z))
     }

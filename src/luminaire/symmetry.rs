@@ -21,6 +21,7 @@ use std::fmt;
 /// The symmetry a file declares (or its angle list implies).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Symmetry {
+    /// No symmetry: every plane is stored.
     None,
     /// About the vertical axis: one plane stands for all.
     Rotational,

@@ -12,6 +12,7 @@ use super::ParseError;
 /// A decoded file, split into lines.
 #[derive(Clone, Debug)]
 pub struct SourceText {
+    /// The lines, without line ends; `lines[0]` is line 1.
     pub lines: Vec<String>,
     /// How the bytes were decoded, for reports ("UTF-8", "UTF-8 with BOM", "Latin-1").
     pub encoding: &'static str,
@@ -93,7 +94,9 @@ pub fn parse_number(s: &str) -> Option<f64> {
 /// A whitespace- or comma-separated value and the line it stands on.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Token {
+    /// The value as written.
     pub text: String,
+    /// 1-based line it stands on.
     pub line: usize,
 }
 
@@ -108,6 +111,7 @@ pub struct Tokens {
 }
 
 impl Tokens {
+    /// The values of lines `first_line..` (1-based); `commas` says whether commas separate values.
     pub fn new(src: &SourceText, first_line: usize, commas: bool) -> Tokens {
         let mut tokens = Vec::new();
         for (i, line) in src.lines.iter().enumerate().skip(first_line.saturating_sub(1)) {

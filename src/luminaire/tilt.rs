@@ -15,8 +15,12 @@ use super::text::Tokens;
 pub struct Tilt {
     /// "INCLUDE" or the tilt file's name as the IES file writes it.
     pub source: String,
+    /// Lamp-to-luminaire geometry: 1 vertical lamp, 2 horizontal tilting along its axis, 3
+    /// horizontal tilting across it.
     pub geometry: i64,
+    /// Tilt angles, degrees, increasing.
     pub angles_deg: Vec<f64>,
+    /// Candela multipliers at those angles.
     pub factors: Vec<f64>,
 }
 

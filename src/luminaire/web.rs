@@ -45,14 +45,20 @@ use glam::DVec3;
 /// Maps a web's (C, γ) to directions in the luminaire frame (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WebAxes {
+    /// Unit polar axis (γ = 0).
     pub pole: DVec3,
+    /// Unit direction of the plane C = 0 (at γ = 90°).
     pub zero: DVec3,
+    /// Unit direction of the plane C = 90° (at γ = 90°).
     pub quarter: DVec3,
 }
 
 impl WebAxes {
+    /// Type C: pole at the nadir, C0 along +x, C counterclockwise seen from above.
     pub const TYPE_C: WebAxes = WebAxes { pole: DVec3::NEG_Z, zero: DVec3::X, quarter: DVec3::Y };
+    /// Type A: pole at the nadir, H clockwise seen from above.
     pub const TYPE_A: WebAxes = WebAxes { pole: DVec3::NEG_Z, zero: DVec3::X, quarter: DVec3::NEG_Y };
+    /// Type B: pole along the transverse axis +y, H from the nadir.
     pub const TYPE_B: WebAxes = WebAxes { pole: DVec3::Y, zero: DVec3::NEG_Z, quarter: DVec3::X };
 
     /// The unit direction at plane angle `c_deg` and polar cosine `cos_gamma`.
@@ -79,10 +85,15 @@ impl WebAxes {
 /// intensities at its corners [(c0, z0), (c1, z0), (c0, z1), (c1, z1)].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cell {
+    /// First plane angle C, degrees.
     pub c0: f64,
+    /// Last plane angle C, degrees.
     pub c1: f64,
+    /// cos γ at the cell's first polar angle (the larger cosine).
     pub z0: f64,
+    /// cos γ at the cell's last polar angle (z1 ≤ z0).
     pub z1: f64,
+    /// Intensities at the corners (c0, z0), (c1, z0), (c0, z1), (c1, z1), cd.
     pub cd: [f64; 4],
 }
 
@@ -187,15 +198,19 @@ impl PhotometricWeb {
         }
     }
 
+    /// How (C, γ) map to directions.
     pub fn axes(&self) -> &WebAxes {
         &self.axes
     }
+    /// Plane angles C of the grid, degrees, increasing.
     pub fn c_deg(&self) -> &[f64] {
         &self.c_deg
     }
+    /// Polar angles γ of the grid, degrees, increasing.
     pub fn gamma_deg(&self) -> &[f64] {
         &self.gamma_deg
     }
+    /// True when the planes cover the full circle (C and C + 360° are the same plane).
     pub fn periodic(&self) -> bool {
         self.periodic
     }

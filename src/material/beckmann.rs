@@ -36,6 +36,7 @@ pub const COX_MUNK_MAX_WIND_M_S: f64 = 30.0;
 /// Isotropic Beckmann facets of rms slope `alpha`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beckmann {
+    /// RMS slope α (the Cox–Munk σ for a sea surface).
     pub alpha: f64,
 }
 

@@ -7,6 +7,7 @@ use glam::DVec3;
 /// the medium there) and a body of index n(λ) (the back side).
 #[derive(Clone, Debug)]
 pub struct Dielectric {
+    /// Refractive index n(λ) of the body.
     pub ior: Ior,
 }
 

@@ -19,24 +19,36 @@
 
 use serde::Serialize;
 
+/// A refractive index as a function of wavelength: a constant or a dispersion law.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum Ior {
+    /// The same n at every wavelength.
     Constant {
+        /// The index n.
         n: f64,
     },
+    /// Cauchy: n = a + b/λ² + c/λ⁴, λ in μm.
     Cauchy {
+        /// Constant term a.
         a: f64,
+        /// b, μm².
         b_um2: f64,
+        /// c, μm⁴.
         c_um4: f64,
     },
+    /// Sellmeier: n² = 1 + Σᵢ Bᵢλ²/(λ² − Cᵢ), λ in μm.
     Sellmeier {
+        /// Coefficients B₁..B₃ (dimensionless).
         b: [f64; 3],
+        /// Coefficients C₁..C₃, μm².
         c_um2: [f64; 3],
     },
     /// Quan & Fry (1995) for water of salinity S (‰) at temperature T (°C).
     QuanFry {
+        /// Salinity S, ‰ (PSU); the fit covers 0 to 35.
         salinity_psu: f64,
+        /// Temperature T, °C; the fit covers 0 to 30.
         temperature_c: f64,
     },
 }

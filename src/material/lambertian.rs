@@ -5,6 +5,7 @@ use crate::sampling::cosine_hemisphere;
 use crate::spectrum::Spectrum;
 use glam::DVec3;
 
+/// Ideal diffuse reflection (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Lambertian {
     /// Reflectance ρ(λ) in [0, 1].

@@ -26,9 +26,13 @@ use glam::DVec3;
 /// A surface's scattering.
 #[derive(Clone, Debug)]
 pub enum Material {
+    /// Ideal diffuse reflection.
     Lambertian(Lambertian),
+    /// Perfect specular reflection.
     Mirror(Mirror),
+    /// Smooth dielectric interface: Fresnel reflection and refraction.
     Dielectric(Dielectric),
+    /// Rough dielectric interface: Beckmann microfacets (a wind-roughened sea, frosted glass).
     RoughDielectric(RoughDielectric),
 }
 
@@ -36,7 +40,9 @@ pub enum Material {
 /// throughput by at `wavelength_nm`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpecularSample {
+    /// Unit direction of travel leaving the surface.
     pub dir: DVec3,
+    /// Factor to multiply the path throughput by.
     pub weight: f64,
     /// True when the direction passes through the surface (refraction).
     pub transmitted: bool,

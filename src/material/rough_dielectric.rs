@@ -30,9 +30,12 @@ use super::beckmann::Beckmann;
 use super::{Ior, SpecularSample, fresnel_dielectric, reflect, refract};
 use glam::DVec3;
 
+/// A rough dielectric interface (see the module docs).
 #[derive(Clone, Debug)]
 pub struct RoughDielectric {
+    /// Refractive index n(λ) of the body behind the normal.
     pub ior: Ior,
+    /// Facet normal distribution.
     pub facets: Beckmann,
 }
 

@@ -14,18 +14,37 @@ use crate::spectrum::Spectrum;
 #[derive(Clone, Debug)]
 pub enum Coefficients {
     /// σ_a(λ) and σ_s(λ), m⁻¹.
-    AbsorptionScattering { sigma_a: Spectrum, sigma_s: Spectrum },
+    AbsorptionScattering {
+        /// Absorption coefficient σ_a(λ), m⁻¹.
+        sigma_a: Spectrum,
+        /// Scattering coefficient σ_s(λ), m⁻¹.
+        sigma_s: Spectrum,
+    },
     /// σ_t(λ) (m⁻¹) and ω(λ) = σ_s/σ_t.
-    ExtinctionAlbedo { sigma_t: Spectrum, albedo: Spectrum },
+    ExtinctionAlbedo {
+        /// Extinction coefficient σ_t(λ), m⁻¹.
+        sigma_t: Spectrum,
+        /// Single-scattering albedo ω(λ) = σ_s/σ_t, in [0, 1].
+        albedo: Spectrum,
+    },
     /// σ_a(λ), with σ_s(λ) the sum over the components of a mixture phase function.
-    AbsorptionMixture { sigma_a: Spectrum },
+    AbsorptionMixture {
+        /// Absorption coefficient σ_a(λ), m⁻¹.
+        sigma_a: Spectrum,
+    },
 }
 
+/// A participating medium (see the module docs): coefficients at density 1, phase function,
+/// density field, and optionally a refractive-index field and inelastic components.
 #[derive(Clone, Debug)]
 pub struct Medium {
+    /// Unique name from the scene (`[[medium]] name`).
     pub name: String,
+    /// σ_a and σ_s at density 1, in the form the scene gave them.
     pub coefficients: Coefficients,
+    /// Phase function of elastic scattering, sr⁻¹.
     pub phase: PhaseFunction,
+    /// Dimensionless density d(x) multiplying the coefficients.
     pub density: Density,
     /// The medium's refractive index; `None`: n = 1 and straight paths.
     pub index: Option<super::refractive_index::IndexField>,
@@ -78,6 +97,7 @@ impl Medium {
         }
     }
 
+    /// True when the density is uniform (d ≡ 1), so the coefficients do not vary in space.
     pub fn is_homogeneous(&self) -> bool {
         self.density.is_uniform()
     }

@@ -1,7 +1,7 @@
 //! Participating media: what fills space between surfaces — absorption, scattering, phase
 //! functions ([`phase`]), spatial density ([`density`]), free-flight sampling and transmittance
-//! ([`tracking`]), refractive-index fields ([`index`]), and inelastic scattering — fluorescence and
-//! Raman — ([`inelastic`]).
+//! ([`tracking`]), refractive-index fields ([`refractive_index`]), and inelastic scattering —
+//! fluorescence and Raman — ([`inelastic`]).
 
 pub mod density;
 pub mod inelastic;

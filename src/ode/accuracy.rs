@@ -41,7 +41,9 @@ pub const MAX_BENDING: f64 = 100.0;
 /// The test ray: n = 1 + k·y, launched at the origin along +x, followed for `length_m`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Problem {
+    /// Gradient k of n = 1 + k·y, m⁻¹.
     pub k_per_m: f64,
+    /// Arc length L the ray is followed for, m.
     pub length_m: f64,
 }
 
@@ -97,11 +99,18 @@ impl Problem {
 /// What to measure.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plan {
+    /// Dormand–Prince tolerances to run (rtol = atol).
     pub tolerances: Vec<f64>,
+    /// Euler step sizes to run, m.
     pub euler_steps_m: Vec<f64>,
+    /// RK4 step sizes to run, m.
     pub rk4_steps_m: Vec<f64>,
+    /// Timing samples per configuration (the median is reported).
     pub samples: usize,
+    /// Shortest duration of one timing sample, s (the integration is repeated until it lasts this
+    /// long).
     pub min_sample_s: f64,
+    /// Rescale v to |v| = n after each step (see [`crate::ode::Integrator::with_projection`]).
     pub project: bool,
 }
 
@@ -146,11 +155,17 @@ impl Plan {
 /// step h (m) for "rk4" and "euler".
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Point {
+    /// `"dopri5"`, `"rk4"` or `"euler"`.
     pub method: &'static str,
+    /// Tolerance (dopri5) or step size h in m (rk4, euler).
     pub parameter: f64,
+    /// Distance of the computed endpoint from the closed form, m.
     pub endpoint_error_m: f64,
+    /// Median wall time of one integration, s.
     pub time_s: f64,
+    /// Accepted steps.
     pub steps: u64,
+    /// Field samples (evaluations of n and ∇n).
     pub rhs_evals: u64,
 }
 
@@ -158,26 +173,36 @@ pub struct Point {
 /// and in field samples (what dominates once n(r) is costly to evaluate).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Speedup {
+    /// The endpoint error the ratios are taken at, m (a decade).
     pub error_m: f64,
+    /// Wall-time ratio t_Euler / t_DP at that error; `None` outside either front.
     pub over_euler: Option<f64>,
+    /// Wall-time ratio t_RK4 / t_DP.
     pub over_rk4: Option<f64>,
+    /// Field-sample ratio Euler / DP.
     pub evals_over_euler: Option<f64>,
+    /// Field-sample ratio RK4 / DP.
     pub evals_over_rk4: Option<f64>,
 }
 
 /// Everything `morgana accuracy` measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
+    /// The test ray.
     pub problem: Problem,
+    /// Whether steps were projected to |v| = n.
     pub project: bool,
+    /// One point per configuration that succeeded.
     pub points: Vec<Point>,
     /// Configurations that failed, with the integrator's message.
     pub failures: Vec<String>,
+    /// Speedups at every decade of error inside both fronts.
     pub speedups: Vec<Speedup>,
 }
 
 /// The goals of the issue: DP at least this many times faster than Euler and RK4.
 pub const GOAL_OVER_EULER: f64 = 100.0;
+/// Goal: DP at least this many times faster than RK4.
 pub const GOAL_OVER_RK4: f64 = 3.0;
 
 /// Runs every configuration of `plan` on `problem`.

@@ -31,8 +31,11 @@ use super::system::{IndexSample, RayY, eval};
 
 /// Hairer's defaults (DOPRI5).
 pub const SAFETY: f64 = 0.9;
+/// Smallest factor a step may shrink by.
 pub const FAC_MIN: f64 = 0.2;
+/// Largest factor a step may grow by.
 pub const FAC_MAX: f64 = 10.0;
+/// β of PI step control (Gustafsson; Hairer's DOPRI5).
 pub const PI_BETA: f64 = 0.04;
 /// ln 10⁻⁴: the floor of err_prev (Hairer's DOPRI5).
 const LN_ERR_FLOOR: f64 = -9.210340371976184;
@@ -40,17 +43,30 @@ const LN_ERR_FLOOR: f64 = -9.210340371976184;
 /// The outcome of one error test.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Decision {
-    Accept { h_next: f64 },
-    Reject { h_retry: f64 },
+    /// The step passed the error test.
+    Accept {
+        /// The step proposed for the next step, m.
+        h_next: f64,
+    },
+    /// The step failed the error test and is retried.
+    Reject {
+        /// The smaller step to retry with, m.
+        h_retry: f64,
+    },
 }
 
 /// The controller state between steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Controller {
+    /// Relative tolerance.
     pub rtol: f64,
+    /// Absolute tolerance.
     pub atol: f64,
+    /// Smallest step, m.
     pub h_min: f64,
+    /// Largest step, m.
     pub h_max: f64,
+    /// β of the PI controller (0: plain I control).
     pub beta: f64,
     alpha: f64,
     /// ln(err_prev) (err_prev ≥ 10⁻⁴), so a step costs one ln and one exp, not two powf.

@@ -25,11 +25,17 @@ use glam::DVec3;
 /// nothing beyond what the step computed anyway.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Dense {
+    /// State at the start of the step.
     pub y0: RayY,
+    /// Derivative d/ds of the state at the start.
     pub f0: RayY,
+    /// State at the end of the step.
     pub y1: RayY,
+    /// Derivative d/ds of the state at the end.
     pub f1: RayY,
+    /// Step length h, m of arc.
     pub h: f64,
+    /// Dormand–Prince correction h·Σ dᵢkᵢ (zero: the cubic Hermite interpolant).
     pub c5: RayY,
 }
 

@@ -24,48 +24,81 @@
 use super::error::OdeError;
 use super::system::{IndexSample, RayY, eval};
 
+/// Node c₂ of the tableau (stage 2 is evaluated at s0 + c₂h).
 pub const C2: f64 = 1.0 / 5.0;
+/// Node c₃ of the tableau (stage 3 is evaluated at s0 + c₃h).
 pub const C3: f64 = 3.0 / 10.0;
+/// Node c₄ of the tableau (stage 4 is evaluated at s0 + c₄h).
 pub const C4: f64 = 4.0 / 5.0;
+/// Node c₅ of the tableau (stage 5 is evaluated at s0 + c₅h).
 pub const C5: f64 = 8.0 / 9.0;
 
+/// Coefficient a₂₁ of the tableau (stage 2, from k₁).
 pub const A21: f64 = 1.0 / 5.0;
+/// Coefficient a₃₁ of the tableau (stage 3, from k₁).
 pub const A31: f64 = 3.0 / 40.0;
+/// Coefficient a₃₂ of the tableau (stage 3, from k₂).
 pub const A32: f64 = 9.0 / 40.0;
+/// Coefficient a₄₁ of the tableau (stage 4, from k₁).
 pub const A41: f64 = 44.0 / 45.0;
+/// Coefficient a₄₂ of the tableau (stage 4, from k₂).
 pub const A42: f64 = -56.0 / 15.0;
+/// Coefficient a₄₃ of the tableau (stage 4, from k₃).
 pub const A43: f64 = 32.0 / 9.0;
+/// Coefficient a₅₁ of the tableau (stage 5, from k₁).
 pub const A51: f64 = 19372.0 / 6561.0;
+/// Coefficient a₅₂ of the tableau (stage 5, from k₂).
 pub const A52: f64 = -25360.0 / 2187.0;
+/// Coefficient a₅₃ of the tableau (stage 5, from k₃).
 pub const A53: f64 = 64448.0 / 6561.0;
+/// Coefficient a₅₄ of the tableau (stage 5, from k₄).
 pub const A54: f64 = -212.0 / 729.0;
+/// Coefficient a₆₁ of the tableau (stage 6, from k₁).
 pub const A61: f64 = 9017.0 / 3168.0;
+/// Coefficient a₆₂ of the tableau (stage 6, from k₂).
 pub const A62: f64 = -355.0 / 33.0;
+/// Coefficient a₆₃ of the tableau (stage 6, from k₃).
 pub const A63: f64 = 46732.0 / 5247.0;
+/// Coefficient a₆₄ of the tableau (stage 6, from k₄).
 pub const A64: f64 = 49.0 / 176.0;
+/// Coefficient a₆₅ of the tableau (stage 6, from k₅).
 pub const A65: f64 = -5103.0 / 18656.0;
 
 /// 5th-order weights (= the seventh row of A; b₂ = b₇ = 0).
 pub const B1: f64 = 35.0 / 384.0;
+/// 5th-order weight b₃.
 pub const B3: f64 = 500.0 / 1113.0;
+/// 5th-order weight b₄.
 pub const B4: f64 = 125.0 / 192.0;
+/// 5th-order weight b₅.
 pub const B5: f64 = -2187.0 / 6784.0;
+/// 5th-order weight b₆.
 pub const B6: f64 = 11.0 / 84.0;
 
 /// Error weights eᵢ = bᵢ − b̂ᵢ (e₂ = 0).
 pub const E1: f64 = 71.0 / 57600.0;
+/// Error weight e₃ = b₃ − b̂₃.
 pub const E3: f64 = -71.0 / 16695.0;
+/// Error weight e₄ = b₄ − b̂₄.
 pub const E4: f64 = 71.0 / 1920.0;
+/// Error weight e₅ = b₅ − b̂₅.
 pub const E5: f64 = -17253.0 / 339200.0;
+/// Error weight e₆ = b₆ − b̂₆.
 pub const E6: f64 = 22.0 / 525.0;
+/// Error weight e₇ = b₇ − b̂₇.
 pub const E7: f64 = -1.0 / 40.0;
 
 /// Dense-output weights of Hairer's DOPRI5 (d₂ = 0).
 pub const D1: f64 = -12715105075.0 / 11282082432.0;
+/// Dense-output weight d₃.
 pub const D3: f64 = 87487479700.0 / 32700410799.0;
+/// Dense-output weight d₄.
 pub const D4: f64 = -10690763975.0 / 1880347072.0;
+/// Dense-output weight d₅.
 pub const D5: f64 = 701980252875.0 / 199316789632.0;
+/// Dense-output weight d₆.
 pub const D6: f64 = -1453857185.0 / 822651844.0;
+/// Dense-output weight d₇.
 pub const D7: f64 = 69997945.0 / 29380423.0;
 
 /// The result of one trial step of size h from y0.

@@ -8,19 +8,58 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum OdeError {
     /// The field gave n ≤ 0, a non-finite n or a non-finite ∇n at a point the step needed.
-    BadIndex { at: DVec3, n: f64, grad_n: DVec3 },
+    BadIndex {
+        /// Where the field was sampled, m.
+        at: DVec3,
+        /// The index found.
+        n: f64,
+        /// The gradient found, m⁻¹.
+        grad_n: DVec3,
+    },
     /// A state with non-finite components (or a zero direction) was handed in.
-    BadState { r: DVec3, v: DVec3 },
+    BadState {
+        /// Position, m.
+        r: DVec3,
+        /// Ray vector n dr/ds.
+        v: DVec3,
+    },
     /// An integrator setting out of range: which, the value found, what is expected.
-    InvalidSettings { parameter: &'static str, value: f64, expected: &'static str },
+    InvalidSettings {
+        /// Name of the setting.
+        parameter: &'static str,
+        /// The value found.
+        value: f64,
+        /// What is expected, in words.
+        expected: &'static str,
+    },
     /// A step limit that is negative or NaN.
-    InvalidStepLimit { h_limit: f64 },
+    InvalidStepLimit {
+        /// The limit given, m.
+        h_limit: f64,
+    },
     /// The controller asked for a step below h_min (or below what s can resolve).
-    StepSizeUnderflow { s: f64, h: f64, h_min: f64 },
+    StepSizeUnderflow {
+        /// Arc length where the step started, m.
+        s: f64,
+        /// The step asked for, m.
+        h: f64,
+        /// The smallest step allowed, m.
+        h_min: f64,
+    },
     /// Too many consecutive rejections inside one step.
-    TooManyRejections { s: f64, rejections: u32 },
+    TooManyRejections {
+        /// Arc length where the step started, m.
+        s: f64,
+        /// Consecutive rejections counted.
+        rejections: u32,
+    },
     /// The integrator reached its budget of steps (accepted + rejected).
-    MaxSteps { s: f64, max_steps: u64 },
+    MaxSteps {
+        /// Arc length reached, m.
+        s: f64,
+        /// The budget of steps.
+        max_steps: u64,
+    },
 }
 
 impl fmt::Display for OdeError {

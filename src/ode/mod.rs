@@ -50,11 +50,30 @@ pub enum Method {
     /// ([`controller`]); `pi`: PI step control (Hairer's β = 0.04) instead of plain I control;
     /// `h0`: the first step (m), or Hairer's guess when `None`; `h_min`, `h_max`: bounds on the
     /// step (m).
-    DormandPrince { rtol: f64, atol: f64, pi: bool, h0: Option<f64>, h_min: f64, h_max: f64 },
+    DormandPrince {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance (m for r, units of n for v).
+        atol: f64,
+        /// PI step control (β = 0.04) instead of plain I control.
+        pi: bool,
+        /// First step, m; `None`: Hairer's starting-step guess.
+        h0: Option<f64>,
+        /// Smallest step allowed, m.
+        h_min: f64,
+        /// Largest step allowed, m.
+        h_max: f64,
+    },
     /// Classical RK4 with fixed step `h_m` (m).
-    Rk4 { h_m: f64 },
+    Rk4 {
+        /// Step length, m of arc.
+        h_m: f64,
+    },
     /// Explicit Euler with fixed step `h_m` (m).
-    Euler { h_m: f64 },
+    Euler {
+        /// Step length, m of arc.
+        h_m: f64,
+    },
 }
 
 impl Method {
@@ -96,7 +115,9 @@ impl Method {
 /// Where an integration is: arc length `s` (m) and the state `y`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OdeState {
+    /// Arc length travelled since launch, m.
     pub s: f64,
+    /// Position r (m) and ray vector v = n dr/ds.
     pub y: RayY,
 }
 
@@ -112,9 +133,11 @@ impl OdeState {
 /// tangent dr/ds, f.v = ∇n) and the step h.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Step {
+    /// Arc length at the start of the step, m.
     pub s0: f64,
     /// The step was cut to the caller's `h_limit` (it ends exactly there).
     pub reached_limit: bool,
+    /// The step's interpolant (end states, end derivatives, step length).
     pub dense: Dense,
 }
 
@@ -169,8 +192,11 @@ impl Step {
 /// Work done: accepted and rejected steps, and field samples (n and ∇n at a point).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Counters {
+    /// Accepted steps.
     pub accepted: u64,
+    /// Rejected steps (Dormand–Prince only).
     pub rejected: u64,
+    /// Field samples: evaluations of n and ∇n.
     pub rhs_evals: u64,
 }
 
@@ -234,14 +260,17 @@ impl Integrator {
         self
     }
 
+    /// The method this integrator was built with.
     pub fn method(&self) -> &Method {
         &self.method
     }
 
+    /// Work done since the last [`Integrator::reset_counters`].
     pub fn counters(&self) -> Counters {
         self.counters
     }
 
+    /// Sets the work counters to zero.
     pub fn reset_counters(&mut self) {
         self.counters = Counters::default();
     }

@@ -13,6 +13,7 @@ pub struct CurvedSettings {
     pub ode: &'static str,
     /// Dormand–Prince tolerances (relative, and absolute in m and in units of n).
     pub rtol: f64,
+    /// Dormand–Prince absolute tolerance.
     pub atol: f64,
     /// Fixed step of RK4 and Euler, m.
     pub step_m: f64,

@@ -42,7 +42,9 @@ impl<F: Fn(DVec3) -> (f64, DVec3)> IndexSample for F {
 /// holds a derivative d/ds (`r` = dr/ds, `v` = dv/ds = ∇n) and the dense-output coefficients.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RayY {
+    /// Position r, m (or dr/ds, the unit tangent, in a derivative).
     pub r: DVec3,
+    /// Ray vector v = n dr/ds (or dv/ds = ∇n, m⁻¹, in a derivative).
     pub v: DVec3,
 }
 

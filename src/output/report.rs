@@ -9,7 +9,9 @@ use serde::Serialize;
 /// photons fill (the box's shadow, or the projection map's cells where paths curve).
 #[derive(Serialize)]
 pub struct LightReport {
+    /// The light's name (`[[light]] name`, or a generated one).
     pub name: String,
+    /// Its type: "area", "point", "spot", "directional", "sun", "luminaire" or "sky".
     #[serde(rename = "type")]
     pub kind: &'static str,
     /// Power emitted into the scene's wavelength range, W.
@@ -39,37 +41,60 @@ impl LightReport {
     }
 }
 
+/// The simulated wavelength range and its sampling.
 #[derive(Serialize)]
 pub struct Wavelengths {
+    /// Short end, nm.
     pub min_nm: f64,
+    /// Long end, nm.
     pub max_nm: f64,
+    /// Number of bands.
     pub bands: usize,
+    /// How eye paths choose their wavelengths.
     pub sampling: WavelengthSampling,
 }
 
+/// The whole of `report.json`.
 #[derive(Serialize)]
 pub struct Report<'a> {
+    /// Version of morgana that rendered.
     pub morgana_version: &'static str,
+    /// The scene file, or `<embedded default scene>`.
     pub scene: String,
+    /// Random seed.
     pub seed: u64,
+    /// Worker threads (of rank 0).
     pub threads: usize,
+    /// Image width, pixels.
     pub width: usize,
+    /// Image height, pixels.
     pub height: usize,
+    /// The wavelength range and its sampling.
     pub wavelengths: Wavelengths,
+    /// Units of the spectral EXR's band values.
     pub radiance_units: &'static str,
+    /// Units of the RGB values.
     pub rgb_units: &'static str,
+    /// The integrator settings used.
     pub integrator: &'a IntegratorSettings,
+    /// The effect plan: what ran and why.
     pub effects: &'a EffectPlan,
+    /// One entry per light.
     pub lights: Vec<LightReport>,
     /// Notes the scene's validation printed (e.g. a beam no curved path reaches).
     pub warnings: &'a [String],
+    /// Wall time of the whole run, s.
     pub total_seconds: f64,
+    /// Timings, photon and ray counts (its fields appear at the top level).
     #[serde(flatten)]
     pub stats: &'a RenderStats,
+    /// The files written.
     pub outputs: Vec<String>,
 }
 
 impl<'a> Report<'a> {
+    /// The report of a render of `scene`: its statistics, worker threads, wall time (s) and
+    /// outputs.
     pub fn new(
         scene: &'a Scene,
         stats: &'a RenderStats,

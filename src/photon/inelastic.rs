@@ -16,7 +16,9 @@ use serde::{Deserialize, Serialize};
 /// One component's tally over a pass. Powers in W.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct InelasticTally {
+    /// Name of the medium the component belongs to.
     pub medium: String,
+    /// Name of the component.
     pub component: String,
     /// Re-emissions (fluorescence) or Raman scatterings.
     pub events: u64,
@@ -31,6 +33,7 @@ pub struct InelasticTally {
 }
 
 impl InelasticTally {
+    /// Adds another tally of the same component.
     pub fn add(&mut self, o: &InelasticTally) {
         self.events += o.events;
         self.absorbed_w += o.absorbed_w;
@@ -62,9 +65,13 @@ fn offset(world: &World, medium: u32) -> usize {
 
 /// A photon re-emitted by an inelastic event.
 pub struct Reemission {
+    /// Fluorescence or Raman.
     pub process: Process,
+    /// Emission wavelength, nm.
     pub wavelength_nm: f64,
+    /// Unit direction of travel after re-emission.
     pub dir: DVec3,
+    /// Power after re-emission (times the energy factor), W.
     pub power_w: f64,
 }
 

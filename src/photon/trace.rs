@@ -42,31 +42,42 @@ pub const MAX_PHOTON_BOUNCES: usize = 4096;
 /// emitted = absorbed at surfaces + absorbed in media + escaped + truncated.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PhotonStats {
+    /// Photons emitted.
     pub emitted: u64,
     /// Photons stored on surfaces.
     pub stored: u64,
     /// Photons stored in media.
     pub stored_volume: u64,
+    /// Power each photon started with, W.
     pub power_per_photon_w: f64,
+    /// Power absorbed at surfaces, W.
     pub absorbed_surface_w: f64,
+    /// Power absorbed in media, W.
     pub absorbed_medium_w: f64,
+    /// Power that left the world, W.
     pub escaped_w: f64,
+    /// Power dropped: paths over the bounce limit, or lost by the ray integrator, W.
     pub truncated_w: f64,
     /// Caustic-pass photons that did not make a caustic (first hit diffuse, scattered in a
     /// medium, or aimed nowhere).
     pub missed: u64,
+    /// Surface interactions.
     pub bounces: u64,
+    /// Interactions in media.
     pub medium_interactions: u64,
     /// Integrator work along curved paths (zero where every path is straight).
     pub curved: crate::raypath::CurvedWorkTotals,
     /// Photons re-emitted by fluorescence, and Raman scatterings (see `inelastic`).
     pub reemitted: u64,
+    /// Raman scatterings.
     pub raman_events: u64,
     /// Per inelastic component (empty when no medium is inelastic).
     pub inelastic: Vec<super::inelastic::InelasticTally>,
 }
 
 impl PhotonStats {
+    /// Adds another batch's counts and powers (`emitted`, `power_per_photon_w` and `curved` are set
+    /// once per pass and not added).
     pub fn add(&mut self, o: &PhotonStats) {
         self.stored += o.stored;
         self.stored_volume += o.stored_volume;
@@ -91,7 +102,9 @@ impl PhotonStats {
 /// Where a pass puts its photons.
 #[derive(Default)]
 pub struct PhotonSink {
+    /// Photons stored on surfaces (global or caustic map).
     pub surface: Vec<PhotonRecord>,
+    /// Photons stored in media (volume map).
     pub volume: Vec<PhotonRecord>,
 }
 

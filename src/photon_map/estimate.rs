@@ -41,6 +41,7 @@ const MIN_NORMAL_COS: f64 = 0.5;
 /// Which photons an estimate counts, by what they met on the way.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Paths {
+    /// Every photon.
     All,
     /// Leave out direct photons (direct light comes from shadow rays).
     NotDirect,
@@ -61,11 +62,17 @@ impl Paths {
 
 /// Density estimation on one map with fixed parameters.
 pub struct Estimator<'a> {
+    /// The photon map read.
     pub map: &'a PhotonMap,
+    /// Nearest photons per estimate.
     pub k: usize,
+    /// Largest gather radius, m.
     pub max_radius: f64,
+    /// Kernel of the estimate.
     pub filter: Filter,
+    /// The bands estimates are binned into.
     pub bands: Bands,
+    /// Which photons count.
     pub paths: Paths,
 }
 

@@ -15,7 +15,10 @@ pub enum Filter {
     /// Uniform weights over the disc.
     Box,
     /// Jensen's cone filter w = 1 − d/(k r), normalised by 1 − 2/(3k).
-    Cone { k: f64 },
+    Cone {
+        /// The cone constant k ≥ 1.
+        k: f64,
+    },
     /// Epanechnikov kernel w = 2(1 − d²/r²), normalised over the disc.
     Epanechnikov,
 }

@@ -101,10 +101,12 @@ impl IrradianceCache {
         IrradianceCache { origin, tree: KdTree::build(points), bands, values, max_radius: est.max_radius }
     }
 
+    /// Number of points with precomputed irradiance.
     pub fn len(&self) -> usize {
         self.tree.len()
     }
 
+    /// True when no point has precomputed irradiance.
     pub fn is_empty(&self) -> bool {
         self.tree.is_empty()
     }

@@ -48,6 +48,7 @@
 
 /// A point the kd-tree can hold.
 pub trait KdPoint: Copy + Send + Sync {
+    /// Position in the tree's coordinates.
     fn position(&self) -> [f32; 3];
 }
 
@@ -64,13 +65,16 @@ impl KdPoint for [f32; 3] {
 /// candidate buffer of `2k` entries, so once it has grown to that, queries do not allocate.
 #[derive(Clone, Debug, Default)]
 pub struct Neighbours {
+    /// (item index in tree order, squared distance) pairs.
     pub items: Vec<(u32, f32)>,
 }
 
 impl Neighbours {
+    /// Number of neighbours found.
     pub fn len(&self) -> usize {
         self.items.len()
     }
+    /// True when none was found.
     pub fn is_empty(&self) -> bool {
         self.items.is_empty()
     }
@@ -101,6 +105,7 @@ struct Split {
     axis: u32,
 }
 
+/// An implicit balanced kd-tree with leaf buckets (see the module docs).
 #[derive(Clone, Debug)]
 pub struct KdTree<T> {
     /// The items, in tree order.
@@ -151,9 +156,11 @@ impl<T: KdPoint> KdTree<T> {
     pub fn bytes_for(n: usize) -> usize {
         n * size_of::<T>() + ((1usize << Self::depth_for(n, LEAF_SIZE)) - 1) * size_of::<Split>()
     }
+    /// Number of items.
     pub fn len(&self) -> usize {
         self.items.len()
     }
+    /// True when the tree holds no item.
     pub fn is_empty(&self) -> bool {
         self.items.is_empty()
     }

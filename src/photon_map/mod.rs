@@ -76,9 +76,11 @@ impl PhotonMap {
     pub fn from_photons(origin: DVec3, photons: Vec<Photon>) -> PhotonMap {
         PhotonMap { origin, tree: KdTree::build(photons) }
     }
+    /// Number of photons.
     pub fn len(&self) -> usize {
         self.tree.len()
     }
+    /// True when the map holds no photon.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -23,12 +23,15 @@ use glam::DVec3;
 /// A photon as the tracer produces it (full precision).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhotonRecord {
+    /// Where the photon was stored, m.
     pub position: DVec3,
     /// Unit direction of travel when the photon arrived.
     pub dir: DVec3,
     /// Unit surface normal at a surface photon; zero for a photon stored in a medium.
     pub normal: DVec3,
+    /// Wavelength, nm.
     pub wavelength_nm: f64,
+    /// Power, W.
     pub power_w: f64,
     /// What the photon met between its light and this interaction.
     pub path: PhotonPath,

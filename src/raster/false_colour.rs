@@ -73,6 +73,7 @@ pub fn ramp(t: f64) -> Rgb {
 /// A colour map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ColourMap {
+    /// Viridis (perceptually uniform, for sensor readings).
     Viridis,
     /// The luminance ramp ([`ramp`]).
     Ramp,
@@ -92,9 +93,17 @@ impl ColourMap {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Scale {
     /// 0 to `top`, linear.
-    Linear { top: f64 },
+    Linear {
+        /// Value at the top of the scale.
+        top: f64,
+    },
     /// 10^lo to 10^hi, logarithmic, in whole decades.
-    LogDecades { lo: i32, hi: i32 },
+    LogDecades {
+        /// Lowest decade: the scale starts at 10^lo.
+        lo: i32,
+        /// Highest decade: the scale ends at 10^hi.
+        hi: i32,
+    },
 }
 
 impl Scale {
@@ -156,15 +165,21 @@ pub enum Rows {
 
 /// A grid of values to draw: nx × ny, row-major with i fastest.
 pub struct Grid<'a> {
+    /// Columns.
     pub nx: usize,
+    /// Rows.
     pub ny: usize,
+    /// The values, `nx × ny`.
     pub values: &'a [f64],
+    /// Which way rows run on the picture.
     pub rows: Rows,
 }
 
 /// How the map and its legend look.
 pub struct Look<'a> {
+    /// How values map to t ∈ [0, 1].
     pub scale: Scale,
+    /// How t maps to colour.
     pub map: ColourMap,
     /// Unit of the values, written above the colour bar (and after each tick on a linear
     /// scale).
@@ -175,6 +190,7 @@ pub struct Look<'a> {
     pub cell: usize,
     /// Background and text colours.
     pub background: Rgb,
+    /// Text colour.
     pub text: Rgb,
     /// Font pixel size of the legend.
     pub text_scale: usize,
@@ -253,9 +269,13 @@ pub fn write_png(grid: &Grid, look: &Look, path: &Path) -> io::Result<()> {
 /// Mean, minimum, maximum and uniformity U₀ = min/mean of values.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stats {
+    /// Mean of the values.
     pub mean: f64,
+    /// Smallest value.
     pub min: f64,
+    /// Largest value.
     pub max: f64,
+    /// Uniformity U₀ = min/mean (0 when the mean is not positive).
     pub uniformity: f64,
 }
 

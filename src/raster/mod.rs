@@ -11,21 +11,29 @@ pub mod spectrum_plot;
 use std::io;
 use std::path::Path;
 
+/// An sRGB-encoded colour, 8 bits per channel.
 pub type Rgb = [u8; 3];
 
+/// White.
 pub const WHITE: Rgb = [255, 255, 255];
+/// Black.
 pub const BLACK: Rgb = [0, 0, 0];
+/// Light grey (grid lines).
 pub const GREY: Rgb = [190, 190, 190];
 
 /// An RGB image, row-major from the top left.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Canvas {
+    /// Width, pixels.
     pub width: usize,
+    /// Height, pixels.
     pub height: usize,
+    /// Pixels, row-major from the top left.
     pub pixels: Vec<Rgb>,
 }
 
 impl Canvas {
+    /// A `width × height` canvas filled with `background`.
     pub fn new(width: usize, height: usize, background: Rgb) -> Canvas {
         Canvas { width, height, pixels: vec![background; width * height] }
     }
@@ -37,6 +45,7 @@ impl Canvas {
         }
     }
 
+    /// Pixel (x, y), which must lie on the canvas.
     pub fn get(&self, x: usize, y: usize) -> Rgb {
         self.pixels[y * self.width + x]
     }

@@ -9,7 +9,9 @@ use std::path::Path;
 
 /// One named series of (x, y) points.
 pub struct Series {
+    /// Legend label.
     pub label: String,
+    /// The (x, y) points, drawn joined in the order given.
     pub points: Vec<(f64, f64)>,
 }
 

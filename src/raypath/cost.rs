@@ -22,8 +22,9 @@ pub struct CurvedWork {
 pub struct CurvedWorkTotals {
     /// Events (surface, medium interaction, escape) reached along curved paths.
     pub curved_events: u64,
-    /// Accepted and rejected integrator steps.
+    /// Accepted integrator steps.
     pub ode_steps: u64,
+    /// Rejected integrator steps.
     pub ode_rejected: u64,
     /// Samples of n and ∇n.
     pub rhs_evals: u64,
@@ -34,6 +35,7 @@ pub struct CurvedWorkTotals {
 }
 
 impl CurvedWork {
+    /// Adds one curved event's integrator counters and its number of chords.
     pub fn add(&self, accepted: u64, rejected: u64, rhs_evals: u64, chords: u64) {
         self.events.fetch_add(1, Relaxed);
         self.accepted.fetch_add(accepted, Relaxed);
@@ -42,10 +44,12 @@ impl CurvedWork {
         self.chords.fetch_add(chords, Relaxed);
     }
 
+    /// Counts a path ended because the integrator failed.
     pub fn lose(&self) {
         self.lost.fetch_add(1, Relaxed);
     }
 
+    /// The counts so far.
     pub fn totals(&self) -> CurvedWorkTotals {
         CurvedWorkTotals {
             curved_events: self.events.load(Relaxed),
@@ -59,6 +63,7 @@ impl CurvedWork {
 }
 
 impl CurvedWorkTotals {
+    /// Adds another snapshot (e.g. another rank's) to this one.
     pub fn add(&mut self, o: &CurvedWorkTotals) {
         self.curved_events += o.curved_events;
         self.ode_steps += o.ode_steps;

@@ -6,7 +6,7 @@
 //!   a surface, the region's boundary and the world sphere (no ODE runs there);
 //! - *curved*, inside the region: each accepted step of the integrator (the scene's
 //!   [`crate::ode::Method`]) is cut into chords within the arc tolerance
-//!   ([`super::arc`]); every chord is intersected with the scene and handed to the visitor, so a
+//!   (`arc`); every chord is intersected with the scene and handed to the visitor, so a
 //!   surface crossing is found on the chord that crosses it and located on the arc to within the
 //!   tolerance; the arriving direction is the arc's tangent there (dense output). A leg ends when
 //!   a step ends outside the region.

@@ -11,7 +11,7 @@
 //! - in a medium with a refractive-index field ([`crate::media::refractive_index`]) the path follows
 //!   Fermat's ray equation d/ds(n dr/ds) = ∇n ([`curved`]), integrated step by step ([`crate::ode`]:
 //!   Dormand–Prince RK5(4)7M by default); each step's arc is cut into chords within the scene's
-//!   arc tolerance ([`arc`]), and the same visitors and segment queries
+//!   arc tolerance (`arc`), and the same visitors and segment queries
 //!   ([`crate::geometry::Bvh::intersect`]) see those chords. Outside the field's
 //!   [`crate::field::GradientRegion`] the path is straight again, seamlessly (n is
 //!   continuous there).
@@ -42,18 +42,26 @@ use glam::DVec3;
 /// path depends on wavelength: an eye path carrying all bands), and in which medium.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RayState {
+    /// Position, m.
     pub position: DVec3,
+    /// Unit direction of travel.
     pub dir: DVec3,
+    /// Wavelength, nm; `None` while nothing on the path depends on wavelength.
     pub wavelength_nm: Option<f64>,
+    /// Index of the medium light is in (into the world's media); `None`: vacuum.
     pub medium: Option<u32>,
 }
 
 /// A straight piece of a path inside one medium (or vacuum).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Chord {
+    /// Start point, m.
     pub origin: DVec3,
+    /// Unit direction.
     pub dir: DVec3,
+    /// Length, m.
     pub length: f64,
+    /// The medium it runs through (`None`: vacuum).
     pub medium: Option<u32>,
 }
 
@@ -63,14 +71,38 @@ pub enum Event {
     /// A surface; `dir` is the unit direction of travel on arrival, `path_length` the distance
     /// travelled along the path (arc length once paths curve), `medium` the medium it came
     /// through.
-    Surface { hit: Hit, dir: DVec3, path_length: f64, medium: Option<u32> },
+    Surface {
+        /// The surface hit.
+        hit: Hit,
+        /// Unit direction of travel on arrival.
+        dir: DVec3,
+        /// Distance travelled along the path (arc length once paths curve), m.
+        path_length: f64,
+        /// The medium it came through (`None`: vacuum).
+        medium: Option<u32>,
+    },
     /// The visitor stopped the path inside `medium` (a photon's interaction).
-    Medium { position: DVec3, dir: DVec3, path_length: f64, medium: u32 },
+    Medium {
+        /// Where the path stopped, m.
+        position: DVec3,
+        /// Unit direction of travel there.
+        dir: DVec3,
+        /// Distance travelled along the path, m.
+        path_length: f64,
+        /// The medium it stopped in.
+        medium: u32,
+    },
     /// Nothing more is hit; `dir` is the final direction of travel.
-    Escape { dir: DVec3 },
+    Escape {
+        /// Final unit direction of travel.
+        dir: DVec3,
+    },
     /// The path could not be followed (the integrator failed: a field gave a non-finite value);
     /// counted in [`CurvedWorkTotals::lost`] and ended.
-    Lost { position: DVec3 },
+    Lost {
+        /// Where the integrator failed, m.
+        position: DVec3,
+    },
 }
 
 /// Moves light through a world.

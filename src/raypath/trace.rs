@@ -2,7 +2,7 @@
 //! bend it — without scattering, to see where a pixel's ray goes (which surface a mirage pixel
 //! shows, how low a ray dips before it turns, which part of the sky it escapes to).
 //!
-//! The ray starts at `--from` in the medium found there ([`Scene::medium_at`]) with the
+//! The ray starts at `--from` in the medium found there ([`World::medium_at`]) with the
 //! direction `--dir` or toward `--toward`, at one wavelength. [`Propagator::next_event_with`]
 //! moves it from event to event; a visitor records every chord it is handed (one per
 //! integrator step in clear air away from geometry, finer near surfaces). At a boundary between
@@ -31,6 +31,7 @@ use std::fmt::Write as _;
 pub struct PathPoint {
     /// Path length from the start, m.
     pub s_m: f64,
+    /// Position, m.
     pub position: DVec3,
     /// Unit direction of travel there.
     pub dir: DVec3,
@@ -56,8 +57,11 @@ pub enum End {
 /// A followed ray: its points, one line per event, and how it ended.
 #[derive(Clone, Debug)]
 pub struct Traced {
+    /// Points along the path: chord starts, surface points and the end.
     pub points: Vec<PathPoint>,
+    /// One human-readable line per event.
     pub lines: Vec<String>,
+    /// How the trace ended.
     pub end: End,
     /// What the integrator did along the path.
     pub work: super::CurvedWorkTotals,
@@ -183,6 +187,7 @@ fn sees(world: &World, d: DVec3, wavelength_nm: f64) -> String {
     if names.is_empty() { "sees no light".to_string() } else { format!("sees {}", names.join(", ")) }
 }
 
+/// A medium's name in quotes, or `vacuum`, for messages.
 pub fn medium_label(world: &World, m: Option<u32>) -> String {
     m.map_or_else(|| "vacuum".to_string(), |i| format!("\"{}\"", world.names.media[i as usize]))
 }
@@ -214,6 +219,7 @@ pub fn csv_text(points: &[PathPoint]) -> String {
     text
 }
 
+/// A point as "(x, y, z)" with three decimals.
 pub fn xyz(p: DVec3) -> String {
     format!("({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)
 }

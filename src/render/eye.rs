@@ -63,6 +63,7 @@ const ROULETTE_TRANSMITTANCE: f64 = 1e-3;
 #[derive(Default)]
 pub struct Scratch {
     nb: Neighbours,
+    /// Rays this thread traced, by kind.
     pub rays: RayCounts,
 }
 
@@ -86,6 +87,7 @@ impl At<'_> {
     }
 }
 
+/// The eye pass: follows camera paths through the scene and reads the photon maps.
 pub struct EyeTracer<'a> {
     scene: &'a Scene,
     prop: Propagator<'a>,
@@ -102,6 +104,7 @@ pub struct EyeTracer<'a> {
 }
 
 impl<'a> EyeTracer<'a> {
+    /// An eye tracer over `scene` reading `maps` with the scene's estimate settings.
     pub fn new(scene: &'a Scene, maps: &'a Maps) -> EyeTracer<'a> {
         let s = &scene.integrator;
         let est =

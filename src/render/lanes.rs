@@ -10,9 +10,12 @@
 use crate::scene::{HERO_WAVELENGTHS, WavelengthSampling};
 use crate::spectrum::{Bands, MAX_BANDS};
 
+/// The wavelengths one eye path carries (see the module docs).
 #[derive(Clone, Copy, Debug)]
 pub struct Lanes {
+    /// Number of lanes in use.
     pub len: usize,
+    /// Wavelength of each lane, nm (the first `len` are in use).
     pub nm: [f64; MAX_BANDS],
     /// Band holding each lane's wavelength.
     pub band: [u8; MAX_BANDS],

@@ -1,4 +1,4 @@
-//! Rendering: the photon pass ([`maps`]), then the eye pass ([`eye`]) over the pixels.
+//! Rendering: the photon pass ([`photon_pass`]), then the eye pass ([`eye`]) over the pixels.
 //!
 //! Pixels are independent tasks with their own random streams derived from (seed, pixel), and
 //! each pixel's samples are summed in a fixed order, so the image is identical for any number
@@ -37,7 +37,9 @@ pub struct RenderOptions {
 
 /// A finished render.
 pub struct Rendered {
+    /// The spectral radiance image, W m⁻² sr⁻¹ nm⁻¹ per band.
     pub image: SpectralImage,
+    /// Timings, photon and ray counts, for `report.json`.
     pub stats: RenderStats,
     /// What the scene's sensors measured.
     pub sensors: Vec<crate::sensor::Reading>,

@@ -16,9 +16,13 @@ pub const IRRADIANCE_STRIDE: usize = 4;
 /// The photon maps of a render.
 #[derive(Default)]
 pub struct Maps {
+    /// Photons on diffuse surfaces (indirect light, or all light with `direct = "photon_map"`).
     pub global: Option<PhotonMap>,
+    /// Photons that reached a diffuse surface through specular surfaces only.
     pub caustic: Option<PhotonMap>,
+    /// Photons at interactions in participating media.
     pub volume: Option<PhotonMap>,
+    /// Irradiance precomputed at global-map photons, for final gathering.
     pub irradiance: Option<IrradianceCache>,
 }
 

@@ -49,10 +49,12 @@ impl Discrete1D {
         self.total
     }
 
+    /// Number of outcomes.
     pub fn len(&self) -> usize {
         self.cdf.len()
     }
 
+    /// True when there is no outcome.
     pub fn is_empty(&self) -> bool {
         self.cdf.is_empty()
     }

@@ -56,13 +56,19 @@ pub struct Scene {
     pub world: World,
     /// The scene file; `None` for the embedded default scene.
     pub file: Option<PathBuf>,
+    /// The pinhole camera.
     pub camera: Camera,
     /// The medium the camera sits in.
     pub camera_medium: Option<u32>,
+    /// The simulated wavelength bands.
     pub bands: Bands,
+    /// How eye paths choose their wavelengths.
     pub sampling: WavelengthSampling,
+    /// Validated `[integrator]` settings.
     pub integrator: IntegratorSettings,
+    /// Validated `[output]` settings.
     pub output: OutputSettings,
+    /// What machinery runs and why, decided once from the scene and the settings.
     pub plan: EffectPlan,
     /// Sensors evaluated after the photon pass (see [`crate::sensor`]).
     pub sensors: Vec<crate::sensor::NamedSensor>,

@@ -10,7 +10,9 @@ use serde::Serialize;
 /// Whether one piece of machinery runs, and the reason in words a user can act on.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Decision {
+    /// Whether it runs.
     pub on: bool,
+    /// Why, in words a user can act on (printed by `morgana check`, recorded in `report.json`).
     pub why: String,
 }
 
@@ -23,6 +25,7 @@ impl Decision {
     }
 }
 
+/// Which light-transport machinery a scene needs, one [`Decision`] per piece.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct EffectPlan {
     /// Photons stored on diffuse surfaces for indirect light (and for everything when direct
@@ -37,9 +40,13 @@ pub struct EffectPlan {
     pub final_gather: Decision,
     /// Eye paths carrying several wavelengths split at wavelength-dependent refraction.
     pub dispersion_splitting: Decision,
+    /// Absorption and scattering in media along paths (off when every used medium is clear).
     pub participating_media: Decision,
+    /// Photons stored in participating media for in-scattered light along eye rays.
     pub volume_map: Decision,
+    /// Rays follow Fermat's ray equation where a medium's refractive index varies.
     pub curved_paths: Decision,
+    /// Fluorescence and Raman re-emission at other wavelengths.
     pub inelastic_scattering: Decision,
 }
 
@@ -54,6 +61,7 @@ pub struct SceneFacts<'a> {
 }
 
 impl EffectPlan {
+    /// Decides the plan from what the scene contains and the integrator settings.
     pub fn decide(facts: &SceneFacts, s: &IntegratorSettings) -> EffectPlan {
         if s.method == Method::Path {
             return Self::path_tracing(facts, s);

@@ -69,39 +69,60 @@ pub fn check_photons_override(n: u64) -> crate::error::Result<()> {
     ))
 }
 
+/// Validated `[integrator]`: photon counts, density estimates, eye sampling and curved-path
+/// stepping.
 #[derive(Clone, Debug, Serialize)]
 pub struct IntegratorSettings {
+    /// Photon mapping or the reference path tracer.
     pub method: Method,
     /// Photons emitted for the global map.
     pub photons: u64,
     /// Photons emitted for the caustic map.
     pub caustic_photons: u64,
+    /// Nearest photons per global-map estimate.
     pub k: usize,
+    /// Largest gather radius of the global map, m.
     pub max_radius_m: f64,
+    /// Nearest photons per caustic-map estimate.
     pub caustic_k: usize,
+    /// Largest gather radius of the caustic map, m.
     pub caustic_max_radius_m: f64,
     /// Nearest photons per volume estimate.
     pub volume_k: usize,
+    /// Largest gather radius of the volume map, m.
     pub volume_max_radius_m: f64,
     /// Largest ray-marching step in media, m (steps shrink where photons are dense).
     pub march_step_m: f64,
+    /// Where direct light on diffuse surfaces comes from.
     pub direct: DirectLighting,
+    /// Gather indirect light with rays into the global map at the first diffuse hit.
     pub final_gather: bool,
+    /// Final-gather rays per shading point.
     pub gather_rays: usize,
+    /// Eye samples per pixel.
     pub spp: usize,
+    /// Largest number of specular bounces of an eye path.
     pub max_depth: usize,
+    /// Random seed of the whole run.
     pub seed: u64,
+    /// Kernel of the photon density estimates.
     pub filter: Filter,
+    /// How curved paths are stepped where a medium's index varies.
     pub curved: CurvedSettings,
 }
 
+/// Validated `[output]`: which files are written and how the PNG is made.
 #[derive(Clone, Debug, Serialize)]
 pub struct OutputSettings {
     /// File stem of the outputs.
     pub name: String,
+    /// Write the spectral EXR.
     pub exr: bool,
+    /// Write the PNG preview.
     pub png: bool,
+    /// Write one CSV row per pixel (x, y, radiance per band).
     pub csv: bool,
+    /// Exposure of the PNG preview.
     #[serde(skip)]
     pub exposure: Exposure,
     /// How the PNG is made; `None`: the exposure preview.

@@ -20,14 +20,20 @@
 
 use glam::DVec3;
 
+/// Illuminance on a grid of points on a plane (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct IlluminancePlane {
+    /// A corner of the grid, m.
     pub origin: DVec3,
+    /// First edge, m (points along it: `nx`).
     pub u: DVec3,
+    /// Second edge, m (points along it: `ny`).
     pub v: DVec3,
     /// Unit normal of the measuring side.
     pub normal: DVec3,
+    /// Points along `u`.
     pub nx: usize,
+    /// Points along `v`.
     pub ny: usize,
     /// Estimates averaged per point.
     pub samples: usize,

@@ -19,8 +19,10 @@ use glam::DVec3;
 use std::io::{self, Write};
 use std::path::Path;
 
+/// A sensor, one variant per kind.
 #[derive(Clone, Debug)]
 pub enum Sensor {
+    /// Illuminance in lux on a grid of points on a plane.
     IlluminancePlane(IlluminancePlane),
     /// Ocean irradiances and radiance at depths (written as a profile, see [`ProfileReading`]).
     OceanProfile(OceanProfile),
@@ -29,20 +31,26 @@ pub enum Sensor {
 /// A sensor as the scene names it.
 #[derive(Clone, Debug)]
 pub struct NamedSensor {
+    /// The sensor's name; outputs are `NAME_<sensor>.*`.
     pub name: String,
+    /// What it measures and where.
     pub sensor: Sensor,
 }
 
 /// What a sensor measured: values at the points of an nx × ny grid (row-major, i fastest).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reading {
+    /// The sensor's name.
     pub name: String,
     /// E.g. "illuminance".
     pub quantity: &'static str,
     /// E.g. "lx".
     pub unit: &'static str,
+    /// Points along the grid's first edge.
     pub nx: usize,
+    /// Points along the grid's second edge.
     pub ny: usize,
+    /// The measuring points, m, row-major.
     pub points: Vec<DVec3>,
     /// Named columns of values, one per point; the first is the one the PNG shows.
     pub columns: Vec<(String, Vec<f64>)>,

@@ -40,7 +40,7 @@
 //!
 //! Derived: L_w = L_u(0−) (1 − R(0)) / n², with R(0) = ((n − 1)/(n + 1))² the Fresnel
 //! reflectance at normal incidence and L_u(0−) the estimate at depth 0; R_rs = L_w / E_d(0+) (sr⁻¹); K_d between consecutive depths
-//! = ln(E_d(z₁)/E_d(z₂)) / (z₂ − z₁) (Mobley 1994, §1.7 and §4.? for the n² law).
+//! = ln(E_d(z₁)/E_d(z₂)) / (z₂ − z₁) (Mobley 1994, §1.7 and §4.3 for the n² law).
 //!
 //! Units: irradiances W m⁻² nm⁻¹, radiances W m⁻² sr⁻¹ nm⁻¹, R_rs sr⁻¹, K_d m⁻¹.
 //!
@@ -52,16 +52,20 @@ use glam::DVec3;
 use std::io::{self, Write};
 use std::path::Path;
 
+/// Ocean irradiances and radiance at depths (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OceanProfile {
     /// A point on the water surface: the centre of the measured square.
     pub origin: DVec3,
-    /// Edges of the horizontal square, centred on `origin`.
+    /// First edge of the horizontal square (centred on `origin`), m.
     pub u: DVec3,
+    /// Second edge of the horizontal square, m.
     pub v: DVec3,
     /// Unit vector up (toward the air).
     pub up: DVec3,
+    /// Depths below the surface, m.
     pub depths_m: Vec<f64>,
+    /// Thickness Δz of each measuring slab, m.
     pub slab_m: f64,
     /// Refractive index of the water for L_w.
     pub ior: f64,
@@ -72,19 +76,28 @@ pub struct OceanProfile {
 /// One row of the profile: a depth and a band.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ProfileRow {
+    /// Depth below the surface, m.
     pub depth_m: f64,
+    /// Band centre, nm.
     pub wavelength_nm: f64,
+    /// Downwelling planar irradiance E_d, W m⁻² nm⁻¹.
     pub ed: f64,
+    /// Upwelling planar irradiance E_u, W m⁻² nm⁻¹.
     pub eu: f64,
+    /// Downwelling scalar irradiance E_od, W m⁻² nm⁻¹.
     pub eod: f64,
+    /// Upwelling scalar irradiance E_ou, W m⁻² nm⁻¹.
     pub eou: f64,
+    /// Upwelling radiance L_u in the nadir-viewing direction, W m⁻² sr⁻¹ nm⁻¹.
     pub lu: f64,
 }
 
 /// What the profile measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProfileReading {
+    /// The sensor's name.
     pub name: String,
+    /// One row per depth and band.
     pub rows: Vec<ProfileRow>,
     /// Per band: (wavelength, Ed(0+), Lu(0−), Lw, Rrs).
     pub surface: Vec<[f64; 5]>,

@@ -5,14 +5,17 @@ use serde::Serialize;
 /// The most bands a scene may ask for; per-band arrays on the stack are this long.
 pub const MAX_BANDS: usize = 64;
 
-/// `count` equal-width bands covering [min_nm, max_nm].
 /// Per-band values, `bands.count` of them used.
 pub type BandValues = [f64; MAX_BANDS];
 
+/// `count` equal-width bands covering [min_nm, max_nm].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Bands {
+    /// Short end of the range, nm.
     pub min_nm: f64,
+    /// Long end of the range, nm.
     pub max_nm: f64,
+    /// Number of bands (1 to [`MAX_BANDS`]).
     pub count: usize,
 }
 

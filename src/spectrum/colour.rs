@@ -22,8 +22,9 @@ use super::{Bands, Spectrum};
 /// Maximum luminous efficacy for photopic vision, lm/W.
 pub const K_M: f64 = 683.002;
 
-/// First and last integer wavelength of the tristimulus sums, nm.
+/// First integer wavelength of the tristimulus sums, nm.
 pub const SUM_START_NM: u32 = 360;
+/// Last integer wavelength of the tristimulus sums, nm.
 pub const SUM_END_NM: u32 = 830;
 
 /// XYZ → linear sRGB, IEC 61966-2-1 §5.3 (D65 white, 4 decimals as published).
@@ -47,6 +48,7 @@ pub struct BandsToColour {
 }
 
 impl BandsToColour {
+    /// The band weights for `bands`.
     pub fn new(bands: &Bands) -> BandsToColour {
         let n = bands.count;
         let w = bands.width_nm();

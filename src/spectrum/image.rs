@@ -6,8 +6,11 @@ use super::Bands;
 /// rendering (Y in cd m⁻²).
 #[derive(Clone, Debug)]
 pub struct SpectralImage {
+    /// Width, pixels.
     pub width: usize,
+    /// Height, pixels.
     pub height: usize,
+    /// The wavelength bands of the values.
     pub bands: Bands,
     /// Row-major pixels, `bands.count` values each: `data[(y * width + x) * bands.count + b]`.
     pub data: Vec<f32>,

@@ -34,7 +34,10 @@ pub enum Spectrum {
     /// Piecewise linear through samples; zero outside the sampled range.
     Tabulated(Tabulated),
     /// Planck's spectral radiance of a black body at `temperature_k`, in W m⁻² sr⁻¹ nm⁻¹.
-    Blackbody { temperature_k: f64 },
+    Blackbody {
+        /// Temperature T, K.
+        temperature_k: f64,
+    },
     /// A smooth reflectance in [0, 1] whose sRGB albedo is the given one (Jakob & Hanika 2019).
     RgbReflectance(RgbSigmoid),
     /// `scale` times another spectrum.

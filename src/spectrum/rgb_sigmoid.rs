@@ -40,6 +40,7 @@ const DELTA_E_TOLERANCE: f64 = 1e-9;
 /// A sigmoid-polynomial reflectance s(λ) = S(c0 λ² + c1 λ + c2) in [0, 1].
 #[derive(Clone, Debug, PartialEq)]
 pub struct RgbSigmoid {
+    /// (c0, c1, c2) of the quadratic in λ (nm); c2 = ∓∞ for black and white.
     pub coefficients: [f64; 3],
 }
 
@@ -72,6 +73,7 @@ impl RgbSigmoid {
         Ok(RgbSigmoid { coefficients: to_nm_coefficients(z) })
     }
 
+    /// s(λ) at `wavelength_nm`, in [0, 1].
     pub fn eval(&self, wavelength_nm: f64) -> f64 {
         let [c0, c1, c2] = self.coefficients;
         let x = if c0 == 0.0 && c1 == 0.0 { c2 } else { (c0 * wavelength_nm + c1) * wavelength_nm + c2 };

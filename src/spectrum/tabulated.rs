@@ -47,6 +47,7 @@ impl Tabulated {
         Ok(Tabulated { nm, values })
     }
 
+    /// s(λ), linear between samples, zero outside.
     pub fn eval(&self, wavelength_nm: f64) -> f64 {
         let (lo, hi) = self.domain_nm();
         if !(lo..=hi).contains(&wavelength_nm) {
@@ -86,6 +87,7 @@ impl Tabulated {
         (self.nm[0], self.nm[self.nm.len() - 1])
     }
 
+    /// The sample wavelengths (nm) and values.
     pub fn samples(&self) -> (&[f64], &[f64]) {
         (&self.nm, &self.values)
     }

@@ -27,7 +27,7 @@
 //!   Application 42(6), 703–718.
 //! - D. Gutierrez, A. Muñoz, O. Anson, F. J. Serón (2005), "Non-linear Volume Photon Mapping",
 //!   Eurographics Symposium on Rendering, §6 (`../shared/papers/`); the operator itself is
-//!   described in their reference [GSMA04] (Gutierrez, Serón, Muñoz, Anson 2004), which is not
+//!   described in their reference \[GSMA04\] (Gutierrez, Serón, Muñoz, Anson 2004), which is not
 //!   available here, so this module implements the standard von Kries form it builds on.
 
 use super::matrix::{Mat3, diagonal, invert, mul, mul_vec};
@@ -35,12 +35,16 @@ use super::matrix::{Mat3, diagonal, invert, mul, mul_vec};
 /// The cone-like space of the von Kries scaling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Cat {
+    /// Hunt–Pointer–Estévez LMS cone fundamentals (von Kries's own hypothesis).
     VonKries,
+    /// The linearised Bradford matrix.
     Bradford,
+    /// The CAT16 matrix of Li et al. (2017).
     Cat16,
 }
 
 impl Cat {
+    /// Every transform, in the order above.
     pub const ALL: [Cat; 3] = [Cat::VonKries, Cat::Bradford, Cat::Cat16];
 
     /// The matrix M from XYZ to the cone-like space.

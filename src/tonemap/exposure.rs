@@ -15,6 +15,7 @@ use super::{Display, ToneCurve};
 /// y = scale · L.
 #[derive(Clone, Copy, Debug)]
 pub struct ExposureCurve {
+    /// Display luminance per scene luminance, (cd m⁻²)⁻¹.
     pub scale: f64,
 }
 

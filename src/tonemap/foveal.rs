@@ -16,7 +16,9 @@ use super::scene_image::SceneImage;
 /// Mean luminance over ~1° blocks.
 #[derive(Clone, Debug)]
 pub struct FovealImage {
+    /// Columns of blocks.
     pub nx: usize,
+    /// Rows of blocks.
     pub ny: usize,
     /// Row-major mean luminance per block, cd m⁻².
     pub luminance: Vec<f64>,

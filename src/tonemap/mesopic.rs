@@ -45,6 +45,7 @@ pub enum ScotopicMode {
 }
 
 impl ScotopicMode {
+    /// Parses `off`, `auto` or `on` (any case).
     pub fn parse(s: &str) -> Option<ScotopicMode> {
         match s.to_ascii_lowercase().as_str() {
             "off" => Some(ScotopicMode::Off),
@@ -54,6 +55,7 @@ impl ScotopicMode {
         }
     }
 
+    /// The name [`ScotopicMode::parse`] accepts.
     pub fn name(self) -> &'static str {
         match self {
             ScotopicMode::Off => "off",

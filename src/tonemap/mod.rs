@@ -72,13 +72,17 @@ pub struct Display {
 /// A prepared tone-reproduction operator: a map from a pixel's photopic luminance and its
 /// photopic-equivalent rod luminance L′/2.26 (both cd m⁻²) to display luminance.
 pub trait ToneCurve {
+    /// Display luminance of a pixel of photopic luminance `luminance` and rod luminance `rod` (cd
+    /// m⁻²).
     fn display(&self, luminance: f64, rod: f64) -> Display;
 }
 
 /// An 8-bit sRGB picture and what was done to make it.
 #[derive(Clone, Debug)]
 pub struct ToneOutput {
+    /// Width, pixels.
     pub width: usize,
+    /// Height, pixels.
     pub height: usize,
     /// Row-major, 3 bytes per pixel, sRGB-encoded.
     pub rgb: Vec<u8>,

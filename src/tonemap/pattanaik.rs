@@ -66,9 +66,13 @@ const ROD_HALF_BLEACH_CD_M2: f64 = 0.04;
 /// Adaptation levels (cd m⁻²; rods in photopic-equivalent units) and unbleached pigment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdaptationState {
+    /// Cone adaptation level A_c, cd m⁻².
     pub cone_cd_m2: f64,
+    /// Rod adaptation level A_r, cd m⁻² (photopic-equivalent, L′/2.26).
     pub rod_cd_m2: f64,
+    /// Fraction of unbleached cone pigment B_c, 0 to 1.
     pub cone_pigment: f64,
+    /// Fraction of unbleached rod pigment B_r, 0 to 1.
     pub rod_pigment: f64,
 }
 
@@ -130,7 +134,9 @@ pub fn response(i: f64, sigma: f64) -> f64 {
 /// Which receptors take part.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Receptors {
+    /// Cones respond.
     pub cones: bool,
+    /// Rods respond.
     pub rods: bool,
 }
 

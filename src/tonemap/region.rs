@@ -18,18 +18,26 @@ use std::path::Path;
 /// A pixel rectangle, end-exclusive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Region {
+    /// First column, pixels from the left.
     pub x0: usize,
+    /// First row, pixels from the top.
     pub y0: usize,
+    /// Column after the last.
     pub x1: usize,
+    /// Row after the last.
     pub y1: usize,
 }
 
 /// Statistics of a region.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RegionSummary {
+    /// Number of pixels in the region.
     pub pixels: usize,
+    /// Mean luminance, cd m⁻².
     pub mean_cd_m2: f64,
+    /// Smallest luminance, cd m⁻².
     pub min_cd_m2: f64,
+    /// Largest luminance, cd m⁻².
     pub max_cd_m2: f64,
     /// Illuminance on the camera from the region, lx.
     pub camera_illuminance_lx: f64,
@@ -45,6 +53,7 @@ impl Region {
         }
     }
 
+    /// The rectangle x0 ≤ x < x1, y0 ≤ y < y1; empty rectangles are rejected.
     pub fn new(x0: usize, y0: usize, x1: usize, y1: usize) -> Result<Region, String> {
         if x0 < x1 && y0 < y1 {
             Ok(Region { x0, y0, x1, y1 })

@@ -4,7 +4,7 @@
 //! [`BandWeights`]: X, Y, Z from the CIE 1931 functions and the scotopic luminance from the
 //! CIE 1951 V′(λ), computed from the bands themselves), or from tristimulus values alone (an
 //! RGB EXR), when the scotopic luminance is estimated from XYZ
-//! ([`scotopic_from_xyz`](super::scotopic::scotopic_from_xyz)).
+//! ([`scotopic_from_xyz`]).
 
 use super::scotopic::scotopic_from_xyz;
 use super::spectral_weights::BandWeights;
@@ -22,12 +22,15 @@ pub enum ScotopicSource {
 /// Row-major pixels with absolute colorimetry.
 #[derive(Clone, Debug)]
 pub struct SceneImage {
+    /// Width, pixels.
     pub width: usize,
+    /// Height, pixels.
     pub height: usize,
     /// CIE 1931 XYZ, Y in cd m⁻² (non-finite inputs become 0).
     pub xyz: Vec<[f64; 3]>,
     /// Scotopic luminance, scotopic cd m⁻².
     pub scotopic: Vec<f64>,
+    /// Whether `scotopic` came from the spectrum or was estimated from XYZ.
     pub scotopic_source: ScotopicSource,
 }
 

@@ -12,9 +12,13 @@ use super::white::AdaptTo;
 /// The tone-reproduction operator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Operator {
+    /// Global exposure (a camera, not an eye).
     Exposure(Exposure),
+    /// Reinhard et al. (2002), photographic tone reproduction.
     Reinhard,
+    /// Ward Larson et al. (1997), histogram adjustment.
     WardHistogram,
+    /// Pattanaik et al. (2000), time-dependent visual adaptation.
     Pattanaik,
 }
 
@@ -22,6 +26,7 @@ impl Operator {
     /// Canonical names (dashes and underscores are interchangeable).
     pub const NAMES: [&'static str; 4] = ["exposure", "reinhard", "ward_histogram", "pattanaik"];
 
+    /// The canonical name (one of [`Operator::NAMES`]).
     pub fn name(&self) -> &'static str {
         match self {
             Operator::Exposure(_) => "exposure",
@@ -43,21 +48,28 @@ impl Operator {
 /// Where a Pattanaik eye comes from: steady at `from_cd_m2`, then `time_s` seconds on the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdaptationTime {
+    /// Luminance the eye was adapted to at steady state before, cd m⁻².
     pub from_cd_m2: f64,
+    /// Time since the eye began looking at the image, s.
     pub time_s: f64,
 }
 
 /// Validated settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ToneSettings {
+    /// The tone-reproduction operator.
     pub operator: Operator,
+    /// The scene white chromatic adaptation starts from.
     pub adapt_to: AdaptTo,
+    /// The chromatic adaptation transform.
     pub cat: Cat,
     /// Degree of chromatic adaptation D ∈ [0, 1].
     pub adaptation_degree: f64,
     /// `None`: fully adapted to the image.
     pub time: Option<AdaptationTime>,
+    /// How rod vision is simulated.
     pub scotopic: ScotopicMode,
+    /// Show luminance in false colour instead of tone mapping.
     pub false_colour: bool,
     /// Vertical field of view of the image, degrees.
     pub fov_deg: f64,
@@ -85,15 +97,25 @@ impl Default for ToneSettings {
 /// `--operator` for `tonemap`).
 #[derive(Clone, Debug, Default)]
 pub struct ToneOptions {
+    /// `tonemap` / `--operator`: operator name.
     pub operator: Option<String>,
+    /// `exposure`: `auto` or stops (EV); only with the exposure operator.
     pub exposure: Option<Exposure>,
+    /// `adapt_to`: scene white, a name or `x,y`.
     pub adapt_to: Option<String>,
+    /// `cat`: chromatic adaptation transform name.
     pub cat: Option<String>,
+    /// `adaptation_degree`: degree of adaptation D, 0 to 1.
     pub adaptation_degree: Option<f64>,
+    /// `adaptation_time_s`: seconds since the adaptation luminance changed (Pattanaik).
     pub adaptation_time_s: Option<f64>,
+    /// `adapt_from_cd_m2`: the luminance adapted to before, cd m⁻² (Pattanaik).
     pub adapt_from_cd_m2: Option<f64>,
+    /// `scotopic`: `auto`, `on` or `off`.
     pub scotopic: Option<String>,
+    /// `false_colour`: luminance in false colour.
     pub false_colour: bool,
+    /// Vertical field of view of the image, degrees (from the camera, or given).
     pub fov_deg: Option<f64>,
 }
 
@@ -102,6 +124,7 @@ pub struct ToneOptions {
 pub struct OptionError {
     /// The `[output]` name of the option (`tonemap` for the operator).
     pub field: &'static str,
+    /// What is wrong, and what is allowed.
     pub message: String,
 }
 

@@ -60,6 +60,7 @@ pub const MIN_LUMINANCE_CD_M2: f64 = 1e-7;
 /// The operator's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WardHistogram {
+    /// Display white L_dmax, cd m⁻².
     pub display_max_cd_m2: f64,
     /// L_dmax / L_dmin.
     pub display_range: f64,
@@ -77,18 +78,34 @@ impl Default for WardHistogram {
 #[derive(Clone, Debug)]
 pub enum WardMapping {
     /// L_d = scale · L_w.
-    Linear { scale: f64 },
+    Linear {
+        /// Display luminance per world luminance.
+        scale: f64,
+    },
     /// The adjusted histogram: `counts` per bin from `b_min` in steps of `bin_width`, and its
     /// cumulative distribution at the bin edges.
-    Adjusted { b_min: f64, bin_width: f64, counts: Vec<f64>, cumulative: Vec<f64> },
+    Adjusted {
+        /// World brightness ln L_w at the lower edge of the first bin.
+        b_min: f64,
+        /// Bin width Δb in ln L_w.
+        bin_width: f64,
+        /// Count of each bin after clipping to the ceiling.
+        counts: Vec<f64>,
+        /// Cumulative distribution P(b) at the bin edges (one more than `counts`).
+        cumulative: Vec<f64>,
+    },
 }
 
 /// The prepared operator.
 #[derive(Clone, Debug)]
 pub struct WardCurve {
+    /// Linear map or adjusted histogram.
     pub mapping: WardMapping,
+    /// Display black L_dmin, cd m⁻².
     pub ld_min: f64,
+    /// Display white L_dmax, cd m⁻².
     pub ld_max: f64,
+    /// The human (true) or the linear (false) ceiling.
     pub human_ceiling: bool,
 }
 

@@ -3,7 +3,7 @@
 //! - [`AdaptTo::None`]: no chromatic adaptation.
 //! - [`AdaptTo::Chromaticity`]: a given (x, y), e.g. the water colour a diver adapts to; `d65`
 //!   is (0.3127, 0.3290), the display white, so it adapts nothing.
-//! - [`AdaptTo::Illuminant`]: a CIE illuminant by name (`A`, `E`, `D65`), its white from the CIE
+//! - [`AdaptTo::Illuminant`]: a CIE illuminant by name (`A`, `E`), its white from the CIE
 //!   tables (relative XYZ of the perfect reflector, as `colour.sd_to_XYZ` computes it).
 //! - [`AdaptTo::SceneAverage`]: "grey world" (Buchsbaum 1980): the white is the mean XYZ of all
 //!   pixels, i.e. the scene is assumed to average to grey. Suits scenes bathed in one coloured
@@ -33,10 +33,15 @@ pub const WHITE_PATCH_FRACTION: f64 = 0.01;
 /// What the eye is adapted to in the scene.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AdaptTo {
+    /// No chromatic adaptation.
     None,
+    /// A given chromaticity (x, y).
     Chromaticity([f64; 2]),
+    /// A CIE illuminant by name, `A` or `E` (`d65` is taken as its chromaticity).
     Illuminant(String),
+    /// Grey world: the mean XYZ of all pixels.
     SceneAverage,
+    /// White patch: the mean XYZ of the brightest 1 % of pixels.
     WhitePatch,
 }
 

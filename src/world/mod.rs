@@ -16,7 +16,10 @@ use glam::DVec3;
 /// light it emits as, if any.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Prim {
+    /// Index of its material in [`World::materials`] (`None`: an index-matched boundary between
+    /// media, or an area light without a material, which reflects nothing).
     pub material: Option<u32>,
+    /// Index of the light it belongs to in [`World::lights`] (area lights).
     pub light: Option<u32>,
     /// Medium on the back side of the shape's normal (inside a closed shape). Unless the scene
     /// says otherwise: vacuum inside glass, the world medium inside anything else; an
@@ -29,11 +32,14 @@ pub struct Prim {
 /// The names the scene gave the world's parts, for messages and reports.
 #[derive(Clone, Debug, Default)]
 pub struct Names {
+    /// Material names, by index.
     pub materials: Vec<String>,
+    /// Medium names, by index.
     pub media: Vec<String>,
     /// Per primitive: the label of the record it came from (`shape "ground"`, `shape #3`,
     /// `light "lamp"`).
     pub prims: Vec<String>,
+    /// Light names, by index.
     pub lights: Vec<String>,
 }
 
@@ -41,7 +47,9 @@ pub struct Names {
 /// and the camera (media extend to it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reach {
+    /// Centre, m.
     pub centre: DVec3,
+    /// Radius, m.
     pub radius: f64,
 }
 
@@ -54,20 +62,27 @@ impl Reach {
 
 /// Everything light interacts with.
 pub struct World {
+    /// The materials; [`Prim::material`] indexes them.
     pub materials: Vec<Material>,
+    /// The media; a medium is referred to by its index here (`None`: vacuum).
     pub media: Vec<Medium>,
     /// The medium filling space outside every closed shape (`[world] medium`).
     pub global_medium: Option<u32>,
+    /// The surfaces, one per primitive.
     pub shapes: Vec<Shape>,
+    /// What each shape is: material, light and the media on its two sides.
     pub prims: Vec<Prim>,
+    /// The lights.
     pub lights: Vec<Light>,
     /// The medium each light emits into.
     pub light_media: Vec<Option<u32>>,
+    /// The hierarchy over `shapes`.
     pub bvh: Bvh,
     /// Bounds of the shapes.
     pub bounds: Aabb,
     /// Where paths escape.
     pub reach: Reach,
+    /// The names the scene gave the parts.
     pub names: Names,
 }
 

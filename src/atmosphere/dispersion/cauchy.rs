@@ -16,10 +16,13 @@ use crate::atmosphere::gas::density_kg_m3;
 pub struct CauchyBornWolf;
 
 impl CauchyBornWolf {
+    /// Cauchy constant a of the reference air (dimensionless).
     pub const A: f64 = 28.79e-5;
+    /// Cauchy constant b of the reference air, μm².
     pub const B_UM2: f64 = 5.67e-3;
     /// The reference state: 0 °C, 1 atm.
     pub const REF_TEMPERATURE_K: f64 = 273.15;
+    /// Pressure of the reference state, Pa.
     pub const REF_PRESSURE_PA: f64 = 101_325.0;
 
     /// n − 1 of the reference air.

@@ -33,6 +33,7 @@ const R_CIDDOR: f64 = 8.314_510;
 /// Ciddor's dry-air law at a CO₂ mole fraction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ciddor {
+    /// CO₂ mole fraction x_c, µmol/mol.
     pub co2_ppm: f64,
     /// Density of standard air with this CO₂ content, kg m⁻³.
     rho_axs: f64,
@@ -41,6 +42,7 @@ pub struct Ciddor {
 impl Ciddor {
     /// The standard state: 15 °C, 101325 Pa.
     pub const STANDARD_TEMPERATURE_K: f64 = 288.15;
+    /// Pressure of the standard state, Pa.
     pub const STANDARD_PRESSURE_PA: f64 = 101_325.0;
 
     /// `co2_ppm` in 0–2000 µmol/mol.

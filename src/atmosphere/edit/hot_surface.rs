@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+/// Air heated by the ground: T += ΔT exp(−z/z₀) (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HotSurface {
     /// Excess temperature at the ground, K.
@@ -13,6 +14,7 @@ pub struct HotSurface {
 }
 
 impl HotSurface {
+    /// Checks that `dt_k` is finite and `z0_m` finite and positive.
     pub fn new(dt_k: f64, z0_m: f64) -> Result<HotSurface, String> {
         if !dt_k.is_finite() {
             return Err(format!("hot surface: dT_k = {dt_k} must be finite"));

@@ -8,6 +8,7 @@
 
 use glam::DVec3;
 
+/// A temperature inversion: a Fermi step of ΔT (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inversion {
     /// Temperature step, K.
@@ -19,6 +20,7 @@ pub struct Inversion {
 }
 
 impl Inversion {
+    /// Checks that all values are finite and `thickness_m` positive.
     pub fn new(dt_k: f64, height_m: f64, thickness_m: f64) -> Result<Inversion, String> {
         if !(dt_k.is_finite() && height_m.is_finite()) {
             return Err(format!("inversion: dT_k = {dt_k} and height_m = {height_m} must be finite"));
@@ -29,6 +31,7 @@ impl Inversion {
         Ok(Inversion { dt_k, height_m, thickness_m })
     }
 
+    /// ΔT (K) and ∇ΔT (K m⁻¹) at height `h` (m) whose gradient is `gh`.
     pub fn delta(&self, h: f64, gh: DVec3) -> (f64, DVec3) {
         let u = (h - self.height_m) / self.thickness_m;
         let e = (-u.abs()).exp();

@@ -18,6 +18,7 @@ pub use offset::Offset;
 
 use glam::DVec3;
 
+/// One temperature edit of a base atmosphere; ΔT in K.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Edit {
     /// T += ΔT everywhere.

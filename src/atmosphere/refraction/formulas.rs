@@ -21,8 +21,9 @@
 /// Radians per arcminute.
 const RAD_PER_ARCMIN: f64 = std::f64::consts::PI / 10_800.0;
 
-/// The pressure (hPa) and temperature (°C) the formulas are fitted for.
+/// The pressure the formulas are fitted for, hPa.
 pub const FORMULA_PRESSURE_HPA: f64 = 1010.0;
+/// The temperature the formulas are fitted for, °C.
 pub const FORMULA_TEMPERATURE_C: f64 = 10.0;
 
 /// Bennett's refraction at apparent altitude `apparent_altitude_deg` (0–90°), rad, for

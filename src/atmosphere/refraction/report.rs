@@ -16,22 +16,32 @@ use std::path::Path;
 /// Saemundsson, which is evaluated at the traced true altitude).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Row {
+    /// Apparent altitude of the ray at the observer, degrees.
     pub apparent_altitude_deg: f64,
+    /// The traced ray.
     pub trace: Trace,
+    /// Bennett's refraction at the observer's conditions, rad.
     pub bennett_rad: Option<f64>,
+    /// Saemundsson's refraction at the traced true altitude and the observer's conditions, rad.
     pub saemundsson_rad: Option<f64>,
 }
 
 /// The refraction table of one observer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Table {
+    /// Name of the atmosphere.
     pub atmosphere: String,
+    /// Wavelength traced, nm.
     pub wavelength_nm: f64,
+    /// Observer's height above the ground, m.
     pub observer_height_m: f64,
     /// The air at the observer, and the factor (P/1010)(283/(273 + T)) applied to the formulas.
     pub pressure_hpa: f64,
+    /// Air temperature at the observer, °C.
     pub temperature_c: f64,
+    /// The conditions factor (P/1010)(283/(273 + T)) applied to both formulas.
     pub factor: f64,
+    /// One row per apparent altitude, in the order asked.
     pub rows: Vec<Row>,
 }
 
@@ -132,6 +142,7 @@ fn row_text(r: &Row) -> String {
 /// Refraction at several wavelengths for each apparent altitude.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dispersion {
+    /// Wavelengths traced, nm.
     pub wavelengths_nm: Vec<f64>,
     /// (apparent altitude, degrees; refraction at each wavelength, rad).
     pub rows: Vec<(f64, Vec<Option<f64>>)>,

@@ -25,9 +25,13 @@ pub const SUN_DIAMETER_RAD: f64 = 0.53 * std::f64::consts::PI / 180.0;
 /// The limbs of a refracted disc.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Flattening {
+    /// Apparent altitude a_L of the lower limb, rad.
     pub lower_apparent_rad: f64,
+    /// True altitude t_L of the lower limb, rad.
     pub lower_true_rad: f64,
+    /// Apparent altitude a_U of the upper limb, rad.
     pub upper_apparent_rad: f64,
+    /// True altitude t_U = t_L + D of the upper limb, rad.
     pub upper_true_rad: f64,
     /// Apparent vertical over horizontal diameter, (a_U − a_L)/D.
     pub ratio: f64,

@@ -30,25 +30,41 @@ impl Default for Settings {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Outcome {
     /// Left through the top; the star is at this true altitude, rad.
-    Escaped { true_altitude_rad: f64 },
+    Escaped {
+        /// True altitude of the star, rad.
+        true_altitude_rad: f64,
+    },
     /// Went into the ground without ever turning down (a ray aimed below the horizon); the
     /// distance along the ground (at radius R) from the observer's foot, m.
-    Ground { distance_m: f64 },
+    Ground {
+        /// Distance along the ground (at radius R) from the observer's foot, m.
+        distance_m: f64,
+    },
     /// Turned from climbing to descending inside the atmosphere (ducting) and did not escape:
     /// its highest point, and where it met the ground (`None`: still aloft after
     /// [`Settings::max_path_m`]).
-    Trapped { max_height_m: f64, ground_distance_m: Option<f64> },
+    Trapped {
+        /// Highest point of the path above the ground, m.
+        max_height_m: f64,
+        /// Distance along the ground (at radius R) from the observer's foot to where it landed, m;
+        /// `None`: still aloft.
+        ground_distance_m: Option<f64>,
+    },
 }
 
 /// One traced ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trace {
+    /// Apparent altitude at the observer (elevation of the launch direction above the
+    /// horizontal), rad.
     pub apparent_altitude_rad: f64,
+    /// How the ray ended.
     pub outcome: Outcome,
     /// Arc length from the observer to where the trace ended, m.
     pub path_length_m: f64,
-    /// Accepted and rejected integrator steps.
+    /// Accepted integrator steps.
     pub ode_steps: u64,
+    /// Rejected integrator steps.
     pub ode_rejected: u64,
 }
 
@@ -114,10 +130,12 @@ impl<'a> Tracer<'a> {
         })
     }
 
+    /// The atmosphere traced through.
     pub fn atmosphere(&self) -> &'a Atmosphere {
         self.atmosphere
     }
 
+    /// The wavelength traced, nm.
     pub fn wavelength_nm(&self) -> f64 {
         self.wavelength_nm
     }

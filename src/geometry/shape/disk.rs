@@ -13,10 +13,14 @@ use crate::sampling::concentric_disk;
 use glam::DVec3;
 use std::f64::consts::PI;
 
+/// A flat disk (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Disk {
+    /// Centre, m.
     pub center: DVec3,
+    /// Normal of the front side (need not be unit).
     pub normal: DVec3,
+    /// Radius, m.
     pub radius: f64,
 }
 

@@ -28,16 +28,22 @@ use glam::DVec3;
 /// A point sampled uniformly by area on a shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShapeSample {
+    /// The sampled point, m.
     pub point: DVec3,
     /// Unit normal on the front side.
     pub normal: DVec3,
 }
 
+/// A surface, one variant per kind (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
+    /// A sphere.
     Sphere(Sphere),
+    /// A parallelogram.
     Quad(Quad),
+    /// A flat disk.
     Disk(Disk),
+    /// A triangle.
     Triangle(Triangle),
 }
 
@@ -115,6 +121,7 @@ impl Shape {
         }
     }
 
+    /// Bounding box, m.
     pub fn bounds(&self) -> Aabb {
         match self {
             Shape::Sphere(s) => s.bounds(),
@@ -124,6 +131,7 @@ impl Shape {
         }
     }
 
+    /// Surface area, m².
     pub fn area(&self) -> f64 {
         match self {
             Shape::Sphere(s) => s.area(),

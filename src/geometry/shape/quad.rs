@@ -16,10 +16,14 @@ use crate::geometry::rounding::{abs_dot, gamma, max_abs};
 use crate::geometry::{Aabb, Ray};
 use glam::DVec3;
 
+/// The parallelogram origin + a u + b v, a, b ∈ [0, 1] (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Quad {
+    /// A corner, m.
     pub origin: DVec3,
+    /// First edge, m.
     pub u: DVec3,
+    /// Second edge, m; the front normal is u × v.
     pub v: DVec3,
 }
 

@@ -26,9 +26,12 @@ use crate::sampling::uniform_sphere;
 use glam::DVec3;
 use std::f64::consts::PI;
 
+/// A sphere with outward normal (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sphere {
+    /// Centre, m.
     pub center: DVec3,
+    /// Radius, m.
     pub radius: f64,
 }
 

@@ -26,8 +26,10 @@ use crate::geometry::{Aabb, Ray};
 use crate::sampling::uniform_triangle;
 use glam::DVec3;
 
+/// A triangle, watertight against its neighbours (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Triangle {
+    /// Vertices p₀, p₁, p₂, m; counter-clockwise seen from the front.
     pub p: [DVec3; 3],
 }
 
@@ -48,6 +50,7 @@ pub struct Shear {
 }
 
 impl Shear {
+    /// The permutation and shear of `ray`.
     pub fn new(ray: &Ray) -> Shear {
         let d = ray.dir;
         let kz = d.abs().max_position();

@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+/// d(x) = exp(−(x·up − reference_m)/H): exponential in height along a fixed direction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExponentialHeight {
     /// Unit "up" direction.
@@ -21,10 +22,12 @@ pub struct ExponentialHeight {
 const MAX_SCALE_HEIGHTS_PER_INTERVAL: f64 = 0.5;
 
 impl ExponentialHeight {
+    /// d at `p`.
     pub fn at(&self, p: DVec3) -> f64 {
         (-(p.dot(self.up) - self.reference_m) / self.scale_height_m).exp()
     }
 
+    /// ∫₀ᵗ d(o + s·dir) ds in closed form (a series where μ t/H is tiny); `dir` a unit vector.
     pub fn integral(&self, o: DVec3, dir: DVec3, t: f64) -> f64 {
         let mu = dir.dot(self.up);
         let d0 = self.at(o);
@@ -36,6 +39,8 @@ impl ExponentialHeight {
         d0 * t * (-(-x).exp_m1()) / x
     }
 
+    /// Intervals of at most H/2 in height, each bounded by d at its lower end; see
+    /// [`super::Density::majorant_intervals`].
     pub fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
         let mu = dir.dot(self.up);
         let step = if mu.abs() > 0.0 {

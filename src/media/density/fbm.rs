@@ -8,19 +8,27 @@
 use crate::rng::{Rng, Stream};
 use glam::DVec3;
 
+/// Fractional Brownian motion of Perlin noise (see the module docs for the formula).
 #[derive(Clone, Debug)]
 pub struct Fbm {
+    /// Offset of the density before clamping at zero.
     pub base: f64,
+    /// Amplitude of the noise sum.
     pub amplitude: f64,
     /// Cycles per metre of the first octave.
     pub frequency: f64,
+    /// Number of octaves summed.
     pub octaves: u32,
+    /// Frequency ratio between consecutive octaves (2).
     pub lacunarity: f64,
+    /// Amplitude ratio between consecutive octaves (0.5).
     pub gain: f64,
     perm: [u8; 512],
 }
 
 impl Fbm {
+    /// fBm with lacunarity 2 and gain 0.5; `frequency` in cycles per metre, `seed` draws the
+    /// permutation.
     pub fn new(base: f64, amplitude: f64, frequency: f64, octaves: u32, seed: u64) -> Fbm {
         let mut p: Vec<u8> = (0..=255).collect();
         let mut rng = Rng::for_task(seed, Stream::Test, 0xF8B);
@@ -35,6 +43,7 @@ impl Fbm {
         Fbm { base, amplitude, frequency, octaves, lacunarity: 2.0, gain: 0.5, perm }
     }
 
+    /// d at `x` (m), clamped at 0.
     pub fn at(&self, x: DVec3) -> f64 {
         let mut sum = 0.0;
         let (mut f, mut a) = (self.frequency, 1.0);

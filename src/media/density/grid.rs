@@ -20,15 +20,20 @@ use glam::DVec3;
 use std::io::{BufRead, Read, Write};
 use std::path::Path;
 
+/// First line of an `.mgrid` file.
 pub const GRID_MAGIC: &str = "MORGANA-GRID 1";
 
 /// Lattice cells per macro-cell side.
 const MACRO: usize = 8;
 
+/// A density on a regular lattice over [`min`, `max`], trilinear inside, zero outside.
 #[derive(Clone, Debug)]
 pub struct Grid3D {
+    /// Lattice points per axis (x, y, z), each ≥ 2.
     pub n: [usize; 3],
+    /// Lower corner of the box, m.
     pub min: DVec3,
+    /// Upper corner of the box, m.
     pub max: DVec3,
     values: Vec<f32>,
     macro_n: [usize; 3],

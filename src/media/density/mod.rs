@@ -38,14 +38,18 @@ pub fn write_grid_atomically(
     staged.commit().map_err(io)
 }
 
+/// The density d(x) of a medium, dimensionless, ≥ 0; one variant per kind.
 #[derive(Clone, Debug)]
 pub enum Density {
     /// d = 1 everywhere: a homogeneous medium.
     Uniform,
+    /// Exponential in height along a fixed `up` direction (flat Earth).
     ExponentialHeight(ExponentialHeight),
     /// Exponential in height above a spherical Earth.
     SphericalExponential(SphericalExponential),
+    /// Trilinear lattice read from an `.mgrid` file.
     Grid(Grid3D),
+    /// Procedural fBm turbulence.
     Fbm(Box<Fbm>),
 }
 
@@ -88,6 +92,7 @@ impl Density {
         }
     }
 
+    /// True for [`Density::Uniform`].
     pub fn is_uniform(&self) -> bool {
         matches!(self, Density::Uniform)
     }

@@ -10,9 +10,12 @@
 use crate::quadrature::gauss_legendre;
 use glam::DVec3;
 
+/// d(x) = exp(−(h − reference_m)/H) with h = |x − centre| − radius_m (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SphericalExponential {
+    /// Centre of the Earth sphere, m.
     pub centre: DVec3,
+    /// Earth radius R, m.
     pub radius_m: f64,
     /// Height above the sphere where d = 1, m.
     pub reference_m: f64,
@@ -24,6 +27,7 @@ pub struct SphericalExponential {
 const PIECE_SCALE_HEIGHTS: f64 = 0.5;
 
 impl SphericalExponential {
+    /// d at `p`.
     pub fn at(&self, p: DVec3) -> f64 {
         let h = (p - self.centre).length() - self.radius_m;
         (-(h - self.reference_m) / self.scale_height_m).exp()
@@ -43,6 +47,8 @@ impl SphericalExponential {
         (0..n).map(|i| gauss_legendre(&|s: f64| self.at(o + s * dir), i as f64 * dt, (i + 1) as f64 * dt, 1)).sum()
     }
 
+    /// Pieces of at most H/2, each bounded by d at its point closest to the centre; see
+    /// [`super::Density::majorant_intervals`].
     pub fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
         if !t_max.is_finite() {
             visit(0.0, t_max, self.at_height(self.closest_height(o, dir, 0.0, t_max)));

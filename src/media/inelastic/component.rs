@@ -20,6 +20,7 @@ use crate::media::phase::PhaseFunction;
 use crate::spectrum::Spectrum;
 use serde::Serialize;
 
+/// Which kind of inelastic event a component stands for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Process {
@@ -29,34 +30,45 @@ pub enum Process {
     Raman,
 }
 
+/// How the yield Φ counts (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Accounting {
+    /// Φ counts photons; a re-emitted photon's energy is scaled by λ'/λ.
     PhotonNumber,
+    /// Φ counts energy; a re-emitted photon keeps its energy.
     Energy,
 }
 
 /// The quantum (or energy) yield Φ(λ').
 #[derive(Clone, Debug)]
 pub enum Yield {
+    /// The same Φ at every excitation wavelength.
     Constant(f64),
+    /// Φ(λ') as a spectrum over the excitation wavelength.
     Spectral(Spectrum),
     /// The redistribution's own yield (FA7's Γ(λ')).
     FromRedistribution,
 }
 
+/// One inelastic process of a medium (fluorescence or Raman) and how it re-emits.
 #[derive(Clone, Debug)]
 pub struct Component {
+    /// Label in `report.json` and messages.
     pub name: String,
+    /// Fluorescence or Raman.
     pub process: Process,
     /// σ_a,i(λ') for fluorescence, b_R(λ') for Raman; m⁻¹ at density 1.
     pub coefficient: Spectrum,
+    /// Quantum (or energy) yield Φ(λ'); ignored for Raman, which always re-emits.
     pub quantum_yield: Yield,
     /// Excitations outside this window (nm) are absorbed without re-emission (Φ = 0 there).
     pub excitation_nm: (f64, f64),
+    /// Normalised emission spectrum f̂(λ' → λ), nm⁻¹.
     pub redistribution: Redistribution,
     /// Angular distribution of the re-emitted light about the absorbed photon's direction.
     pub phase: PhaseFunction,
+    /// Whether Φ counts photons or energy.
     pub accounting: Accounting,
 }
 

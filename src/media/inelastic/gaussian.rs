@@ -15,13 +15,17 @@
 use crate::rng::Rng;
 use std::f64::consts::PI;
 
+/// A Gaussian emission band h(λ), normalised per nm (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GaussianEmission {
+    /// Centre λ₀ of the band, nm.
     pub peak_nm: f64,
+    /// Standard deviation σ of the band, nm.
     pub sigma_nm: f64,
 }
 
 impl GaussianEmission {
+    /// A band at `peak_nm` of width `sigma_nm`; both must be finite and positive.
     pub fn new(peak_nm: f64, sigma_nm: f64) -> Result<GaussianEmission, String> {
         if !(peak_nm.is_finite() && peak_nm > 0.0 && sigma_nm.is_finite() && sigma_nm > 0.0) {
             return Err(format!(

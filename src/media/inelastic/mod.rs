@@ -40,6 +40,7 @@ use glam::DVec3;
 /// The inelastic components of a medium (none for most media).
 #[derive(Clone, Debug, Default)]
 pub struct Inelastic {
+    /// The components, in scene order; [`Outcome`] and [`Excitation`] index into this.
     pub components: Vec<Component>,
     /// The band table of the volume-map estimate, built for the scene's bands.
     pub transfer: Option<BandTransfer>,
@@ -49,26 +50,42 @@ pub struct Inelastic {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Outcome {
     /// Absorbed for good, by component `component` (None: by the medium's other absorption).
-    Absorbed { component: Option<usize> },
+    Absorbed {
+        /// Index of the absorbing component, or `None` for the medium's other absorption.
+        component: Option<usize>,
+    },
     /// Re-emitted (or Raman-scattered) by `component` at `wavelength_nm` toward `dir`, its
     /// energy multiplied by `energy_factor`.
-    Emitted { component: usize, wavelength_nm: f64, dir: DVec3, energy_factor: f64 },
+    Emitted {
+        /// Index of the component in [`Inelastic::components`].
+        component: usize,
+        /// Emission wavelength λ, nm.
+        wavelength_nm: f64,
+        /// Unit direction of travel of the re-emitted photon.
+        dir: DVec3,
+        /// Factor on the photon's energy: λ'/λ (photon-number accounting) or 1.
+        energy_factor: f64,
+    },
 }
 
 /// An excitation chosen for light emitted at λ (the path tracer's adjoint step).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Excitation {
+    /// Index of the chosen component in [`Inelastic::components`].
     pub component: usize,
+    /// Excitation wavelength λ', nm.
     pub wavelength_nm: f64,
     /// σ_i(λ') Φ_i f̂_i(λ' → λ) E_i(λ', λ) / (P(i) pdf(λ')), m⁻¹ at density 1.
     pub weight: f64,
 }
 
 impl Inelastic {
+    /// No inelastic component.
     pub fn none() -> Inelastic {
         Inelastic::default()
     }
 
+    /// True when the medium has no inelastic component.
     pub fn is_empty(&self) -> bool {
         self.components.is_empty()
     }

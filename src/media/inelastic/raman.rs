@@ -34,6 +34,8 @@ pub const NM_CM: f64 = 1e7;
 /// FWHM = 2√(2 ln 2) σ.
 const FWHM_PER_SIGMA: f64 = 2.354_820_045_030_949;
 
+/// The Raman shift band g(Δκ): a mixture of Gaussians in wavenumber shift, cm⁻¹ (see the module
+/// docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RamanShift {
     /// (weight, centre shift cm⁻¹, σ cm⁻¹), weights summing to one.

@@ -11,10 +11,14 @@ use super::gaussian::GaussianEmission;
 use super::raman::{NM_CM, RamanShift};
 use crate::rng::Rng;
 
+/// A wavelength redistribution f̂(λ' → λ), one variant per model.
 #[derive(Clone, Debug)]
 pub enum Redistribution {
+    /// An excitation-independent Gaussian band (chlorophyll fluorescence).
     Gaussian(GaussianEmission),
+    /// Hawes' FA7 excitation–emission matrix (CDOM fluorescence), with its own yield Γ(λ').
     Fa7(Box<Fa7>),
+    /// A wavenumber shift by the water Raman band.
     Raman(RamanShift),
 }
 

@@ -24,6 +24,8 @@ use crate::spectrum::Bands;
 /// Spacing of the excitation nodes, nm.
 pub const NODE_STEP_NM: f64 = 1.0;
 
+/// The table T_i(λ', b) of the module docs: energy re-emitted into band b per unit energy of
+/// photons stored at excitation λ', per component, at 1-nm excitation nodes.
 #[derive(Clone, Debug)]
 pub struct BandTransfer {
     bands: Bands,

@@ -31,10 +31,15 @@ use crate::spectrum::Tabulated;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
+/// File name of Pope & Fry's (1997) pure-water absorption table, m⁻¹.
 pub const POPE_FRY_FILE: &str = "pope_fry_1997_water_absorption.csv";
+/// File name of Smith & Baker's (1981) clearest-natural-water absorption table, m⁻¹.
 pub const SMITH_BAKER_FILE: &str = "smith_baker_1981_water_absorption.csv";
+/// File name of Bricaud et al.'s (1998) particle and phytoplankton absorption coefficients.
 pub const BRICAUD_FILE: &str = "bricaud_1998_particle_phytoplankton_absorption.csv";
+/// File name of Hawes' (1992) FA7 CDOM fluorescence amplitude A₀(λ'), nm⁻¹.
 pub const FA7_FILE: &str = "hawes_1992_cdom_fluorescence_FA7.csv";
+/// File name of Petzold's average-particle phase function, sr⁻¹.
 pub const PETZOLD_FILE: &str = "petzold_average_particle_phase_function.csv";
 
 /// Every embedded table: (file name, text).

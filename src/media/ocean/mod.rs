@@ -43,20 +43,26 @@ pub use builtin::OceanData;
 pub enum ParticlePhase {
     /// Petzold's average particle phase function (Mobley et al. 1993, Table 2).
     Petzold,
+    /// Henyey–Greenstein with the given mean cosine g (0.924 matches Petzold).
     HenyeyGreenstein(f64),
 }
 
 /// What a scene says about its sea water.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OceanParams {
+    /// Chlorophyll-a concentration Chl, mg m⁻³.
     pub chl_mg_m3: f64,
+    /// CDOM absorption a_y(440), m⁻¹.
     pub cdom_a440_per_m: f64,
+    /// Spectral slope S of CDOM absorption, a_y(λ) = a_y(440) exp(−S (λ − 440)), nm⁻¹.
     pub cdom_slope_per_nm: f64,
     /// Φ_C; 0 turns chlorophyll fluorescence off.
     pub chl_yield: f64,
     /// Φ_Y; `None`: FA7's own Γ(λ'); `Some(0)` turns CDOM fluorescence off.
     pub cdom_yield: Option<f64>,
+    /// Whether water Raman scattering is a component.
     pub raman: bool,
+    /// Phase function of the particles' elastic scattering.
     pub particle_phase: ParticlePhase,
     /// Where the tables come from (built in unless the scene names a `data_dir`).
     pub data: OceanData,

@@ -33,6 +33,7 @@ pub struct Bricaud {
 }
 
 impl Bricaud {
+    /// Reads A_p, E_p, A_φ, E_φ from the built-in table or the scene's `data_dir`.
     pub fn read(data: &OceanData) -> Result<Bricaud, String> {
         let (path, rows) = data.rows(BRICAUD_FILE, 5)?;
         Ok(Bricaud {

@@ -25,6 +25,7 @@ pub struct WaterAbsorption {
 }
 
 impl WaterAbsorption {
+    /// Reads both absorption tables from the built-in data or the scene's `data_dir`.
     pub fn read(data: &OceanData) -> Result<WaterAbsorption, String> {
         Ok(WaterAbsorption {
             pope_fry: data.column(POPE_FRY_FILE, 2, 1)?,

@@ -71,6 +71,7 @@ impl CosSquared {
         self.k
     }
 
+    /// p(cos θ) = K (1 + c cos²θ), sr⁻¹.
     pub fn eval(&self, cos_theta: f64) -> f64 {
         self.k * (1.0 + self.c * cos_theta * cos_theta)
     }

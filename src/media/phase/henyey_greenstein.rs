@@ -40,6 +40,7 @@ impl HenyeyGreenstein {
         self.g
     }
 
+    /// p(cos θ), sr⁻¹.
     pub fn eval(&self, cos_theta: f64) -> f64 {
         let g = self.g;
         let denom = (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - cos_theta);

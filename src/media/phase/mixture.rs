@@ -27,11 +27,14 @@ use crate::spectrum::Spectrum;
 /// One scatterer of a mixture: its scattering coefficient σ_s(λ) (m⁻¹) and phase function.
 #[derive(Clone, Debug)]
 pub struct MixtureComponent {
+    /// Scattering coefficient σ_s,i(λ), m⁻¹ at density 1.
     pub sigma_s: Spectrum,
+    /// Phase function of this scatterer.
     pub phase: PhaseFunction,
 }
 
 impl MixtureComponent {
+    /// A scatterer with coefficient `sigma_s` (m⁻¹) and phase function `phase`.
     pub fn new(sigma_s: Spectrum, phase: PhaseFunction) -> MixtureComponent {
         MixtureComponent { sigma_s, phase }
     }
@@ -58,6 +61,7 @@ impl Mixture {
         Ok(Mixture { components })
     }
 
+    /// The scatterers, in the order given.
     pub fn components(&self) -> &[MixtureComponent] {
         &self.components
     }
@@ -75,10 +79,12 @@ impl Mixture {
         self.components.iter().map(|c| c.sigma_s.eval(wavelength_nm).max(0.0)).sum()
     }
 
+    /// p(λ, cos θ): the σ_s,i(λ)-weighted mean of the components' densities, sr⁻¹.
     pub fn eval(&self, wavelength_nm: f64, cos_theta: f64) -> f64 {
         self.weighted_mean(wavelength_nm, |c| c.phase.eval(wavelength_nm, cos_theta))
     }
 
+    /// Mean cosine Σ σ_s,i gᵢ / Σ σ_s,i at λ.
     pub fn mean_cosine(&self, wavelength_nm: f64) -> f64 {
         self.weighted_mean(wavelength_nm, |c| c.phase.mean_cosine(wavelength_nm))
     }

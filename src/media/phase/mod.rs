@@ -61,13 +61,19 @@ use std::path::Path;
 /// A phase function (see the module documentation for the conventions).
 #[derive(Clone, Debug)]
 pub enum PhaseFunction {
+    /// p = 1/(4π).
     Isotropic(Isotropic),
     /// Rayleigh, pure water and Raman: `k (1 + c cos²θ)`.
     CosSquared(CosSquared),
+    /// Henyey–Greenstein with mean cosine g.
     HenyeyGreenstein(HenyeyGreenstein),
+    /// Schlick's approximation to Henyey–Greenstein.
     Schlick(Schlick),
+    /// Two Henyey–Greenstein lobes, weights w and 1 − w.
     TwoTermHg(TwoTermHg),
+    /// Tabulated at scattering angles (e.g. Petzold).
     Tabulated(TabulatedPhase),
+    /// Scatterers weighted by their σ_s,i(λ); depends on wavelength.
     Mixture(Mixture),
 }
 

@@ -52,10 +52,12 @@ impl Schlick {
         })
     }
 
+    /// The shape parameter k, −1 < k < 1.
     pub fn k(&self) -> f64 {
         self.k
     }
 
+    /// p(cos θ), sr⁻¹.
     pub fn eval(&self, cos_theta: f64) -> f64 {
         let k = self.k;
         let d = (1.0 - k) + k * (1.0 - cos_theta);

@@ -42,6 +42,7 @@ impl TwoTermHg {
         (self.w, self.first.g(), self.second.g())
     }
 
+    /// p(cos θ), sr⁻¹.
     pub fn eval(&self, cos_theta: f64) -> f64 {
         self.w * self.first.eval(cos_theta) + (1.0 - self.w) * self.second.eval(cos_theta)
     }
@@ -56,6 +57,7 @@ impl TwoTermHg {
         }
     }
 
+    /// Mean cosine w g₁ + (1 − w) g₂.
     pub fn mean_cosine(&self) -> f64 {
         self.w * self.first.g() + (1.0 - self.w) * self.second.g()
     }

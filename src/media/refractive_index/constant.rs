@@ -9,10 +9,16 @@ pub enum Constant {
     /// A constant, Cauchy or Sellmeier law (see [`Ior`]).
     Ior(Ior),
     /// Air of a given density: n = 1 + K(λ)·ρ (Gladstone–Dale, see [`AirDispersion`]).
-    Air { dispersion: AirDispersion, density_kg_m3: f64 },
+    Air {
+        /// Gladstone–Dale law K(λ) of the air.
+        dispersion: AirDispersion,
+        /// Air density ρ, kg m⁻³.
+        density_kg_m3: f64,
+    },
 }
 
 impl Constant {
+    /// n(λ).
     pub fn n(&self, wavelength_nm: f64) -> f64 {
         match self {
             Constant::Ior(ior) => ior.eval(wavelength_nm),
@@ -20,6 +26,7 @@ impl Constant {
         }
     }
 
+    /// True when n depends on wavelength.
     pub fn is_dispersive(&self) -> bool {
         match self {
             Constant::Ior(ior) => ior.is_dispersive(),

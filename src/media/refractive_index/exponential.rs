@@ -6,15 +6,19 @@
 use crate::atmosphere::Earth;
 use glam::DVec3;
 
+/// n = 1 + (n₀ − 1) exp(−h/H), h the height above the ground of [`Earth`] (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Exponential {
     /// n at the ground.
     pub n0: f64,
+    /// Scale height H, m.
     pub scale_height_m: f64,
+    /// How height is measured (flat or spherical Earth).
     pub earth: Earth,
 }
 
 impl Exponential {
+    /// Checks that `n0` is finite and `scale_height_m` finite and positive.
     pub fn new(n0: f64, scale_height_m: f64, earth: Earth) -> Result<Exponential, String> {
         if !n0.is_finite() {
             return Err(format!("exponential field: n0 = {n0} must be finite"));

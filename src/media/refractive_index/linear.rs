@@ -7,6 +7,7 @@ use glam::DVec3;
 /// n = n₀ + k·(x·d̂); ∇n = k·d̂.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Linear {
+    /// n at the origin (where x·d̂ = 0).
     pub n0: f64,
     /// Gradient magnitude k, m⁻¹.
     pub k_per_m: f64,
@@ -24,6 +25,7 @@ impl Linear {
         Ok(Linear { n0, k_per_m, dir })
     }
 
+    /// n and ∇n at `p` (m).
     pub fn n_grad(&self, p: DVec3) -> (f64, DVec3) {
         (self.n0 + self.k_per_m * p.dot(self.dir), self.k_per_m * self.dir)
     }

@@ -11,9 +11,11 @@ use crate::field::MonotoneCubic;
 use crate::spectrum::table::parse_numeric_columns;
 use glam::DVec3;
 
+/// n(h) from a table of heights, monotone-cubic (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {
     spline: MonotoneCubic,
+    /// How height is measured (flat or spherical Earth).
     pub earth: Earth,
 }
 
@@ -57,6 +59,7 @@ impl Profile {
         self.spline.domain()
     }
 
+    /// The smallest n of the table (the spline never leaves the table's range).
     pub fn min_n(&self) -> f64 {
         self.spline.value_range().0
     }

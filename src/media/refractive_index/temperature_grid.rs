@@ -20,17 +20,27 @@ use glam::DVec3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GridPressure {
     /// The same pressure everywhere, Pa.
-    Constant { pressure_pa: f64 },
+    Constant {
+        /// Pressure P, Pa.
+        pressure_pa: f64,
+    },
     /// The USA76 hydrostatic pressure at the point's height (the grid's temperature does not
     /// change it: pressure from the standard, temperature from the grid).
-    Usa76 { earth: Earth },
+    Usa76 {
+        /// Where heights are measured from (flat or spherical Earth).
+        earth: Earth,
+    },
 }
 
+/// Air whose temperature (K) is given on a lattice (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TemperatureGrid {
     lattice: Lattice,
+    /// How the temperature is interpolated between lattice points.
     pub interpolation: Interpolation,
+    /// Where the pressure comes from.
     pub pressure: GridPressure,
+    /// Gladstone–Dale law K(λ) of the air.
     pub dispersion: AirDispersion,
     uniform_faces: bool,
 }
@@ -81,6 +91,7 @@ impl TemperatureGrid {
         TemperatureGrid::new(lattice, interpolation, pressure, dispersion).map_err(|e| Error::input(at(), e))
     }
 
+    /// The temperature lattice, K.
     pub fn lattice(&self) -> &Lattice {
         &self.lattice
     }
@@ -90,6 +101,7 @@ impl TemperatureGrid {
         self.lattice.value_grad(p, self.interpolation, Beyond::Clamp)
     }
 
+    /// n and ∇n at `p` (m) for wavelength `wavelength_nm`.
     pub fn n_grad(&self, wavelength_nm: f64, p: DVec3) -> (f64, DVec3) {
         let (t, gt) = self.temperature_grad(p);
         let (pr, gp) = match self.pressure {
@@ -105,6 +117,8 @@ impl TemperatureGrid {
         (1.0 + k * rho, (k * rho) * (gp / pr - gt / t))
     }
 
+    /// Where ∇n can be non-zero: the lattice box at constant pressure with uniform face
+    /// temperatures, everywhere otherwise.
     pub fn gradient_region(&self) -> GradientRegion {
         match self.pressure {
             GridPressure::Constant { .. } if self.uniform_faces => GradientRegion::Box(self.lattice.bounds()),
