@@ -3,7 +3,7 @@
 
 colour-science (0.4.7, pinned in scripts/requirements-colour.txt) is the field's reference
 implementation. This script sends one JSON request to morgana's check binary (protocol:
-src/spectrum/check.rs), computes the same quantities with colour-science, and compares:
+src/cli/colour_check.rs), computes the same quantities with colour-science, and compares:
 
   group         what                                                   metric / tolerance
   cmf           Σ x̄, Σ ȳ, Σ z̄ over 360-830 nm at 1 nm                    relative ≤ 1e-3
