@@ -796,7 +796,7 @@ def specular_light_mask(scene: dict, dilate: int, sub: int = 4, max_depth: int =
 
 def camera_dirs(cam: dict, x: int, y: int, sub: int):
     """Directions of a sub x sub grid of rays through pixel (x, y), as morgana's camera makes
-    them (src/render/camera.rs: full vertical fov, pixel (0, 0) top left)."""
+    them (src/geometry/camera.rs: full vertical fov, pixel (0, 0) top left)."""
     pos, look = np.asarray(cam["position"], float), np.asarray(cam["look_at"], float)
     fwd = (look - pos) / np.linalg.norm(look - pos)
     right = np.cross(fwd, np.asarray(cam.get("up", [0.0, 1.0, 0.0]), float))
