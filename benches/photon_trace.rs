@@ -44,7 +44,11 @@ fn photon_pass(c: &mut Criterion) {
     small.integrator.gather_rays = 4;
     small.apply_overrides(Some(50_000), None);
     group.bench_function("fog_box_render_32px_50k", |b| {
-        b.iter(|| pool.install(|| black_box(render(&small, &RenderOptions { quiet: true }).image.data[0])))
+        b.iter(|| {
+            pool.install(|| {
+                black_box(render(&small, &RenderOptions { quiet: true, ..RenderOptions::default() }).image.data[0])
+            })
+        })
     });
     group.finish();
 }

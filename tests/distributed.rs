@@ -132,7 +132,9 @@ fn static_and_dynamic_schedules_give_the_same_image() {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("pool");
     let opts = distributed::Options { schedule: Schedule::Static, ..Default::default() };
     let stat = pool
-        .install(|| render_on(&Comm::local(), &scene, &RenderOptions { quiet: true }, &opts))
+        .install(|| {
+            render_on(&Comm::local(), &scene, &RenderOptions { quiet: true, ..RenderOptions::default() }, &opts)
+        })
         .expect("render")
         .expect("rank 0 has the image");
     let b = |d: &[f32]| d.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
@@ -147,7 +149,8 @@ fn static_and_dynamic_schedules_give_the_same_image() {
 fn a_map_memory_limit_stops_the_render_with_a_clear_error() {
     let scene = small_scene(20_000);
     let opts = distributed::Options { map_memory: distributed::MapMemory::Limit(1000), ..Default::default() };
-    let err = match render_on(&Comm::local(), &scene, &RenderOptions { quiet: true }, &opts) {
+    let err = match render_on(&Comm::local(), &scene, &RenderOptions { quiet: true, ..RenderOptions::default() }, &opts)
+    {
         Ok(_) => panic!("a 1000-byte budget was accepted"),
         Err(e) => e,
     };

@@ -92,7 +92,7 @@ material = "glass"
 
 /// The render's report as JSON.
 fn report(scene: &Scene) -> Value {
-    let rendered = render(scene, &RenderOptions { quiet: true });
+    let rendered = render(scene, &RenderOptions { quiet: true, ..RenderOptions::default() });
     let report = Report::new(scene, &rendered.stats, 1, 0.0, Vec::new());
     serde_json::to_value(&report).expect("report.json")
 }

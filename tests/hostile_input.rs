@@ -154,7 +154,7 @@ fn output_problems_are_found_before_the_render() {
 #[test]
 fn outputs_are_all_or_nothing_when_any_one_cannot_be_written() {
     let scene = common::scene(&format!("{SCENE}\n[output]\nname = \"r\"\ncsv = true\n"));
-    let rendered = render(&scene, &RenderOptions { quiet: true });
+    let rendered = render(&scene, &RenderOptions { quiet: true, ..RenderOptions::default() });
     let names = scene.output_file_names();
     assert_eq!(names, ["r.exr", "r.png", "r.csv", "report.json"]);
     for (k, name) in names.iter().enumerate() {
@@ -249,4 +249,48 @@ fn tonemap_refuses_nan_and_infinite_pixels() {
     morgana::spectrum::exr::write_spectral_exr(&d.join("nan.exr"), &image).unwrap();
     refused(&d, &["tonemap", "nan.exr", "--out", "nan.png"], &["nan.exr", "pixel (0, 1)", "NaN"]);
     assert!(!d.join("nan.png").exists());
+}
+
+#[test]
+fn a_run_that_would_not_fit_in_max_memory_is_refused_before_it_allocates() {
+    let d = scratch("mem");
+    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    // 2,000 photons cannot fit in 1 MB beside the scene (the process alone holds several MB).
+    let err =
+        refused(&d, &["render", "s.toml", "--out", "o", "--quiet", "--max-memory", "1M"], &["--max-memory", "MB"]);
+    assert!(err.contains("photons expected"), "the message gives the numbers: {err}");
+    assert!(files_in(&d.join("o")).is_empty(), "nothing written: {:?}", files_in(&d.join("o")));
+    for bad in ["0", "-5", "lots", "1e400G"] {
+        refused(&d, &["render", "s.toml", "--quiet", &format!("--max-memory={bad}")], &["--max-memory"]);
+    }
+    // A generous limit renders, and report.json records the estimate against the measured peak.
+    let out = morgana(&d, &["render", "s.toml", "--out", "ok", "--quiet", "--max-memory", "16G"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("ok").join("report.json")).unwrap()).unwrap();
+    let est = report["memory"]["estimated_peak_bytes"].as_u64().expect("estimate in report.json");
+    let peak = report["peak_memory_bytes"].as_u64().expect("measured peak in report.json");
+    assert!(est > 0 && peak > 0);
+    assert_eq!(report["memory"]["limit_bytes"].as_u64(), Some(16 << 30));
+}
+
+#[test]
+fn max_seconds_stops_a_run_cleanly_and_writes_nothing() {
+    let d = scratch("time");
+    // Enough photons that 0.2 s cannot trace them even on a fast machine (about 10 s here).
+    let slow = SCENE.replace("photons = 2000\ncaustic_photons = 2000", "photons = 20000000\ncaustic_photons = 2000");
+    std::fs::write(d.join("s.toml"), slow).unwrap();
+    let t = std::time::Instant::now();
+    let out = morgana(&d, &["render", "s.toml", "--out", "o", "--quiet", "--max-seconds", "0.2"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("--max-seconds") && err.contains("photon pass") && err.contains("no output"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(files_in(&d.join("o")).is_empty(), "nothing written: {:?}", files_in(&d.join("o")));
+    // The batches in flight finish (4096 photons each): the run stops within seconds, not after
+    // tracing 2e7 photons.
+    assert!(t.elapsed().as_secs_f64() < 30.0, "stopped after {:?}", t.elapsed());
+    for bad in ["0", "-1", "nan", "inf", "1e9"] {
+        refused(&d, &["render", "s.toml", "--quiet", &format!("--max-seconds={bad}")], &["--max-seconds"]);
+    }
 }

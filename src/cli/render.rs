@@ -3,7 +3,7 @@
 
 use crate::distributed::{self, Comm, MapMemory, Schedule};
 use crate::error::{Error, Result};
-use crate::render::{RenderOptions, render_on};
+use crate::render::{MemoryLimit, RenderOptions, render_on};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -32,6 +32,15 @@ pub struct RenderArgs {
     /// available, shared by the ranks there). Every rank holds every map.
     #[arg(long, value_parser = crate::distributed::budget::parse_bytes)]
     pub max_map_memory: Option<u64>,
+    /// Memory the whole run may use, e.g. 8G or 512M (default: what the machine has available).
+    /// The need is estimated before the photon maps are allocated; a run that would exceed it
+    /// is refused with the numbers.
+    #[arg(long, value_parser = crate::memory::parse_bytes)]
+    pub max_memory: Option<u64>,
+    /// Stop the run after this many seconds of wall time (exit code 1, nothing written, a
+    /// message saying how far it got).
+    #[arg(long)]
+    pub max_seconds: Option<f64>,
     /// How rank 0 hands out eye-pass rows under MPI: "dynamic" (guided self-scheduling) or
     /// "static" (interleaved blocks). The image does not depend on it.
     #[arg(long, default_value = "dynamic", value_parser = parse_schedule)]
@@ -55,12 +64,23 @@ pub fn run(args: &RenderArgs) -> Result<String> {
     }
 }
 
+/// The longest `--max-seconds` (a year).
+pub const MAX_SECONDS: f64 = 3.2e7;
+
 /// The most worker threads `--threads` may ask for.
 pub const MAX_THREADS: usize = 1024;
 
 fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options, start: Instant) -> Result<String> {
     if let Some(n) = args.photons {
         crate::scene::check_photons_override(n)?;
+    }
+    if let Some(s) = args.max_seconds
+        && !(s.is_finite() && s > 0.0 && s <= MAX_SECONDS)
+    {
+        return Err(Error::input(
+            None,
+            format!("--max-seconds {s}: expected a positive number of seconds, at most {MAX_SECONDS}"),
+        ));
     }
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
@@ -85,7 +105,12 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
             eprintln!("morgana: {} ranks ({}), eye pass {:?}", comm.size(), comm.kind(), dist.schedule);
         }
     }
-    let rendered = pool.install(|| render_on(comm, &scene, &RenderOptions { quiet: args.quiet }, dist))?;
+    let opts = RenderOptions {
+        quiet: args.quiet,
+        max_memory: args.max_memory.map_or(MemoryLimit::Available, MemoryLimit::Limit),
+        deadline: args.max_seconds.map(|s| start + std::time::Duration::from_secs_f64(s)),
+    };
+    let rendered = pool.install(|| render_on(comm, &scene, &opts, dist))?;
     let Some(rendered) = rendered else { return Ok(String::new()) };
     for w in &rendered.stats.warnings {
         eprintln!("morgana: note: {w}");

@@ -133,7 +133,11 @@ pub fn irradiance(
     let t = Span::start();
     let size = comm.size();
     let mine: Vec<u32> = dealt(n, IRRADIANCE_BLOCK, comm.rank(), size).flatten().map(|i| i as u32).collect();
-    let local: Vec<u8> = IrradianceCache::estimate(est, stride, &mine).iter().flat_map(|v| v.to_le_bytes()).collect();
+    let estimated = IrradianceCache::estimate(est, stride, &mine);
+    let mut local: Vec<u8> = Vec::with_capacity(4 * estimated.len());
+    for v in estimated {
+        local.extend_from_slice(&v.to_le_bytes());
+    }
     let compute = t.took();
     let t = Span::start();
     let point_bytes = (4 * bands).max(1);
@@ -149,6 +153,7 @@ pub fn irradiance(
     let gathered = t.took();
     let gather =
         Took { seconds: reserve.seconds + gathered.seconds, cpu_seconds: reserve.cpu_seconds + gathered.cpu_seconds };
+    drop(local);
     let t = Span::start();
     let cache = IrradianceCache::from_values(est, stride, values);
     let build = t.took();

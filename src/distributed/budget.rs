@@ -21,6 +21,7 @@
 use super::Comm;
 use super::fault::agree;
 use crate::error::{Error, Result};
+pub use crate::memory::{available_bytes, human, parse_bytes};
 
 /// How much map memory a rank may use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -103,53 +104,6 @@ impl Budget {
     }
 }
 
-/// `MemAvailable` from `/proc/meminfo`, in bytes (None where there is no such file).
-pub fn available_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
-/// Parses a byte count with an optional binary suffix: `512`, `64k`, `800M`, `8G`, `1T`
-/// (k = 2¹⁰ … T = 2⁴⁰; a trailing `B` or `iB` is allowed: `8GiB`).
-pub fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
-    let t = s.trim();
-    let t = t.strip_suffix("iB").or_else(|| t.strip_suffix('B')).unwrap_or(t);
-    let (digits, shift) = match t.char_indices().last() {
-        Some((i, c)) if c.is_ascii_alphabetic() => {
-            let shift = match c.to_ascii_uppercase() {
-                'K' => 10,
-                'M' => 20,
-                'G' => 30,
-                'T' => 40,
-                _ => return Err(format!("unknown size suffix '{c}' in \"{s}\": use k, M, G or T")),
-            };
-            (&t[..i], shift)
-        }
-        _ => (t, 0),
-    };
-    let v: f64 = digits.trim().parse().map_err(|_| format!("expected a size such as 8G or 512M, found \"{s}\""))?;
-    let bytes = v * (1u64 << shift) as f64;
-    if !(bytes.is_finite() && bytes >= 1.0 && bytes < u64::MAX as f64) {
-        return Err(format!("expected a positive size such as 8G or 512M, found \"{s}\""));
-    }
-    Ok(bytes as u64)
-}
-
-/// A byte count for messages: "3.20 GB (3200000000 bytes)".
-pub fn human(bytes: u64) -> String {
-    let b = bytes as f64;
-    let (v, unit) = match b {
-        b if b >= 1e12 => (b / 1e12, "TB"),
-        b if b >= 1e9 => (b / 1e9, "GB"),
-        b if b >= 1e6 => (b / 1e6, "MB"),
-        b if b >= 1e3 => (b / 1e3, "kB"),
-        _ => return format!("{bytes} bytes"),
-    };
-    format!("{v:.2} {unit} ({bytes} bytes)")
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -157,19 +111,6 @@ mod tests {
     fn budget(policy: MapMemory, ranks_on_host: usize) -> Budget {
         let hosts: Vec<String> = (0..ranks_on_host).map(|_| "h".to_string()).chain(["other".to_string()]).collect();
         Budget::new(policy, &hosts, "h")
-    }
-
-    #[test]
-    fn sizes_parse_with_binary_suffixes() {
-        assert_eq!(parse_bytes("512"), Ok(512));
-        assert_eq!(parse_bytes("64k"), Ok(65_536));
-        assert_eq!(parse_bytes("1.5M"), Ok(1_572_864));
-        assert_eq!(parse_bytes("8G"), Ok(8 << 30));
-        assert_eq!(parse_bytes("8GiB"), Ok(8 << 30));
-        assert_eq!(parse_bytes("2TB"), Ok(2 << 40));
-        for bad in ["", "G", "-1G", "0", "8X", "lots", "nan"] {
-            assert!(parse_bytes(bad).is_err(), "{bad:?} accepted");
-        }
     }
 
     #[test]
@@ -195,12 +136,5 @@ mod tests {
         assert!(msg.contains("3 ranks on this host"), "{msg}");
         assert!(b.verdict("global", u64::MAX, None).is_ok(), "unknown memory is not checked");
         assert!(budget(MapMemory::Unlimited, 1).verdict("global", u64::MAX, Some(0)).is_ok());
-    }
-
-    #[test]
-    fn this_host_reports_available_memory() {
-        if std::path::Path::new("/proc/meminfo").exists() {
-            assert!(available_bytes().is_some_and(|b| b > 0));
-        }
     }
 }

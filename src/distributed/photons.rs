@@ -49,9 +49,11 @@ pub fn my_share(comm: &Comm, emitted: u64) -> (std::ops::Range<u64>, u64) {
 }
 
 /// Shoots this rank's share of a pass and sums the statistics over ranks. Collective.
+#[allow(clippy::too_many_arguments)]
 pub fn shoot(
     comm: &Comm,
     scene: &Scene,
+    deadline: Option<std::time::Instant>,
     kind: MapKind,
     emitted: u64,
     pass: &str,
@@ -61,7 +63,7 @@ pub fn shoot(
     let (batches, _) = my_share(comm, emitted);
     let (sink, local) = photon::shoot_batches(
         &scene.world,
-        &photon::PassSettings::of(scene),
+        &photon::PassSettings { deadline, ..photon::PassSettings::of(scene) },
         kind,
         emitted,
         scene.integrator.seed,

@@ -85,6 +85,9 @@ pub struct Report<'a> {
     pub warnings: &'a [String],
     /// Wall time of the whole run, s.
     pub total_seconds: f64,
+    /// The process's peak resident memory when the report was written (after every output
+    /// was staged), bytes; compare `memory.estimated_peak_bytes`.
+    pub peak_memory_bytes: Option<u64>,
     /// Timings, photon and ray counts (its fields appear at the top level).
     #[serde(flatten)]
     pub stats: &'a RenderStats,
@@ -128,6 +131,7 @@ impl<'a> Report<'a> {
                 .collect(),
             warnings: &scene.warnings,
             total_seconds,
+            peak_memory_bytes: crate::memory::peak_rss_bytes(),
             stats,
             outputs,
         }

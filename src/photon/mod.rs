@@ -33,6 +33,9 @@ pub struct PassSettings<'a> {
     pub photon_sensors: bool,
     /// The wavelengths simulated, nm; light re-emitted outside them is absorbed.
     pub range_nm: (f64, f64),
+    /// When the run's time budget ends: batches not started by then are skipped (and counted
+    /// in [`PhotonStats::stopped_batches`]).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl<'a> PassSettings<'a> {
@@ -43,12 +46,16 @@ impl<'a> PassSettings<'a> {
             volume_map: scene.plan.volume_map.on,
             photon_sensors: !scene.sensors.is_empty(),
             range_nm: (scene.bands.min_nm, scene.bands.max_nm),
+            deadline: None,
         }
     }
 }
 
 /// Photons per batch (one random stream each).
 pub const BATCH: u64 = 4096;
+
+/// Batches traced together per worker thread before their photons are appended to the pass's.
+pub const GROUP_BATCHES_PER_THREAD: usize = 8;
 
 /// Emits `emitted` photons for a map of `kind` and returns the stored photons (surface and
 /// volume, in batch order) and the pass's statistics. `on_batch` is called after each batch
@@ -62,6 +69,18 @@ pub fn shoot(
     on_batch: &(dyn Fn(u64) + Sync),
 ) -> (PhotonSink, PhotonStats) {
     shoot_batches(world, pass, kind, emitted, seed, 0..batch_count(emitted), on_batch)
+}
+
+/// Photons stored per photon emitted in a pass of `kind`, on surfaces and in media: measured by
+/// tracing the pass's first batch (its first [`BATCH`] photons, the same ones the pass itself
+/// traces), for estimating a run's memory before it allocates its maps.
+pub fn pilot(world: &World, pass: &PassSettings, kind: MapKind, emitted: u64, seed: u64) -> (f64, f64) {
+    let n = batch_photons(emitted, 0);
+    if n == 0 {
+        return (0.0, 0.0);
+    }
+    let (sink, _) = shoot_batches(world, pass, kind, emitted, seed, 0..1, &|_| {});
+    (sink.surface.len() as f64 / n as f64, sink.volume.len() as f64 / n as f64)
 }
 
 /// How many batches a pass of `emitted` photons has (the last one may be short).
@@ -106,38 +125,51 @@ pub fn shoot_batches(
         MapKind::Caustic => Stream::CausticPhotons,
         MapKind::Global => Stream::GlobalPhotons,
     };
-    let results: Vec<(PhotonSink, PhotonStats)> = batches
-        .into_par_iter()
-        .map(|b| {
-            let mut rng = Rng::for_task(seed, stream, b);
-            let n = batch_photons(emitted, b);
-            let mut out = PhotonSink::default();
-            let mut st = PhotonStats::default();
-            for _ in 0..n {
-                let (l, _) = chooser.choose(rng.uniform());
-                let (em, factor) = match &targets {
-                    Some(t) => t.emit(&world.lights[l], &mut rng),
-                    None => (world.lights[l].emit(&mut rng), 1.0),
-                };
-                if factor > 0.0 {
-                    let medium = world.light_media[l];
-                    trace::trace(world, pass, &prop, &em, medium, power * factor, kind, &mut rng, &mut out, &mut st);
-                } else {
-                    st.missed += 1;
-                }
+    // Each batch traces into a reused scratch sink (its vectors grow once per worker, not once
+    // per batch) and returns an exact-size copy.
+    let trace_batch = |out: &mut PhotonSink, b: u64| {
+        if pass.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+            return (PhotonSink::default(), PhotonStats { stopped_batches: 1, ..PhotonStats::default() });
+        }
+        let mut rng = Rng::for_task(seed, stream, b);
+        let n = batch_photons(emitted, b);
+        out.surface.clear();
+        out.volume.clear();
+        let mut st = PhotonStats::default();
+        for _ in 0..n {
+            let (l, _) = chooser.choose(rng.uniform());
+            let (em, factor) = match &targets {
+                Some(t) => t.emit(&world.lights[l], &mut rng),
+                None => (world.lights[l].emit(&mut rng), 1.0),
+            };
+            if factor > 0.0 {
+                let medium = world.light_media[l];
+                trace::trace(world, pass, &prop, &em, medium, power * factor, kind, &mut rng, out, &mut st);
+            } else {
+                st.missed += 1;
             }
-            on_batch(n);
-            (out, st)
-        })
-        .collect();
-    let mut sink = PhotonSink {
-        surface: Vec::with_capacity(results.iter().map(|r| r.0.surface.len()).sum()),
-        volume: Vec::with_capacity(results.iter().map(|r| r.0.volume.len()).sum()),
+        }
+        on_batch(n);
+        (PhotonSink { surface: out.surface.clone(), volume: out.volume.clone() }, st)
     };
-    for (p, s) in results {
-        sink.surface.extend(p.surface);
-        sink.volume.extend(p.volume);
-        stats.add(&s);
+    // Batches are traced a group at a time and their photons appended in batch order, so the
+    // pass holds its records once plus one group's and the workers' scratch (not every batch's
+    // records and their concatenation), as the memory estimate (render::memory) assumes.
+    let group = (GROUP_BATCHES_PER_THREAD * rayon::current_num_threads()) as u64;
+    let mut sink = PhotonSink::default();
+    let mut start = batches.start;
+    while start < batches.end {
+        let end = batches.end.min(start + group);
+        let results: Vec<(PhotonSink, PhotonStats)> =
+            (start..end).into_par_iter().map_init(PhotonSink::default, trace_batch).collect();
+        sink.surface.reserve_exact(results.iter().map(|r| r.0.surface.len()).sum());
+        sink.volume.reserve_exact(results.iter().map(|r| r.0.volume.len()).sum());
+        for (p, s) in results {
+            sink.surface.extend(p.surface);
+            sink.volume.extend(p.volume);
+            stats.add(&s);
+        }
+        start = end;
     }
     stats.curved = prop.work.totals();
     (sink, stats)

@@ -61,6 +61,9 @@ pub struct PhotonStats {
     /// Caustic-pass photons that did not make a caustic (first hit diffuse, scattered in a
     /// medium, or aimed nowhere).
     pub missed: u64,
+    /// Batches not shot because the run's time budget (`--max-seconds`) ran out.
+    #[serde(default)]
+    pub stopped_batches: u64,
     /// Surface interactions.
     pub bounces: u64,
     /// Interactions in media.
@@ -86,6 +89,7 @@ impl PhotonStats {
         self.escaped_w += o.escaped_w;
         self.truncated_w += o.truncated_w;
         self.missed += o.missed;
+        self.stopped_batches += o.stopped_batches;
         self.bounces += o.bounces;
         self.medium_interactions += o.medium_interactions;
         self.reemitted += o.reemitted;

@@ -68,14 +68,19 @@ impl IrradianceCache {
     /// [`IrradianceCache::build`] computes.
     pub fn estimate(est: &Estimator, stride: usize, points: &[u32]) -> Vec<f32> {
         let bands = est.bands.count;
-        let computed: Vec<BandValues> = points
-            .par_iter()
-            .map_init(Neighbours::default, |nb, &i| {
-                let (pos, side) = Self::site(est, stride, i);
-                est.irradiance(pos, side, nb)
-            })
-            .collect();
-        computed.iter().flat_map(|e| e[..bands].iter().map(|v| *v as f32)).collect()
+        // Written in place: 4 bytes per band and point, nothing larger held per point.
+        let mut values = vec![0f32; points.len() * bands];
+        if bands == 0 {
+            return values;
+        }
+        values.par_chunks_mut(bands).zip(points.par_iter()).for_each_init(Neighbours::default, |nb, (out, &i)| {
+            let (pos, side) = Self::site(est, stride, i);
+            let e = est.irradiance(pos, side, nb);
+            for (o, v) in out.iter_mut().zip(&e[..bands]) {
+                *o = *v as f32;
+            }
+        });
+        values
     }
 
     /// The cache from the values of every point in point order (as [`IrradianceCache::estimate`]

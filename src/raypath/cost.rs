@@ -93,6 +93,9 @@ pub struct RayCounts {
     /// of the path tracer.
     #[serde(default)]
     pub medium_steps: u64,
+    /// Image rows not rendered because the run's time budget (`--max-seconds`) ran out.
+    #[serde(default)]
+    pub stopped_rows: u64,
 }
 
 impl RayCounts {
@@ -103,6 +106,7 @@ impl RayCounts {
         self.gather += o.gather;
         self.splits += o.splits;
         self.medium_steps += o.medium_steps;
+        self.stopped_rows += o.stopped_rows;
     }
 
     /// The counts added since `before` (taken from the same running counter).
@@ -113,6 +117,7 @@ impl RayCounts {
             gather: self.gather - before.gather,
             splits: self.splits - before.splits,
             medium_steps: self.medium_steps - before.medium_steps,
+            stopped_rows: self.stopped_rows - before.stopped_rows,
         }
     }
 }

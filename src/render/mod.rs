@@ -8,6 +8,7 @@
 mod direct;
 pub mod eye;
 mod lanes;
+pub mod memory;
 mod path;
 pub mod photon_pass;
 mod progress;
@@ -15,6 +16,7 @@ pub mod sensors;
 pub mod stats;
 
 pub use lanes::Lanes;
+pub use memory::{MemoryEstimate, MemoryLimit};
 pub use stats::{MapReport, PhaseTime, Phases, RayCounts, RenderStats};
 
 use crate::distributed::{self, Comm, DistributedReport, Rank};
@@ -33,6 +35,11 @@ use rayon::prelude::*;
 pub struct RenderOptions {
     /// Hide progress bars.
     pub quiet: bool,
+    /// The memory the run may use, checked before the photon maps are allocated.
+    pub max_memory: MemoryLimit,
+    /// When the run must stop (`--max-seconds`): a render still running then stops cleanly
+    /// with an error saying how far it got, and writes nothing.
+    pub deadline: Option<std::time::Instant>,
 }
 
 /// A finished render.
@@ -69,7 +76,20 @@ pub fn render_on(
     let mut rank = Rank::new(comm, *dist);
     let quiet = opts.quiet || !comm.is_root();
     let mut stats = RenderStats::default();
-    let maps = photon_pass::build(&mut rank, scene, quiet, &mut stats.phases, &mut stats.maps)?;
+    let pass = crate::photon::PassSettings::of(scene);
+    let mut est = memory::estimate(scene, &pass, comm.size());
+    distributed::fault::agree(comm, memory::check(&mut est, opts.max_memory))?;
+    stats.memory = est;
+    let maps = photon_pass::build(&mut rank, scene, quiet, opts.deadline, &mut stats.phases, &mut stats.maps)?;
+    let stopped: u64 = stats.maps.iter().map(|m| m.stats.stopped_batches).sum();
+    if stopped > 0 {
+        let left: Vec<String> = stats.maps.iter().map(|m| format!("{} map {} photons", m.map, m.emitted)).collect();
+        return Err(out_of_time(format!(
+            "during the photon pass ({stopped} batches of {} photons not shot; passes: {})",
+            crate::photon::BATCH,
+            left.join(", ")
+        )));
+    }
     for m in stats.maps.iter().filter(|m| m.emitted > 0 && m.stored == 0) {
         stats.warnings.push(format!(
             "the {} photon map stored none of its {} photons: they all escaped or were absorbed before reaching what stores them, so the image lacks that light (check the lights' positions, directions and targets)",
@@ -81,11 +101,20 @@ pub fn render_on(
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
     let t = Span::start();
-    let (data, work, curved) = eye_pass(&rank, scene, &maps, quiet);
+    let (data, work, curved) = eye_pass(&rank, scene, &maps, quiet, opts.deadline);
     stats.phases.add("eye pass", t);
     rank.report.eye = work;
     rank.report.eye_curved = curved;
     let ranks = rank.gather_reports(&stats.phases);
+    let stopped_rows: u64 = ranks.iter().map(|r| r.eye.rays.stopped_rows).sum();
+    if stopped_rows > 0 {
+        let h = scene.camera.height;
+        return Err(out_of_time(format!(
+            "during the eye pass ({} of {h} rows rendered; the photon maps were complete)",
+            h as u64 - stopped_rows.min(h as u64)
+        )));
+    }
+    stats.memory.measured_peak_bytes = crate::memory::peak_rss_bytes();
     let Some(data) = data else { return Ok(None) };
     for r in &ranks {
         stats.rays.add(&r.eye.rays);
@@ -104,6 +133,11 @@ pub fn render_on(
     Ok(Some(Rendered { image, stats, sensors, profiles }))
 }
 
+/// The error of a run whose time budget ran out: exit code 1, nothing written.
+fn out_of_time(progress: String) -> crate::error::Error {
+    crate::error::Error::internal(format!("the time budget (--max-seconds) ran out {progress}; no output was written"))
+}
+
 /// This rank's part of the eye pass: the image's band averages (row-major, `bands.count` per
 /// pixel) on rank 0, this rank's work, and the integrator work along its curved eye paths.
 fn eye_pass(
@@ -111,6 +145,7 @@ fn eye_pass(
     scene: &Scene,
     maps: &photon_pass::Maps,
     quiet: bool,
+    deadline: Option<std::time::Instant>,
 ) -> (Option<Vec<f32>>, distributed::eye::EyeWork, crate::raypath::CurvedWorkTotals) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
@@ -124,6 +159,10 @@ fn eye_pass(
             .map_init(Scratch::default, |sc, y| {
                 let before = sc.rays;
                 let mut row = vec![0f32; w * nb];
+                if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                    pb.inc(1);
+                    return (row, RayCounts { stopped_rows: 1, ..RayCounts::default() });
+                }
                 for x in 0..w {
                     let px = pixel(scene, &tracer, x, y, sc);
                     for b in 0..nb {

@@ -33,6 +33,9 @@ pub struct RenderStats {
     pub warnings: Vec<String>,
     /// Wall time per phase.
     pub phases: Phases,
+    /// The memory the run was estimated to need before it allocated its maps, the limit, and
+    /// the peak measured at its end.
+    pub memory: crate::render::MemoryEstimate,
     /// One entry per photon map built.
     pub maps: Vec<MapReport>,
     /// Rays traced, by kind.

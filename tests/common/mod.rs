@@ -26,7 +26,7 @@ pub fn scene_error(toml: &str) -> String {
 /// Renders on a pool of `threads` threads without progress bars.
 pub fn render_with(scene: &Scene, threads: usize) -> Rendered {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
-    pool.install(|| render(scene, &RenderOptions { quiet: true }))
+    pool.install(|| render(scene, &RenderOptions { quiet: true, ..RenderOptions::default() }))
 }
 
 /// Mean and standard error of the mean of `xs`.
