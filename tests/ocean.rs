@@ -191,6 +191,66 @@ fn profile_sensor_matches_the_refracted_beam_in_absorbing_water() {
     assert!((kd[0].3 - 0.5 / cos_t).abs() < 0.02, "Kd {} vs {}", kd[0].3, 0.5 / cos_t);
 }
 
+/// Issue 15: at depth 0 (or any depth less than half its slab) the profile averaged over the air
+/// and the water and read half the irradiance. Clipped to the water, Ed just below the surface
+/// continues Ed deeper down: the purely absorbing ocean above (Ed exactly exponential), 4 seeds,
+/// Ed at 0.5, 1 and 2 m fitted by an exponential (log-linear least squares) and carried to the
+/// clipped slabs at 0 and 0.05 m (their mean of the fit), within 4 standard errors of the
+/// readings and of the extrapolation; and against the closed form Ed(0−) = Ed(0+) T(60°).
+#[test]
+fn profile_at_the_surface_is_continuous_with_the_profile_below() {
+    let base = std::fs::read_to_string("examples/mobley1993_problem1.toml").unwrap();
+    let toml = base
+        .replace("albedo = 0.9", "albedo = 0.0")
+        .replace("sigma_t = 1.0", "sigma_t = 0.5")
+        .replace("depths_m = [1.0, 5.0, 10.0]", "depths_m = [0.0, 0.05, 0.5, 1.0, 2.0]");
+    assert!(toml.contains("depths_m = [0.0, 0.05") && toml.contains("slab_m = 0.2"));
+    let slab = 0.2;
+    let runs: Vec<ProfileReading> = (1..=4)
+        .map(|seed| {
+            let mut s = scene(&toml);
+            s.apply_overrides(Some(400_000), Some(seed));
+            render_with(&s, 2).profiles.remove(0)
+        })
+        .collect();
+    let ed = |z: f64| -> (f64, f64) {
+        let v: Vec<f64> = runs.iter().map(|r| r.rows.iter().find(|x| x.depth_m == z).unwrap().ed).collect();
+        mean_and_sem(&v)
+    };
+    // ln Ed = c0 − K z through the three deeper readings (each a slab mean; for an exponential
+    // that is e^{−Kz} times the same factor S = sinh(KΔz/2)/(KΔz/2) at every depth).
+    let zs = [0.5, 1.0, 2.0];
+    let pts: Vec<(f64, f64, f64)> = zs.iter().map(|&z| (z, ed(z).0.ln(), ed(z).1 / ed(z).0)).collect();
+    let zbar = zs.iter().sum::<f64>() / 3.0;
+    let sxx: f64 = zs.iter().map(|z| (z - zbar).powi(2)).sum();
+    let slope = pts.iter().map(|(z, y, _)| (z - zbar) * y).sum::<f64>() / sxx;
+    let k = -slope;
+    let ybar = pts.iter().map(|p| p.1).sum::<f64>() / 3.0;
+    let c0 = ybar - slope * zbar;
+    // Variance of c0 (a linear combination of the ln Ed, each with relative error sem/mean).
+    let c0_var: f64 = pts.iter().map(|(z, _, rel)| (1.0 / 3.0 - zbar * (z - zbar) / sxx).powi(2) * rel * rel).sum();
+    let x = k * slab / 2.0;
+    let e0 = c0.exp() * x / x.sinh(); // Ed just below the surface, from the fit
+    // Closed form: Ed(0+) = 0.5 and Fresnel's T at 60° into n = 1.34; K = c/μ_w.
+    let (n, cos_i) = (1.34f64, 0.5f64);
+    let cos_t = (1.0 - (1.0 - cos_i * cos_i) / (n * n)).sqrt();
+    let rs = (cos_i - n * cos_t) / (cos_i + n * cos_t);
+    let rp = (n * cos_i - cos_t) / (n * cos_i + cos_t);
+    let ed0_closed = 0.5 * (1.0 - 0.5 * (rs * rs + rp * rp));
+    eprintln!("fit: Ed(0−) = {e0:.5} (closed form {ed0_closed:.5}), K = {k:.4} (closed form {:.4})", 0.5 / cos_t);
+    for z in [0.0, 0.05] {
+        let (top, bottom) = (0.0f64.max(z - slab / 2.0), z + slab / 2.0);
+        let slab_mean = |e0: f64, k: f64| e0 * ((-k * top).exp() - (-k * bottom).exp()) / (k * (bottom - top));
+        let (got, sem) = ed(z);
+        let want = slab_mean(e0, k);
+        let tol = 4.0 * (sem * sem + want * want * c0_var).sqrt();
+        eprintln!("Ed({z}) = {got:.5} ± {sem:.5}; the fit's mean over the clipped slab {want:.5} (tol {tol:.5})");
+        assert!((got - want).abs() < tol, "Ed({z}) = {got} ± {sem}, continuing the profile below: {want}");
+        let closed = slab_mean(ed0_closed, 0.5 / cos_t);
+        assert!((got - closed).abs() < 4.0 * sem + 1e-3 * closed, "Ed({z}) = {got} ± {sem}, closed form {closed}");
+    }
+}
+
 /// Mobley et al. (1993) Table values at τ = 1 for problems 1 and 2 (Lu, Eou; W m⁻² (sr⁻¹) nm⁻¹,
 /// Ed(0+) = 0.5), as quoted by a public validation script of another Monte Carlo code
 /// (mc_solver_free, "Validation against Mobley et al. (1993)"); the paper's own tables were not
