@@ -1,15 +1,20 @@
 //! An atmosphere: a base profile of T(z) and P(z), temperature edits, an Earth to measure height
 //! on, a dispersion law and a top. Its refractive index is
 //!
-//! n(λ, x) = 1 + K(λ)·ρ(x)·s(h),  ρ = P_base(h)·M₀/(R*·T(x)),  T = T_base(h) + Σᵢ ΔTᵢ(x),
+//! n(λ, x) = 1 + N(λ, P, T)·s(h),  P = P_base(h),  T = T_base(h) + Σᵢ ΔTᵢ(x),
 //!
+//! where N = K(λ)·ρ(P, T) is the dispersion law's refractivity at (P, T), Gladstone–Dale with the
+//! density its K refers to (Ciddor's real-gas density PM_a/(ZRT), or for Cauchy the ideal gas
+//! PM₀/(R*T); see [`AirDispersion::refractivity_grad`]),
 //! with h the height of x above the ground and s a C¹ taper that takes n to exactly 1 at the top
 //! (s = 1 below top − w, s = 3u² − 2u³ with u = (top − h)/w above, s = 0 at and above the top;
 //! w = min(1 km, top/10)). The taper changes n − 1 only where it is below 10⁻⁵ of its sea-level
 //! value for the 86 km standard top (3 × 10⁻³ for the 40 km top of Gutierrez et al. 2005), and
 //! keeps n and ∇n continuous where paths leave the atmosphere. The gradient is, by the chain rule,
 //!
-//! ∇T = T′_base ∇h + Σᵢ ∇ΔTᵢ,  ∇ρ = ρ (P′_base/P_base ∇h − ∇T/T),  ∇n = K (s ∇ρ + ρ s′ ∇h).
+//! ∇T = T′_base ∇h + Σᵢ ∇ΔTᵢ,  ∇P = P′_base ∇h,  ∇n = s (∂N/∂P ∇P + ∂N/∂T ∇T) + N s′ ∇h.
+//!
+//! [`AirPoint::density_kg_m3`] is the ideal-gas density PM₀/(R*T) of the air (USA76's).
 //!
 //! Approximation: pressure is the base atmosphere's hydrostatic pressure at the height; the edits
 //! change temperature (hence density) but not pressure. For the mirage layers (metres to tens of
@@ -173,9 +178,9 @@ impl Atmosphere {
         }
         let a = self.air_at(p, h, gh);
         let (s, ds) = self.taper(h);
-        let k = self.dispersion.gladstone_dale_m3_per_kg(wavelength_nm);
-        let n = 1.0 + k * a.density_kg_m3 * s;
-        (n, k * (s * a.grad_density + (a.density_kg_m3 * ds) * gh))
+        let (nr, nr_p, nr_t) = self.dispersion.refractivity_grad(wavelength_nm, a.pressure_pa, a.temperature_k);
+        let n = 1.0 + nr * s;
+        (n, s * (nr_p * a.grad_pressure + nr_t * a.grad_temperature) + (nr * ds) * gh)
     }
 
     /// The taper s(h) and ds/dh.

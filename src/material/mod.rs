@@ -113,6 +113,20 @@ impl Material {
         }
     }
 
+    /// η = n_far/n_near for a path arriving along `dir` at a surface with normal `n` that is
+    /// transmitted: the index of the side it enters over the index of the side it leaves (1 for
+    /// materials that do not refract). Radiance carried across such a boundary scales by
+    /// 1/η² (L/n² is conserved along a ray; Veach 1997, §5.2); power does not.
+    pub fn transmitted_index_ratio(&self, dir: DVec3, n: DVec3, wavelength_nm: f64, n_outside: f64) -> f64 {
+        let body = match self {
+            Material::Dielectric(d) => d.ior.eval(wavelength_nm),
+            Material::RoughDielectric(d) => d.ior.eval(wavelength_nm),
+            Material::Lambertian(_) | Material::Mirror(_) => return 1.0,
+        };
+        let relative = body / n_outside;
+        if dir.dot(n) < 0.0 { relative } else { 1.0 / relative }
+    }
+
     /// Diffuse reflectance ρ(λ) (the BRDF is ρ/π); zero for specular materials.
     pub fn diffuse_reflectance(&self, wavelength_nm: f64) -> f64 {
         match self {

@@ -12,7 +12,11 @@
 //! p²/(p_light² + p_scatter²) with the solid-angle densities of the two strategies. (Light
 //! sampling alone has infinite variance for points near an emitting surface.) Delta lights are
 //! reached only by next-event estimation; emission seen from the camera or through specular
-//! surfaces counts fully.
+//! surfaces counts fully. A path refracted from a medium of index n into one of index n′ has its
+//! throughput multiplied by (n/n′)², because radiance, unlike power, is not conserved across a
+//! refracting boundary — L/n² is (Veach 1997, §5.2): a camera under water sees the sky n² times
+//! brighter (less the Fresnel loss) within Snell's window. (Index-mismatched boundaries without
+//! a material, refracted by the propagator, do not get this factor yet.)
 //! Russian roulette on the throughput after [`ROULETTE_DEPTH`] events (Veach 1997, §10;
 //! Novák et al. 2018 for the volumetric parts).
 //!
@@ -273,7 +277,14 @@ impl<'a> PathTracer<'a> {
                 if s.weight == 0.0 {
                     return None;
                 }
-                w.beta *= s.weight;
+                // The sampled weight carries power; radiance seen across a refracting boundary
+                // also scales by (n_here/n_there)² (L/n² is conserved).
+                let eta = if s.transmitted {
+                    material.transmitted_index_ratio(dir, hit.normal, w.lambda, n_out)
+                } else {
+                    1.0
+                };
+                w.beta *= s.weight / (eta * eta);
                 w.emission = Emission::Full;
                 let next =
                     if s.transmitted { self.scene.world.medium_across(hit.prim, dir, hit.normal) } else { medium };

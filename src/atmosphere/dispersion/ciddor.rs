@@ -71,6 +71,14 @@ impl Ciddor {
         rho / self.rho_axs * self.refractivity_standard_state(wavelength_nm)
     }
 
+    /// [`Ciddor::refractivity`] N and its partial derivatives (N, ∂N/∂p in Pa⁻¹, ∂N/∂T in K⁻¹):
+    /// with ρ = pM_a/(ZRT), ∂ln ρ/∂p = 1/p − (∂Z/∂p)/Z and ∂ln ρ/∂T = −1/T − (∂Z/∂T)/Z.
+    pub fn refractivity_grad(&self, wavelength_nm: f64, temperature_k: f64, pressure_pa: f64) -> (f64, f64, f64) {
+        let n = self.refractivity(wavelength_nm, temperature_k, pressure_pa);
+        let (z, z_p, z_t) = compressibility(pressure_pa, temperature_k);
+        (n, n * (1.0 / pressure_pa - z_p / z), n * (-1.0 / temperature_k - z_t / z))
+    }
+
     /// K(λ) = (n_axs − 1)/ρ_axs, m³ kg⁻¹.
     pub fn gladstone_dale_m3_per_kg(&self, wavelength_nm: f64) -> f64 {
         self.refractivity_standard_state(wavelength_nm) / self.rho_axs
@@ -85,8 +93,17 @@ impl Ciddor {
 /// ρ = pM_a/(ZRT) of dry air (Eqs. 4 and 12).
 fn dry_density(pressure_pa: f64, temperature_k: f64, co2_ppm: f64) -> f64 {
     let ma = 1e-3 * (28.9635 + 12.011e-6 * (co2_ppm - 400.0));
+    let (z, _, _) = compressibility(pressure_pa, temperature_k);
+    pressure_pa * ma / (z * R_CIDDOR * temperature_k)
+}
+
+/// The compressibility of dry air (Eq. 12) and its partial derivatives: (Z, ∂Z/∂p, ∂Z/∂T).
+fn compressibility(pressure_pa: f64, temperature_k: f64) -> (f64, f64, f64) {
     let t = temperature_k - 273.15;
     let pt = pressure_pa / temperature_k;
-    let z = 1.0 - pt * (A0 + A1 * t + A2 * t * t) + pt * pt * D;
-    pressure_pa * ma / (z * R_CIDDOR * temperature_k)
+    let a = A0 + A1 * t + A2 * t * t;
+    let z = 1.0 - pt * a + pt * pt * D;
+    let z_p = (-a + 2.0 * pt * D) / temperature_k;
+    let z_t = pt / temperature_k * a - pt * (A1 + 2.0 * A2 * t) - 2.0 * pt * pt * D / temperature_k;
+    (z, z_p, z_t)
 }

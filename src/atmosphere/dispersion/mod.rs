@@ -3,6 +3,13 @@
 //! reference state. Gutierrez et al. 2005 (Eqs. 17–18) use Cauchy's law; Ciddor 1996 is the
 //! modern alternative (it is itself Gladstone–Dale scaling of standard air, Ciddor Eq. 5).
 //!
+//! K and ρ must be the same kind of density. Ciddor's ρ_ref is the real-gas density
+//! pM_a/(ZRT) of standard air, so air given by its pressure and temperature (atmospheres,
+//! temperature grids) gets n − 1 from [`AirDispersion::refractivity_grad`], which scales by the
+//! real-gas density at (p, T) — Ciddor's own formula. (Scaling the ideal-gas density by Ciddor's K
+//! put n − 1 0.04 % low at every height: the compressibility Z ≈ 0.9996.) Cauchy's K refers to
+//! the ideal-gas density of its reference state, and is scaled by the ideal-gas density.
+//!
 //! # References
 //! - J. H. Gladstone & T. P. Dale 1858, "On the influence of temperature on the refraction of
 //!   light", Phil. Trans. R. Soc. 148:887–894.
@@ -40,9 +47,24 @@ impl AirDispersion {
         }
     }
 
-    /// n = 1 + K(λ)·ρ.
+    /// n = 1 + K(λ)·ρ, ρ the density K refers to (see the module notes).
     pub fn n(&self, wavelength_nm: f64, density_kg_m3: f64) -> f64 {
         1.0 + self.gladstone_dale_m3_per_kg(wavelength_nm) * density_kg_m3
+    }
+
+    /// n − 1 of air at `pressure_pa` and `temperature_k`, N = K(λ)·ρ(p, T) with the density
+    /// each law's K refers to, and its partial derivatives: (N, ∂N/∂p in Pa⁻¹, ∂N/∂T in K⁻¹).
+    /// Ciddor: Ciddor's Eq. 5 with his real-gas density (compressibility Z); Cauchy: the ideal
+    /// gas with the USA76 constants ([`super::gas::density_kg_m3`]).
+    pub fn refractivity_grad(&self, wavelength_nm: f64, pressure_pa: f64, temperature_k: f64) -> (f64, f64, f64) {
+        match self {
+            AirDispersion::CauchyBornWolf => {
+                let n = CauchyBornWolf::gladstone_dale_m3_per_kg(wavelength_nm)
+                    * super::gas::density_kg_m3(pressure_pa, temperature_k);
+                (n, n / pressure_pa, -n / temperature_k)
+            }
+            AirDispersion::Ciddor(c) => c.refractivity_grad(wavelength_nm, temperature_k, pressure_pa),
+        }
     }
 
     /// The scene's wavelength range must lie where the law is defined.

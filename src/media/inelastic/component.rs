@@ -13,7 +13,8 @@
 //!   because its b_R(λ') (Bartlett et al. 1998, λ'^−5.3) is normalised to photons.
 //!
 //! Raman scattering is a scattering, not an absorption: its coefficient b_R(λ') adds to the
-//! extinction and every Raman event re-emits (Φ = 1).
+//! extinction and every Raman event inside the component's excitation window re-emits (Φ = 1);
+//! outside the window Φ = 0, as for fluorescence.
 
 use super::redistribution::Redistribution;
 use crate::media::phase::PhaseFunction;

@@ -10,8 +10,10 @@
 //! second roulette on the quantum yield Φ_i(λ') (Gutierrez et al. Eq. 14); a re-emitted photon
 //! gets a wavelength drawn from f̂_i(λ' → ·), a direction from the emission phase function, and
 //! its energy times the component's energy factor ([`Accounting`]). Raman scattering always
-//! re-emits. The volume map sees the re-emitted light through [`BandTransfer`]; the path tracer
-//! through [`Inelastic::sample_excitation`].
+//! re-emits inside the component's excitation window; outside it (Φ = 0) every component only
+//! absorbs, in photon tracing as in the volume-map estimate and the path tracer. The volume map
+//! sees the re-emitted light through [`BandTransfer`]; the path tracer through
+//! [`Inelastic::sample_excitation`].
 //!
 //! Models: [`GaussianEmission`] (chlorophyll), [`Fa7`] (CDOM, Hawes 1992), [`RamanShift`]
 //! (water).
@@ -110,7 +112,13 @@ impl Inelastic {
         };
         let c = &self.components[i];
         let absorbed = Outcome::Absorbed { component: Some(i) };
-        if c.process == Process::Fluorescence && rng.uniform() >= c.yield_at(wavelength_nm) {
+        // The second roulette on Φ(λ'), which is 0 outside the component's excitation window for
+        // Raman as for fluorescence; Raman's Φ is 1 inside it, so it needs no random number.
+        let reemits = match c.process {
+            Process::Fluorescence => rng.uniform() < c.yield_at(wavelength_nm),
+            Process::Raman => c.yield_at(wavelength_nm) > 0.0,
+        };
+        if !reemits {
             return absorbed;
         }
         let Some(l) = c.redistribution.sample(wavelength_nm, rng) else { return absorbed };

@@ -1,8 +1,11 @@
-//! Air whose temperature is given on a 3-D lattice: ρ = PM₀/(R*T) at the local pressure, then
-//! Gladstone–Dale, n = 1 + K(λ)ρ. At constant pressure this is Stam & Languenou's
-//! n = 1 + (T₀/T)(n₀ − 1), which Gutierrez et al. 2005 use for their heat-shimmer image (Fig. 6).
+//! Air whose temperature is given on a 3-D lattice: the dispersion law's refractivity at the
+//! local pressure and temperature, Gladstone–Dale n = 1 + K(λ)ρ(P, T) (ρ the density K refers
+//! to: the ideal gas PM₀/(R*T) for Cauchy, Ciddor's real gas; see
+//! [`AirDispersion::refractivity_grad`]). At constant pressure this is Stam & Languenou's
+//! n = 1 + (T₀/T)(n₀ − 1) (up to Ciddor's compressibility), which Gutierrez et al. 2005 use for
+//! their heat-shimmer image (Fig. 6).
 //!
-//! ∇n = K ∇ρ with ∇ρ = ρ (∇P/P − ∇T/T).
+//! ∇n = ∂N/∂P ∇P + ∂N/∂T ∇T (N = n − 1).
 //!
 //! Outside the lattice the temperature of the nearest face holds ([`Beyond::Clamp`]), so n is
 //! continuous everywhere; at constant pressure with a uniform face temperature the gradient
@@ -12,7 +15,7 @@
 //! - J. Stam & E. Languenou 1996, "Ray tracing in non-constant media", Eurographics Rendering
 //!   Workshop, 225–234.
 
-use crate::atmosphere::{AirDispersion, Earth, gas, usa76};
+use crate::atmosphere::{AirDispersion, Earth, usa76};
 use crate::field::{Beyond, GradientRegion, Interpolation, Lattice, catmull_rom_overshoot};
 use glam::DVec3;
 
@@ -112,9 +115,8 @@ impl TemperatureGrid {
                 (s.pressure_pa, s.dp_dz * gh)
             }
         };
-        let rho = gas::density_kg_m3(pr, t);
-        let k = self.dispersion.gladstone_dale_m3_per_kg(wavelength_nm);
-        (1.0 + k * rho, (k * rho) * (gp / pr - gt / t))
+        let (nr, nr_p, nr_t) = self.dispersion.refractivity_grad(wavelength_nm, pr, t);
+        (1.0 + nr, nr_p * gp + nr_t * gt)
     }
 
     /// Where ∇n can be non-zero: the lattice box at constant pressure with uniform face

@@ -28,10 +28,10 @@ pub fn evaluate(s: &OceanProfile, scene: &Scene, maps: &Maps, name: &str, index:
         }
     }
     let area = s.u.cross(s.v).length();
-    let scale = 1.0 / (area * s.slab_m * bands.width_nm());
     let lu_scale = 1.0 / (area * bands.width_nm());
     let row = |k: usize, b: usize| {
         let sum = sums[k * bands.count + b];
+        let scale = 1.0 / (area * s.slab_thickness_m(depths[k]) * bands.width_nm());
         ProfileRow {
             depth_m: depths[k],
             wavelength_nm: bands.centre_nm(b),
@@ -96,7 +96,8 @@ fn tally(
                 sums[k * bands.count + j][4] += v * (-m.sigma_t(bands.centre_nm(j)) * density * h).exp();
             }
         }
-        if (depth - z).abs() > 0.5 * s.slab_m {
+        // The slab clipped to the water (photons above the surface are not in it).
+        if (depth - z).abs() > 0.5 * s.slab_m || depth < 0.0 {
             continue;
         }
         let slot = &mut sums[k * bands.count + b];
