@@ -15,7 +15,6 @@ mod build;
 mod traverse;
 
 use super::{Aabb, Hit, Ray, Shape};
-use glam::DVec3;
 
 /// A bounding-volume hierarchy over a slice of shapes (see the module docs).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -59,21 +58,6 @@ impl Bvh {
     /// by bounding box otherwise). False means certainly not: a path segment inside `b` needs
     /// no intersection tests.
     pub fn may_touch_box(&self, shapes: &[Shape], b: &Aabb) -> bool {
-        self.any_leaf_in(b, |p| shapes[p as usize].may_touch_box(b))
-    }
-
-    /// Whether any of `shapes` may have surface within `pad` of the segment from `a` to `b`
-    /// (a capsule): nodes are culled by the capsule's bounding box, and at the leaves each shape
-    /// decides ([`Shape::may_touch_capsule`]: exact for spheres, by bounding box otherwise).
-    /// False means certainly not.
-    pub fn may_touch_capsule(&self, shapes: &[Shape], a: DVec3, b: DVec3, pad: f64) -> bool {
-        let bounds = Aabb { min: a.min(b) - DVec3::splat(pad), max: a.max(b) + DVec3::splat(pad) };
-        self.any_leaf_in(&bounds, |p| shapes[p as usize].may_touch_capsule(a, b, pad, &bounds))
-    }
-
-    /// Whether `test` holds for any primitive in a leaf whose node overlaps `b` (true, to be
-    /// safe, if the traversal stack would overflow).
-    fn any_leaf_in(&self, b: &Aabb, test: impl Fn(u32) -> bool) -> bool {
         let overlaps = |n: &Node| (0..3).all(|k| n.bounds[0][k] <= b.max[k] && n.bounds[1][k] >= b.min[k]);
         let mut stack = [0usize; 64];
         let mut top = 0usize;
@@ -91,7 +75,7 @@ impl Bvh {
             }
             if n.count > 0 {
                 let prims = &self.prims[n.offset as usize..(n.offset + n.count) as usize];
-                if prims.iter().any(|p| test(*p)) {
+                if prims.iter().any(|p| shapes[*p as usize].may_touch_box(b)) {
                     return true;
                 }
                 continue;

@@ -230,13 +230,15 @@ fn chords_of(
     None
 }
 
-/// Whether any surface may lie within reach of `step`'s arc: within the capsule about its chord
-/// of radius twice the midpoint's distance from the chord (which bounds how far the arc strays
-/// from it under the curvature assumption of [`super::arc`]) plus the tolerance.
+/// Whether any surface may lie within reach of `step`'s arc: the box around its ends and
+/// midpoint, grown by twice the midpoint's distance from the chord (which bounds how far the arc
+/// strays from it under the curvature assumption of [`super::arc`]) and the tolerance.
 fn geometry_near(prop: &Propagator, step: &Step, tol_m: f64) -> bool {
     let (a, b, m) = (step.y0().r, step.y1().r, step.position_at(0.5));
     let pad = 2.0 * (m - 0.5 * (a + b)).length() + tol_m;
-    prop.world.bvh.may_touch_capsule(&prop.world.shapes, a, b, pad)
+    let min = a.min(b).min(m) - DVec3::splat(pad);
+    let max = a.max(b).max(m) + DVec3::splat(pad);
+    prop.world.bvh.may_touch_box(&prop.world.shapes, &crate::geometry::Aabb { min, max })
 }
 
 /// Sub-chords per refinement round and rounds: each round shrinks the sagitta of the chord

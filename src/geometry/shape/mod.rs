@@ -121,28 +121,6 @@ impl Shape {
         }
     }
 
-    /// Whether the shape's surface may come within `pad` of the segment from `a` to `b`
-    /// (`bounds`: the capsule's bounding box): exactly for a sphere — its surface is within
-    /// `pad` of the segment unless the segment stays more than `pad` outside it (the nearest
-    /// point of the segment to the centre is farther than R + pad) or inside it (both ends,
-    /// where the distance from the centre is largest, nearer than R − pad) — and by the
-    /// bounding boxes for the other shapes.
-    pub fn may_touch_capsule(&self, a: DVec3, b: DVec3, pad: f64, bounds: &Aabb) -> bool {
-        match self {
-            Shape::Sphere(s) => {
-                let ab = b - a;
-                let len2 = ab.length_squared();
-                let t = if len2 > 0.0 { ((s.center - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
-                let nearest = (a + t * ab - s.center).length();
-                let farthest = (a - s.center).length().max((b - s.center).length());
-                // The same relative margin as `may_touch_box` against rounding at Earth scale.
-                let margin = 1e-9 * (s.radius + s.center.abs().max_element()) + pad;
-                nearest <= s.radius + margin && farthest >= s.radius - margin
-            }
-            _ => self.may_touch_box(bounds),
-        }
-    }
-
     /// Bounding box, m.
     pub fn bounds(&self) -> Aabb {
         match self {
