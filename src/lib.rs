@@ -25,6 +25,7 @@ pub mod light;
 pub mod luminaire;
 pub mod material;
 pub mod media;
+pub mod memory;
 pub mod ode;
 pub mod output;
 pub mod photon;

@@ -18,6 +18,7 @@ const LAYERS: &[(&str, &str, u32)] = &[
     ("quadrature", "base", 0),
     ("atomic", "base", 0),
     ("timing", "base", 0),
+    ("memory", "base", 0),
     ("sampling", "base", 1),
     ("raster", "base", 1),
     ("validate", "base", 1),

@@ -59,6 +59,10 @@ pub fn run(a: &GridArgs) -> Result<String> {
             format!("--frequency-per-m {f}: expected a positive finite frequency, per metre"),
         ));
     }
+    if (0..3).any(|i| a.max[i] <= a.min[i]) {
+        let (min, max) = (a.min, a.max);
+        return Err(Error::input(None, format!("--min {min:?}, --max {max:?}: max must exceed min on every axis")));
+    }
     let fbm = Fbm::new(a.base, a.amplitude, a.frequency_per_m, a.octaves, a.seed);
     write_grid_atomically(&a.out, [a.res; 3], a.min.into(), a.max.into(), |p| fbm.at(p))?;
     Ok(format!("wrote {}\n", a.out.display()))

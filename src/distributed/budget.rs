@@ -105,10 +105,7 @@ impl Budget {
 
 /// `MemAvailable` from `/proc/meminfo`, in bytes (None where there is no such file).
 pub fn available_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
+    crate::memory::mem_available()
 }
 
 /// Parses a byte count with an optional binary suffix: `512`, `64k`, `800M`, `8G`, `1T`

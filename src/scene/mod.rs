@@ -351,7 +351,7 @@ fn build_earth(ctx: &Ctx, raw: &RawScene) -> Result<(Earth, bool)> {
         (_, r) => {
             let radius = match r {
                 None => crate::atmosphere::EARTH_RADIUS_M,
-                Some(r) => ctx.number(r, "[world] earth_radius_m", 0.0, f64::INFINITY, true)?,
+                Some(r) => ctx.number(r, "[world] earth_radius_m", 0.0, crate::atmosphere::MAX_EARTH_RADIUS_M, true)?,
             };
             let earth =
                 Earth::spherical_y(radius).map_err(|e| ctx.err(&w.earth.as_ref().map_or(0..0, |e| e.span()), e))?;
