@@ -34,6 +34,9 @@ pub struct RefractionArgs {
 
 /// Runs the command; the text to print.
 pub fn run(args: &RefractionArgs) -> Result<String> {
+    if let Some(csv) = &args.csv {
+        super::check_output_file("--csv", csv)?;
+    }
     if args.apparent_altitudes_deg.is_empty() {
         return Err(Error::input(None, "--apparent-altitudes-deg: give at least one altitude"));
     }

@@ -25,7 +25,7 @@ pub struct Inversion {
 }
 
 impl Inversion {
-    /// Checks that all values are finite and `thickness_m` at least [`MIN_THICKNESS_M`].
+    /// Checks that all values are finite and `thickness_m` at least `MIN_THICKNESS_M` (1 mm).
     pub fn new(dt_k: f64, height_m: f64, thickness_m: f64) -> Result<Inversion, String> {
         if !(dt_k.is_finite() && height_m.is_finite()) {
             return Err(format!("inversion: dT_k = {dt_k} and height_m = {height_m} must be finite"));

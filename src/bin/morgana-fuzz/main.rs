@@ -148,8 +148,12 @@ fn target_of(name: &str) -> Result<Target, String> {
 }
 
 fn limits(c: &Common) -> Limits {
-    let scratch =
-        c.scratch.clone().unwrap_or_else(|| std::env::temp_dir().join(format!("morgana-fuzz-{}", std::process::id())));
+    // The pid alone is not unique across pid namespaces (a run under `unshare --pid`).
+    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.subsec_nanos());
+    let scratch = c
+        .scratch
+        .clone()
+        .unwrap_or_else(|| std::env::temp_dir().join(format!("morgana-fuzz-{}-{nanos}", std::process::id())));
     Limits { deadline: Duration::from_secs_f64(c.deadline_s), memory_mib: c.memory_mib, repo: c.repo.clone(), scratch }
 }
 

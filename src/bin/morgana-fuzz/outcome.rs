@@ -140,7 +140,7 @@ pub fn locates(message: &str, files: &[String], flags: bool) -> bool {
 /// characters followed by an ellipsis when the message clips a long argument.
 pub fn names_argument(message: &str, args: &[String]) -> bool {
     args.iter().filter(|a| !a.is_empty()).any(|a| {
-        if message.contains(&format!("{a}:")) {
+        if message.contains(&format!("{a}:")) || message.contains(&format!("'{a}'")) {
             return true;
         }
         let head: String = a.chars().take(40).collect();

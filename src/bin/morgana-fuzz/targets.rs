@@ -195,10 +195,20 @@ fn context_files() -> Vec<(&'static str, String)> {
     ]
 }
 
+/// A scratch folder of this process: its pid and start time (a pid alone repeats across pid
+/// namespaces, and two processes writing one seed file would make cases irreproducible).
+fn private_dir(what: &str) -> PathBuf {
+    static STARTED: std::sync::OnceLock<u32> = std::sync::OnceLock::new();
+    let nanos = *STARTED.get_or_init(|| {
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.subsec_nanos())
+    });
+    std::env::temp_dir().join(format!("morgana-fuzz-{what}-{}-{nanos}", std::process::id()))
+}
+
 /// Fixture files of the command-line target (written into every case directory).
 pub fn cli_fixtures() -> Result<Vec<(String, Vec<u8>)>, String> {
     let mut v: Vec<(String, Vec<u8>)> = vec![("s.toml".into(), TINY_SCENE.as_bytes().to_vec())];
-    let dir = std::env::temp_dir().join(format!("morgana-fuzz-fixture-{}", std::process::id()));
+    let dir = private_dir("fixture");
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     let p = dir.join("a.exr");
     formats::spectral_exr(&p, 4, 3, 4, (400.0, 700.0), None)?;
@@ -501,14 +511,34 @@ pub fn clamp_scene(bytes: &[u8]) -> Vec<u8> {
     for (r, v) in edits {
         out.replace_range(r, &v);
     }
-    if !toml_mut::slots(&out).iter().any(|s| s.path == "integrator.photons") && out.contains("[integrator]") {
-        out = out.replacen("[integrator]", "[integrator]\nphotons = 500", 1);
+    // Counts the scene does not give default to large ones (a deleted [integrator] or [camera]
+    // renders for minutes): small ones are added where the table is, or with it.
+    let given: Vec<String> = toml_mut::slots(&out).into_iter().map(|s| s.path).collect();
+    for (table, keys) in [
+        ("integrator", &["photons = 500", "caustic_photons = 500", "spp = 1", "gather_rays = 2"][..]),
+        ("camera", &["width = 4", "height = 4"][..]),
+    ] {
+        let missing: Vec<&str> = keys
+            .iter()
+            .copied()
+            .filter(|k| !given.iter().any(|g| *g == format!("{table}.{}", k.split(' ').next().unwrap_or(""))))
+            .collect();
+        if missing.is_empty() {
+            continue;
+        }
+        let header = format!("[{table}]");
+        let lines = missing.join("\n");
+        if out.contains(&header) {
+            out = out.replacen(&header, &format!("{header}\n{lines}"), 1);
+        } else if table == "integrator" {
+            out = format!("{out}\n{header}\n{lines}\n");
+        }
     }
     out.into_bytes()
 }
 
 fn tonemap_case(rng: &mut Pcg64) -> Case {
-    let dir = std::env::temp_dir().join(format!("morgana-fuzz-exr-{}", std::process::id()));
+    let dir = private_dir("exr");
     std::fs::create_dir_all(&dir).ok();
     let p = dir.join("seed.exr");
     let (w, h) = (rng.random_range(1..9), rng.random_range(1..9));
@@ -609,7 +639,7 @@ fn judge(
                 return Outcome::new(Class::NonFinite, format!("printed: {l}"));
             }
             for o in outputs {
-                if let Some(m) = crate::workspace::non_finite_in(o) {
+                if let Some(m) = crate::workspace::non_finite_in(o).filter(|m| !echoed(&non_finite_words(m))) {
                     return Outcome::new(Class::NonFinite, m);
                 }
             }
