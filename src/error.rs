@@ -94,6 +94,18 @@ impl Error {
         Error::Input(InputError { location, message: clip_long_words(&message.into()) })
     }
 
+    /// The same error placed at a command-line flag: an input error without a file location
+    /// gets `flag: ` in front of its message (the flag is where the user fixes it); other errors
+    /// pass unchanged.
+    pub fn at_flag(self, flag: &str) -> Self {
+        match self {
+            Error::Input(InputError { location: None, message }) => {
+                Error::Input(InputError { location: None, message: format!("{flag}: {message}") })
+            }
+            e => e,
+        }
+    }
+
     /// An internal failure (I/O on outputs, a broken invariant: not the input's fault).
     pub fn internal(message: impl Into<String>) -> Self {
         Error::Internal(message.into())
@@ -181,6 +193,15 @@ pub fn read_utf8(path: &Path, what: &str) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_flag_places_only_errors_without_a_file() {
+        let e = Error::input(None, "height 5 m is out of range").at_flag("--observer-height-m");
+        assert_eq!(e.to_string(), "--observer-height-m: height 5 m is out of range");
+        let at_file = Error::input(Some(Location::file(Path::new("a.toml"))), "bad").at_flag("--x");
+        assert_eq!(at_file.to_string(), "a.toml: bad");
+        assert_eq!(Error::internal("disk").at_flag("--x").to_string(), "internal error: disk");
+    }
 
     #[test]
     fn long_words_are_clipped_and_short_messages_kept() {

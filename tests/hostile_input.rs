@@ -149,6 +149,16 @@ fn output_problems_are_found_before_the_render() {
     std::fs::write(d.join("long.toml"), format!("{SCENE}\n[output]\nname = \"{long}\"\n")).unwrap();
     refused(&d, &["check", "long.toml"], &["long.toml:", "[output] name", "bytes"]);
     refused(&d, &["render", "long.toml", "--quiet"], &["[output] name"]);
+    // A directory name in --out too long for the file system, which `check` called valid
+    // (morgana-fuzz, the command-line target) while `render` refused it.
+    let long_dir = format!("{}/a", "x".repeat(300));
+    for cmd in ["check", "render"] {
+        refused(
+            &d,
+            &[cmd, "s.toml", "--out", &long_dir, "--quiet"][..if cmd == "check" { 4 } else { 5 }],
+            &["--out", "300 bytes"],
+        );
+    }
 }
 
 #[test]

@@ -17,6 +17,11 @@ use glam::DVec3;
 /// Mean Earth radius, m.
 pub const EARTH_RADIUS_M: f64 = 6_371_000.0;
 
+/// The largest sphere radius accepted, m: 10⁶ km (the Sun's radius is 6.96 × 10⁵ km). Beyond
+/// it the squared distances of h = |p − centre| − R lose every digit of a metre and then
+/// overflow (R = 10³⁰⁸ gave NaN temperatures); `earth = "flat"` is the infinite radius.
+pub const MAX_EARTH_RADIUS_M: f64 = 1e9;
+
 /// A sphere measured from its surface point under the scene origin (see the module notes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
@@ -58,8 +63,10 @@ impl Earth {
 
     /// A sphere of `radius_m` (finite, > 0) centred at `centre`.
     pub fn spherical(centre: DVec3, radius_m: f64) -> Result<Earth, String> {
-        if !(radius_m.is_finite() && radius_m > 0.0) {
-            return Err(format!("spherical Earth: radius {radius_m} m must be finite and positive"));
+        if !(radius_m > 0.0 && radius_m <= MAX_EARTH_RADIUS_M) {
+            return Err(format!(
+                "spherical Earth: radius {radius_m} m must be positive and at most {MAX_EARTH_RADIUS_M:e} m (use earth = \"flat\" for a flat one)"
+            ));
         }
         if !centre.is_finite() {
             return Err(format!("spherical Earth: centre {centre} must be finite"));

@@ -4,7 +4,7 @@
 //! what is allowed. The keys are documented in `atmospheres/README.md`.
 
 use super::edit::{Bubble, Edit, GridEdit, HotSurface, Inversion, Offset};
-use super::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, TableProfile, usa76};
+use super::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, MAX_EARTH_RADIUS_M, TableProfile, usa76};
 use crate::error::{Error, Location, Result};
 use crate::field::Interpolation;
 use crate::field::grid_file::{self, Quantity};
@@ -112,7 +112,20 @@ fn build(ctx: &Ctx, files: &Files, raw: &RawAtmosphere) -> Result<Atmosphere> {
         || ctx.file.file_stem().and_then(|s| s.to_str()).unwrap_or("atmosphere").to_string(),
         |n| n.get_ref().clone(),
     );
-    Atmosphere::new(name, earth, base, edits, dispersion, top_m).map_err(|e| ctx.err(&(0..0), e))
+    // A temperature that can go negative is the coldest edit's doing: its line is the place.
+    let coldest = edits.iter().enumerate().min_by(|a, b| a.1.range_k().0.total_cmp(&b.1.range_k().0)).map(|(i, _)| i);
+    let span = match coldest.map(|i| &raw.edit[i]) {
+        Some(e) => {
+            let r = e.get_ref();
+            r.dt_k
+                .as_ref()
+                .map(Spanned::span)
+                .or_else(|| r.kind.as_ref().map(Spanned::span))
+                .unwrap_or_else(|| e.span())
+        }
+        None => raw.top_m.as_ref().map_or(0..0, Spanned::span),
+    };
+    Atmosphere::new(name, earth, base, edits, dispersion, top_m).map_err(|e| ctx.err(&span, e))
 }
 
 fn base_profile(ctx: &Ctx, files: &Files, raw: &RawAtmosphere) -> Result<BaseProfile> {
@@ -155,8 +168,9 @@ fn earth(ctx: &Ctx, raw: &RawAtmosphere) -> Result<Earth> {
     };
     match (kind, &raw.earth_radius_m) {
         ("spherical", r) => {
-            let radius =
-                r.as_ref().map_or(Ok(EARTH_RADIUS_M), |r| ctx.number_above(r, "earth_radius_m", 0.0, f64::INFINITY))?;
+            let radius = r
+                .as_ref()
+                .map_or(Ok(EARTH_RADIUS_M), |r| ctx.number_above(r, "earth_radius_m", 0.0, MAX_EARTH_RADIUS_M))?;
             Earth::spherical_y(radius).map_err(|e| ctx.err(&(0..0), e))
         }
         (_, Some(r)) => Err(ctx.err(&r.span(), "earth_radius_m is only used with earth = \"spherical\"")),

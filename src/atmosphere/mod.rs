@@ -19,7 +19,7 @@ pub mod usa76;
 pub use base::BaseProfile;
 pub use builtin::{BUILTIN_NAMES, resolve};
 pub use dispersion::AirDispersion;
-pub use earth::{EARTH_RADIUS_M, Earth, Sphere};
+pub use earth::{EARTH_RADIUS_M, Earth, MAX_EARTH_RADIUS_M, Sphere};
 pub use edit::Edit;
 pub use file::load;
 pub use model::{AirPoint, Atmosphere};

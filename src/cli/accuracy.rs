@@ -36,6 +36,11 @@ pub struct AccuracyArgs {
 /// What `morgana accuracy` does: measures, writes the CSV and PNG when asked, and returns the
 /// text to print.
 pub fn run(args: &AccuracyArgs) -> Result<String> {
+    for (flag, path) in [("--csv", &args.csv), ("--png", &args.png)] {
+        if let Some(p) = path {
+            super::check_output_file(flag, p)?;
+        }
+    }
     if args.field != "linear" {
         return Err(Error::input(
             None,

@@ -59,7 +59,20 @@ pub fn run(a: &GridArgs) -> Result<String> {
             format!("--frequency-per-m {f}: expected a positive finite frequency, per metre"),
         ));
     }
+    if (0..3).any(|i| a.max[i] <= a.min[i]) {
+        let (min, max) = (a.min, a.max);
+        return Err(Error::input(None, format!("--min {min:?}, --max {max:?}: max must exceed min on every axis")));
+    }
+    if !(2..=1024).contains(&a.res) {
+        return Err(Error::input(None, format!("--res {}: the grid needs 2 to 1024 points per axis", a.res)));
+    }
+    if !(a.base.abs() + a.amplitude.abs()).is_finite() {
+        return Err(Error::input(None, format!("--base {}, --amplitude {}: their sum overflows", a.base, a.amplitude)));
+    }
+    super::check_output_file("--out", &a.out)?;
     let fbm = Fbm::new(a.base, a.amplitude, a.frequency_per_m, a.octaves, a.seed);
-    write_grid_atomically(&a.out, [a.res; 3], a.min.into(), a.max.into(), |p| fbm.at(p))?;
+    // A density below zero comes from --base and --amplitude: name them.
+    write_grid_atomically(&a.out, [a.res; 3], a.min.into(), a.max.into(), |p| fbm.at(p))
+        .map_err(|e| e.at_flag("--base, --amplitude"))?;
     Ok(format!("wrote {}\n", a.out.display()))
 }

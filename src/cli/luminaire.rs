@@ -20,5 +20,8 @@ pub struct LuminaireArgs {
 
 /// The text `morgana luminaire` prints.
 pub fn run(args: &LuminaireArgs) -> Result<String> {
+    if let Some(png) = &args.png {
+        super::check_output_file("--png", png)?;
+    }
     crate::luminaire::inspect_variant(&args.file, args.png.as_deref(), args.variant.as_deref())
 }

@@ -16,9 +16,37 @@ pub mod render;
 pub mod tonemap;
 pub mod trace;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::scene::{Scene, default_scene, load_scene_file};
 use std::path::Path;
+
+/// Checks, before any work, that the output file `path` given by `flag` can be written: it
+/// names a file (not `..` or `dir/`), not an existing directory, its name fits the file system
+/// (at most [`crate::output::MAX_DIRECTORY_NAME_BYTES`] bytes), and its directory exists and
+/// takes a new file. Errors are input errors naming the flag and the path (exit code 2), so no
+/// work is thrown away at the end.
+pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
+    let bad = |why: String| Error::input(None, format!("{flag} {}: {why}", path.display()));
+    let names_a_dir = path.as_os_str().to_string_lossy().ends_with('/');
+    let Some(name) = path.file_name().filter(|_| !names_a_dir) else {
+        return Err(bad("does not name a file; give a file path such as out/result.png".into()));
+    };
+    let max = crate::output::MAX_DIRECTORY_NAME_BYTES;
+    if name.len() > max {
+        return Err(bad(format!("the file name is {} bytes long; file systems allow {max}", name.len())));
+    }
+    if path.is_dir() {
+        return Err(bad("is a directory; give a file path inside it".into()));
+    }
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        return Err(bad(format!("the directory {} does not exist; create it first", dir.display())));
+    }
+    let probe = crate::atomic::Staged::new(&dir.join(".morgana-write-check"))
+        .map_err(|e| bad(format!("cannot write in {}: {e}", dir.display())))?;
+    drop(probe);
+    Ok(())
+}
 
 /// A comma-separated vector of three finite numbers, `x,y,z` (clap's value parser for points
 /// and directions).

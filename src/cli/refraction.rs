@@ -34,6 +34,9 @@ pub struct RefractionArgs {
 
 /// Runs the command; the text to print.
 pub fn run(args: &RefractionArgs) -> Result<String> {
+    if let Some(csv) = &args.csv {
+        super::check_output_file("--csv", csv)?;
+    }
     if args.apparent_altitudes_deg.is_empty() {
         return Err(Error::input(None, "--apparent-altitudes-deg: give at least one altitude"));
     }
@@ -41,10 +44,16 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
         return Err(Error::input(None, format!("--apparent-altitudes-deg: {a} is out of range; expected −90 … 90")));
     }
     let atmosphere = crate::atmosphere::resolve(&args.atmosphere)?;
-    let tracer = Tracer::new(&atmosphere, args.wavelength_nm, args.observer_height_m, Settings::default())?;
+    // Each flag's problem is named at its flag: the wavelength first, then the height.
+    Tracer::new(&atmosphere, args.wavelength_nm, 0.0, Settings::default()).map_err(|e| e.at_flag("--wavelength-nm"))?;
+    let tracer = Tracer::new(&atmosphere, args.wavelength_nm, args.observer_height_m, Settings::default())
+        .map_err(|e| e.at_flag("--observer-height-m"))?;
     let t = table(&tracer, &args.apparent_altitudes_deg)?;
     let mut out = t.to_text();
     if let Some(ls) = args.wavelengths_nm.as_deref().filter(|l| !l.is_empty()) {
+        for &l in ls {
+            tracer.at_wavelength(l).map_err(|e| e.at_flag("--wavelengths-nm"))?;
+        }
         out.push_str(&dispersion(&tracer, &args.apparent_altitudes_deg, ls)?.to_text());
     }
     out.push_str(&sun_text(&tracer)?);

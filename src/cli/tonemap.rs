@@ -137,6 +137,10 @@ pub fn run_args(args: &TonemapArgs) -> Result<String> {
 /// Runs the command; returns the lines to print (what was written and how).
 pub fn run(cmd: &TonemapCommand) -> Result<Vec<String>> {
     let settings = cmd.options.validate().map_err(option_error)?;
+    super::check_output_file("--out", &cmd.out)?;
+    if let Some(csv) = &cmd.csv {
+        super::check_output_file("--csv", csv)?;
+    }
     let region = match (&cmd.region, &cmd.csv) {
         (Some(r), Some(_)) => Some(Region::parse(r).map_err(|m| Error::input(None, format!("--region: {m}")))?),
         (None, None) => None,

@@ -45,6 +45,9 @@ pub struct TraceArgs {
 
 /// Runs the command; the text to print.
 pub fn run(args: &TraceArgs) -> Result<String> {
+    if let Some(csv) = &args.csv {
+        super::check_output_file("--csv", csv)?;
+    }
     let scene = load_scene_file(&args.scene)?;
     let from = finite_point(args.from, "--from")?;
     let dir = start_direction(args, from)?;

@@ -92,18 +92,79 @@ pub fn parse(bytes: &[u8]) -> std::result::Result<(Quantity, Lattice), (Option<u
     let origin = DVec3::from_array(numbers::<3>(&lines[3], 4, "origin")?);
     let spacing = DVec3::from_array(numbers::<3>(&lines[4], 5, "spacing")?);
     let dims = dims_of(dims)?;
-    let values = match keyed(&lines[5], 6, "encoding")?.trim() {
-        "f64le" => binary_values(rest)?,
+    check_header(dims, origin, spacing)?;
+    let header_bytes = bytes.len() - rest.len();
+    let (values, places) = match keyed(&lines[5], 6, "encoding")?.trim() {
+        "f64le" => binary_values(rest, header_bytes)?,
         "ascii" => ascii_values(rest)?,
         other => return Err((Some(6), format!("encoding \"{other}\" is not known; allowed: f64le, ascii"))),
     };
+    check_values(quantity, dims, &values, &places)?;
     let lattice = Lattice::new(dims, origin, spacing, values).map_err(|e| (None, e))?;
-    if quantity == Quantity::TemperatureK
-        && let Some(i) = lattice.values().iter().position(|&t| t <= 0.0)
-    {
-        return Err((None, format!("temperature #{i} is {} K; temperatures must be positive", lattice.values()[i])));
-    }
     Ok((quantity, lattice))
+}
+
+/// Where a value sits in the file: its 1-based line (ascii) or its byte offset (f64le).
+#[derive(Clone, Copy, Debug)]
+enum Place {
+    Line(usize),
+    Byte(usize),
+}
+
+impl Place {
+    /// The line for the error's location, and the words that place the value in the message.
+    fn locate(self, index: usize) -> (Option<usize>, String) {
+        match self {
+            Place::Line(n) => (Some(n), format!("value #{index}")),
+            Place::Byte(b) => (None, format!("value #{index} (the f64 at byte {b})")),
+        }
+    }
+}
+
+/// The header's shape checks, each on its own line: at most [`super::MAX_LATTICE_POINTS`]
+/// points (line 3), a finite origin (line 4), finite positive spacing (line 5).
+fn check_header(dims: [usize; 3], origin: DVec3, spacing: DVec3) -> ParseResult<()> {
+    let count = dims.iter().try_fold(1usize, |acc, &n| acc.checked_mul(n));
+    if count.is_none_or(|c| c > super::MAX_LATTICE_POINTS) {
+        let max = super::MAX_LATTICE_POINTS;
+        return Err((Some(3), format!("dims {dims:?}: more than {max} points; make the lattice coarser")));
+    }
+    if !origin.is_finite() {
+        return Err((Some(4), format!("origin {origin} must be finite")));
+    }
+    if !(spacing.is_finite() && spacing.cmpgt(DVec3::ZERO).all()) {
+        return Err((Some(5), format!("spacing {spacing} must be finite and positive on every axis")));
+    }
+    Ok(())
+}
+
+/// One value per lattice point, each finite (and positive for temperatures); errors name the
+/// line (ascii) or byte offset (f64le) of the value at fault.
+fn check_values(quantity: Quantity, dims: [usize; 3], values: &[f64], places: &[Place]) -> ParseResult<()> {
+    let count = dims[0] * dims[1] * dims[2];
+    if values.len() != count {
+        let [nx, ny, nz] = dims;
+        // Ascii: the line where the values run over or stop; f64le: the dims line.
+        let line = match places.get(count.min(values.len())).or(places.last()) {
+            Some(Place::Line(n)) => *n,
+            _ => 3,
+        };
+        let found = values.len();
+        return Err((
+            Some(line),
+            format!("{found} values for a {nx}×{ny}×{nz} lattice (dims, line 3): expected {count}"),
+        ));
+    }
+    for (i, (&v, &place)) in values.iter().zip(places).enumerate() {
+        let (line, what) = place.locate(i);
+        if !v.is_finite() {
+            return Err((line, format!("{what} is {v}; values must be finite")));
+        }
+        if quantity == Quantity::TemperatureK && v <= 0.0 {
+            return Err((line, format!("{what} is {v} K; temperatures must be positive")));
+        }
+    }
+    Ok(())
 }
 
 /// Writes `lattice` as a lattice file, atomically.
@@ -172,22 +233,42 @@ fn dims_of(d: [f64; 3]) -> ParseResult<[usize; 3]> {
     Ok(d.map(|v| v as usize))
 }
 
-fn binary_values(rest: &[u8]) -> ParseResult<Vec<f64>> {
+fn binary_values(rest: &[u8], offset: usize) -> ParseResult<(Vec<f64>, Vec<Place>)> {
     if !rest.len().is_multiple_of(8) {
-        return Err((None, format!("{} data bytes is not a whole number of f64 values", rest.len())));
+        let whole = rest.len() / 8;
+        return Err((
+            None,
+            format!(
+                "the f64le data from byte {offset} holds {} bytes: {whole} whole values and {} bytes over",
+                rest.len(),
+                rest.len() % 8
+            ),
+        ));
     }
-    Ok(rest.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8]))).collect())
+    let values = rest.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8]))).collect();
+    let places = (0..rest.len() / 8).map(|i| Place::Byte(offset + 8 * i)).collect();
+    Ok((values, places))
 }
 
-fn ascii_values(rest: &[u8]) -> ParseResult<Vec<f64>> {
-    let text = std::str::from_utf8(rest).map_err(|_| (None, "ascii values are not text".to_string()))?;
-    let mut out = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        for tok in line.split_whitespace() {
-            out.push(tok.parse().map_err(|_| (Some(7 + i), format!("\"{tok}\" is not a number")))?);
+fn ascii_values(rest: &[u8]) -> ParseResult<(Vec<f64>, Vec<Place>)> {
+    let (mut values, mut places) = (Vec::new(), Vec::new());
+    for (i, raw) in rest.split(|&b| b == b'\n').enumerate() {
+        let line = 7 + i;
+        let text = std::str::from_utf8(raw).map_err(|e| {
+            (Some(line), format!("byte {} of the line is not UTF-8 text (encoding ascii)", e.valid_up_to() + 1))
+        })?;
+        for tok in text.split_whitespace() {
+            let v = tok.parse().map_err(|_| (Some(line), format!("\"{}\" is not a number", clip(tok))))?;
+            values.push(v);
+            places.push(Place::Line(line));
         }
     }
-    Ok(out)
+    Ok((values, places))
+}
+
+/// A token shortened for a message.
+fn clip(tok: &str) -> String {
+    if tok.chars().count() <= 40 { tok.to_string() } else { format!("{}…", tok.chars().take(40).collect::<String>()) }
 }
 
 #[cfg(test)]

@@ -10,6 +10,10 @@ use crate::spectrum::SpectralImage;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// The longest name of one directory in an output path, bytes (`NAME_MAX` of Linux file
+/// systems: ext4, XFS, Btrfs, tmpfs).
+pub const MAX_DIRECTORY_NAME_BYTES: usize = 255;
+
 /// Checks, before any work, that a render of `scene` can write its outputs into `dir`: `dir`
 /// is (or can be created as) a directory, a file can be created there, and no output's name is
 /// taken by a directory. With `create`, a missing `dir` is created (as the render would);
@@ -19,6 +23,14 @@ pub fn check_destination(scene: &Scene, dir: &Path, create: bool) -> Result<()> 
     let at = |what: String| Error::input(Some(Location::file(dir)), what);
     if dir.exists() && !dir.is_dir() {
         return Err(at("--out names a file, not a directory; give a directory for the outputs".into()));
+    }
+    // Directories `check` does not create must still be creatable: no name too long.
+    if let Some(long) = dir.components().map(|c| c.as_os_str()).find(|c| c.len() > MAX_DIRECTORY_NAME_BYTES) {
+        return Err(at(format!(
+            "--out: the directory name \"{}\" is {} bytes long; file systems allow {MAX_DIRECTORY_NAME_BYTES}",
+            long.to_string_lossy(),
+            long.len()
+        )));
     }
     let probe_dir = if create || dir.is_dir() {
         std::fs::create_dir_all(dir).map_err(|e| at(format!("cannot create the output directory: {e}")))?;

@@ -19,8 +19,8 @@ mod tone;
 
 pub use plan::{Decision, EffectPlan};
 pub use settings::{
-    DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, MAX_PHOTONS, Method, OutputSettings, WavelengthSampling,
-    check_photons_override,
+    DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, MAX_PHOTONS, MIN_MARCH_STEP_M, Method, OutputSettings,
+    WavelengthSampling, check_photons_override,
 };
 
 use crate::atmosphere::Earth;
@@ -351,7 +351,7 @@ fn build_earth(ctx: &Ctx, raw: &RawScene) -> Result<(Earth, bool)> {
         (_, r) => {
             let radius = match r {
                 None => crate::atmosphere::EARTH_RADIUS_M,
-                Some(r) => ctx.number(r, "[world] earth_radius_m", 0.0, f64::INFINITY, true)?,
+                Some(r) => ctx.number(r, "[world] earth_radius_m", 0.0, crate::atmosphere::MAX_EARTH_RADIUS_M, true)?,
             };
             let earth =
                 Earth::spherical_y(radius).map_err(|e| ctx.err(&w.earth.as_ref().map_or(0..0, |e| e.span()), e))?;

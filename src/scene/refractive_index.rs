@@ -210,12 +210,21 @@ fn temperature_grid(
     let (quantity, lattice) = grid_file::read(&path)?;
     if quantity != grid_file::Quantity::TemperatureK {
         return Err(Error::input(
-            Some(Location::file(&path)),
+            Some(Location { file: path.clone(), line: Some(2), column: None }),
             format!("{iwhat}: the file holds {}, a temperature grid needs temperature_k", quantity.name()),
         ));
     }
-    let g = TemperatureGrid::new(lattice, interpolation, pressure, dispersion(&t)?)
-        .map_err(|e| Error::input(Some(Location::file(&path)), format!("{iwhat}: {e}")))?;
+    // The overshoot depends on the scene's choice of interpolation as much as on the data: the
+    // scene's index table is the place to fix it.
+    let g = TemperatureGrid::new(lattice, interpolation, pressure, dispersion(&t)?).map_err(|e| {
+        ctx.err(
+            &span,
+            format!(
+                "{iwhat} ({}): {e}; use interpolation = \"trilinear\" or raise the lowest temperatures",
+                path.display()
+            ),
+        )
+    })?;
     Ok(IndexField::TemperatureGrid(Box::new(g)))
 }
 

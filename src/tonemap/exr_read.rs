@@ -29,8 +29,14 @@ use std::path::Path;
 
 type FlatLayer = exr::prelude::Layer<exr::prelude::AnyChannels<FlatSamples>>;
 
+/// The most samples (pixels × channels, over every layer) an input image may hold: 2²⁹, 2 GiB
+/// of 32-bit samples — a 3840 × 2160 image of 64 bands fits. The header is read first, so a
+/// corrupt `dataWindow` is refused before the decoder allocates for it.
+pub const MAX_EXR_SAMPLES: u64 = 1 << 29;
+
 /// Reads `path` into a [`SceneImage`]; errors say what the file lacks.
 pub fn read_exr(path: &Path) -> Result<SceneImage, String> {
+    check_size(path)?;
     let image = exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| match e {
         exr::error::Error::Io(io) => format!("cannot read it: {io}"),
         other => format!("not a readable OpenEXR file ({other}); give an EXR written by morgana render"),
@@ -46,6 +52,37 @@ pub fn read_exr(path: &Path) -> Result<SceneImage, String> {
         Some(layer) => read_tristimulus(layer, chroma),
         None => Err("the file has no image layer".into()),
     }
+}
+
+/// Refuses a file whose headers ask for more than [`MAX_EXR_SAMPLES`] samples, or for more memory
+/// than [`crate::memory::available_bytes`], naming the `dataWindow` attribute and the sizes.
+fn check_size(path: &Path) -> Result<(), String> {
+    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| match e {
+        exr::error::Error::Io(io) => format!("cannot read it: {io}"),
+        other => format!("not a readable OpenEXR file ({other}); give an EXR written by morgana render"),
+    })?;
+    let mut total: u64 = 0;
+    for h in meta.headers.iter() {
+        let (w, ht) = (h.layer_size.0 as u64, h.layer_size.1 as u64);
+        let n = h.channels.list.len() as u64;
+        total = total.saturating_add(w.saturating_mul(ht).saturating_mul(n));
+        if total > MAX_EXR_SAMPLES {
+            return Err(format!(
+                "attribute dataWindow: {w} × {ht} pixels of {n} channels make more than {MAX_EXR_SAMPLES} samples, the most the tone mapper reads; is the header corrupt?"
+            ));
+        }
+    }
+    // The decoded samples, the band-interleaved copy and the colour planes: three 32-bit copies.
+    let need = total.saturating_mul(3 * 4);
+    if let Some(avail) = crate::memory::available_bytes().filter(|&a| need > a) {
+        let mib = |b: u64| b / (1 << 20);
+        return Err(format!(
+            "attribute dataWindow: {total} samples need about {} MiB to tone-map, and {} MiB are available; is the header corrupt?",
+            mib(need),
+            mib(avail)
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses a layer holding NaN or infinite samples, naming the first (pixel and channel) and

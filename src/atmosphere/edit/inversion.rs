@@ -8,6 +8,11 @@
 
 use glam::DVec3;
 
+/// The thinnest inversion accepted, m. The gradient peaks at ΔT/(4w): a subnormal w (5e-324)
+/// made it infinite and the refractive index NaN; a millimetre step is already a
+/// discontinuity to the ray equation.
+pub const MIN_THICKNESS_M: f64 = 1e-3;
+
 /// A temperature inversion: a Fermi step of ΔT (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inversion {
@@ -20,13 +25,15 @@ pub struct Inversion {
 }
 
 impl Inversion {
-    /// Checks that all values are finite and `thickness_m` positive.
+    /// Checks that all values are finite and `thickness_m` at least `MIN_THICKNESS_M` (1 mm).
     pub fn new(dt_k: f64, height_m: f64, thickness_m: f64) -> Result<Inversion, String> {
         if !(dt_k.is_finite() && height_m.is_finite()) {
             return Err(format!("inversion: dT_k = {dt_k} and height_m = {height_m} must be finite"));
         }
-        if !(thickness_m.is_finite() && thickness_m > 0.0) {
-            return Err(format!("inversion: thickness_m = {thickness_m} must be finite and positive"));
+        if !(thickness_m.is_finite() && thickness_m >= MIN_THICKNESS_M) {
+            return Err(format!(
+                "inversion: thickness_m = {thickness_m} must be finite and at least {MIN_THICKNESS_M} m"
+            ));
         }
         Ok(Inversion { dt_k, height_m, thickness_m })
     }
