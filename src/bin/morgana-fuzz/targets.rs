@@ -676,6 +676,8 @@ fn execute(target: Target, ws: &Workspace, case: &Case, read: &[String], deadlin
                 threads: Some(1),
                 quiet: true,
                 max_map_memory: None,
+                max_memory: None,
+                max_seconds: None,
                 schedule: morgana::distributed::Schedule::Dynamic,
             };
             let r = morgana::cli::render::run(&args);
