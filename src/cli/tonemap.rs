@@ -137,16 +137,17 @@ pub fn run_args(args: &TonemapArgs) -> Result<String> {
 /// Runs the command; returns the lines to print (what was written and how).
 pub fn run(cmd: &TonemapCommand) -> Result<Vec<String>> {
     let settings = cmd.options.validate().map_err(option_error)?;
-    super::check_output_file("--out", &cmd.out)?;
-    if let Some(csv) = &cmd.csv {
-        super::check_output_file("--csv", csv)?;
-    }
     let region = match (&cmd.region, &cmd.csv) {
         (Some(r), Some(_)) => Some(Region::parse(r).map_err(|m| Error::input(None, format!("--region: {m}")))?),
         (None, None) => None,
         (Some(_), None) => return Err(Error::input(None, "--region needs --csv FILE to write the region's values to")),
         (None, Some(_)) => return Err(Error::input(None, "--csv needs --region x0,y0,x1,y1 to say which pixels")),
     };
+    // The arguments agree; now the destinations, before any work.
+    super::check_output_file("--out", &cmd.out)?;
+    if let Some(csv) = &cmd.csv {
+        super::check_output_file("--csv", csv)?;
+    }
     let image = read_exr(&cmd.input).map_err(|m| Error::input(Some(Location::file(&cmd.input)), m))?;
     if let Some(r) = &region {
         r.check_inside(image.width, image.height).map_err(|m| Error::input(None, format!("--region: {m}")))?;
