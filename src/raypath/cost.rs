@@ -15,7 +15,6 @@ pub struct CurvedWork {
     rhs_evals: AtomicU64,
     chords: AtomicU64,
     lost: AtomicU64,
-    trapped: AtomicU64,
 }
 
 /// A snapshot of [`CurvedWork`], as `report.json` records it.
@@ -33,10 +32,6 @@ pub struct CurvedWorkTotals {
     pub chords: u64,
     /// Paths ended because the integrator failed (a field that gave a non-finite value).
     pub lost: u64,
-    /// Paths taken to escape because they were trapped in a duct past all finite geometry
-    /// ([`super::far`]).
-    #[serde(default)]
-    pub trapped: u64,
 }
 
 impl CurvedWork {
@@ -54,11 +49,6 @@ impl CurvedWork {
         self.lost.fetch_add(1, Relaxed);
     }
 
-    /// Counts a path taken to escape because it is trapped in a duct ([`super::far`]).
-    pub fn trap(&self) {
-        self.trapped.fetch_add(1, Relaxed);
-    }
-
     /// The counts so far.
     pub fn totals(&self) -> CurvedWorkTotals {
         CurvedWorkTotals {
@@ -68,7 +58,6 @@ impl CurvedWork {
             rhs_evals: self.rhs_evals.load(Relaxed),
             chords: self.chords.load(Relaxed),
             lost: self.lost.load(Relaxed),
-            trapped: self.trapped.load(Relaxed),
         }
     }
 }
@@ -82,7 +71,6 @@ impl CurvedWorkTotals {
         self.rhs_evals += o.rhs_evals;
         self.chords += o.chords;
         self.lost += o.lost;
-        self.trapped += o.trapped;
     }
 }
 
