@@ -38,9 +38,14 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
     if path.is_dir() {
         return Err(bad("is a directory; give a file path inside it".into()));
     }
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    // Missing directories are created when the file is written: check the nearest one that
+    // exists (it must be a directory, and writable).
+    let mut dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    while !dir.exists() {
+        dir = dir.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    }
     if !dir.is_dir() {
-        return Err(bad(format!("the directory {} does not exist; create it first", dir.display())));
+        return Err(bad(format!("{} is not a directory", dir.display())));
     }
     let probe = crate::atomic::Staged::new(&dir.join(".morgana-write-check"))
         .map_err(|e| bad(format!("cannot write in {}: {e}", dir.display())))?;
