@@ -6,37 +6,8 @@ mod common;
 use common::scene_error;
 use std::process::Command;
 
-const GOOD: &str = r#"[camera]
-position = [0.0, 1.0, 3.0]
-look_at = [0.0, 0.5, 0.0]
-fov_deg = 40.0
-width = 16
-height = 16
-
-[integrator]
-photons = 2000
-caustic_photons = 2000
-spp = 1
-gather_rays = 2
-
-[[material]]
-name = "white"
-type = "lambertian"
-reflectance = 0.7
-
-[[shape]]
-type = "quad"
-origin = [-1.0, 0.0, -1.0]
-u = [0.0, 0.0, 2.0]
-v = [2.0, 0.0, 0.0]
-material = "white"
-
-[[light]]
-type = "point"
-position = [0.0, 2.0, 0.0]
-spectrum = { blackbody_k = 4000 }
-power_w = 10.0
-"#;
+/// A scene every check here starts from (`common::lit_plate`).
+static GOOD: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| common::lit_plate(16, 16, ""));
 
 /// GOOD with its `line`-th line (1-based) replaced.
 fn with_line(line: usize, text: &str) -> String {
@@ -45,7 +16,7 @@ fn with_line(line: usize, text: &str) -> String {
 
 #[test]
 fn the_good_scene_loads() {
-    common::scene(GOOD);
+    common::scene(&GOOD);
 }
 
 #[test]
@@ -156,7 +127,7 @@ fn cli_renders_and_checks_a_scene() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("good.toml");
-    std::fs::write(&scene, GOOD).unwrap();
+    std::fs::write(&scene, &*GOOD).unwrap();
     let o = morgana().args(["check", scene.to_str().unwrap()]).output().unwrap();
     assert_eq!(o.status.code(), Some(0));
     let stdout = String::from_utf8_lossy(&o.stdout);

@@ -68,7 +68,6 @@ fn every_corpus_file_has_an_allowed_outcome() {
 /// the outcome named (`MORGANA_FUZZ_SELFTEST` makes the worker do so in place of the case; the
 /// fuzzer's unit tests check how messages are judged).
 #[test]
-#[ignore = "known failure on main (2026-12-02): the replay of the panic self-test exits 0 with no output; under investigation (issue 15 note). Run: cargo test --release --test fuzz_corpus -- --ignored"]
 fn replay_fails_on_a_panic_and_on_a_hang() {
     let dir = scratch("selftest");
     std::fs::create_dir_all(&dir).expect("scratch");
@@ -85,6 +84,8 @@ fn replay_fails_on_a_panic_and_on_a_hang() {
         let text = String::from_utf8_lossy(&out.stdout);
         assert_eq!(out.status.success(), mode.is_empty(), "{mode:?}: {text}");
         assert!(text.contains(&format!("\t{class}\t")), "{mode:?}: {text}");
+        // The first run's --scratch is the input's own folder: the run removes only what it made.
+        assert!(path.exists(), "{mode:?}: the replay removed {} from its --scratch folder", path.display());
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -10,37 +10,8 @@ use morgana::render::{RenderOptions, render};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-const SCENE: &str = r#"[camera]
-position = [0.0, 1.0, 3.0]
-look_at = [0.0, 0.5, 0.0]
-fov_deg = 40.0
-width = 4
-height = 4
-
-[integrator]
-photons = 2000
-caustic_photons = 2000
-spp = 1
-gather_rays = 2
-
-[[material]]
-name = "white"
-type = "lambertian"
-reflectance = 0.7
-
-[[shape]]
-type = "quad"
-origin = [-1.0, 0.0, -1.0]
-u = [0.0, 0.0, 2.0]
-v = [2.0, 0.0, 0.0]
-material = "white"
-
-[[light]]
-type = "point"
-position = [0.0, 2.0, 0.0]
-spectrum = { blackbody_k = 4000 }
-power_w = 10.0
-"#;
+/// The scene the checks start from (`common::lit_plate`).
+static SCENE: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| common::lit_plate(4, 4, ""));
 
 /// A fresh scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {
@@ -78,7 +49,7 @@ fn files_in(dir: &Path) -> Vec<String> {
 #[test]
 fn photons_beyond_the_cap_are_refused_not_rendered_forever() {
     let d = scratch("photons");
-    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    std::fs::write(d.join("s.toml"), &*SCENE).unwrap();
     refused(&d, &["render", "s.toml", "--photons", "18446744073709551615", "--quiet"], &["--photons", "2^40"]);
     refused(&d, &["render", "s.toml", "--photons", "0", "--quiet"], &["--photons 0"]);
     assert!(!d.join("out").exists(), "no output directory for a refused run");
@@ -87,7 +58,7 @@ fn photons_beyond_the_cap_are_refused_not_rendered_forever() {
 #[test]
 fn a_hundred_thousand_threads_are_refused() {
     let d = scratch("threads");
-    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    std::fs::write(d.join("s.toml"), &*SCENE).unwrap();
     refused(&d, &["render", "s.toml", "--threads", "100000", "--quiet"], &["--threads 100000", "1024"]);
 }
 
@@ -111,14 +82,14 @@ fn grid_refuses_a_billion_octaves_and_takes_negative_corners() {
 #[test]
 fn check_refuses_max_nm_1e308_at_once() {
     let d = scratch("max-nm");
-    std::fs::write(d.join("s.toml"), format!("{SCENE}\n[output]\nmax_nm = 1e308\n")).unwrap();
+    std::fs::write(d.join("s.toml"), format!("{}\n[output]\nmax_nm = 1e308\n", *SCENE)).unwrap();
     refused(&d, &["check", "s.toml"], &["s.toml:", "max_nm"]);
 }
 
 #[test]
 fn a_full_or_closed_stdout_is_an_error_not_a_panic() {
     let d = scratch("stdout");
-    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    std::fs::write(d.join("s.toml"), &*SCENE).unwrap();
     let full = std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full");
     let out = Command::new(env!("CARGO_BIN_EXE_morgana"))
         .current_dir(&d)
@@ -135,7 +106,7 @@ fn a_full_or_closed_stdout_is_an_error_not_a_panic() {
 #[test]
 fn output_problems_are_found_before_the_render() {
     let d = scratch("out");
-    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    std::fs::write(d.join("s.toml"), &*SCENE).unwrap();
     // --out naming a file.
     std::fs::write(d.join("afile"), "x").unwrap();
     refused(&d, &["render", "s.toml", "--out", "afile", "--quiet"], &["afile", "names a file"]);
@@ -146,7 +117,7 @@ fn output_problems_are_found_before_the_render() {
     assert_eq!(files_in(&d.join("o")), vec!["s.png".to_string()], "nothing written beside the obstacle");
     // An [output] name too long for the file system, which `check` used to call valid.
     let long = "n".repeat(300);
-    std::fs::write(d.join("long.toml"), format!("{SCENE}\n[output]\nname = \"{long}\"\n")).unwrap();
+    std::fs::write(d.join("long.toml"), format!("{}\n[output]\nname = \"{long}\"\n", *SCENE)).unwrap();
     refused(&d, &["check", "long.toml"], &["long.toml:", "[output] name", "bytes"]);
     refused(&d, &["render", "long.toml", "--quiet"], &["[output] name"]);
     // A directory name in --out too long for the file system, which `check` called valid
@@ -163,7 +134,7 @@ fn output_problems_are_found_before_the_render() {
 
 #[test]
 fn outputs_are_all_or_nothing_when_any_one_cannot_be_written() {
-    let scene = common::scene(&format!("{SCENE}\n[output]\nname = \"r\"\ncsv = true\n"));
+    let scene = common::scene(&format!("{}\n[output]\nname = \"r\"\ncsv = true\n", *SCENE));
     let rendered = render(&scene, &RenderOptions { quiet: true, ..RenderOptions::default() });
     let names = scene.output_file_names();
     assert_eq!(names, ["r.exr", "r.png", "r.csv", "report.json"]);
@@ -184,7 +155,8 @@ fn outputs_are_all_or_nothing_when_any_one_cannot_be_written() {
 fn a_missing_atmosphere_file_names_the_scene_line_and_field() {
     let d = scratch("atmosphere");
     let scene = format!(
-        "{SCENE}\n[world]\nmedium = \"air\"\n\n[[medium]]\nname = \"air\"\nsigma_a = 0.0\nsigma_s = 0.0\nindex = {{ type = \"atmosphere\", file = \"nowhere.toml\" }}\n"
+        "{SCENE}\n[world]\nmedium = \"air\"\n\n[[medium]]\nname = \"air\"\nsigma_a = 0.0\nsigma_s = 0.0\nindex = {{ type = \"atmosphere\", file = \"nowhere.toml\" }}\n",
+        SCENE = *SCENE
     );
     std::fs::write(d.join("s.toml"), scene).unwrap();
     let err = refused(&d, &["check", "s.toml"], &["s.toml:", "nowhere.toml", "index"]);
@@ -234,7 +206,7 @@ fn a_luminaire_value_of_1e308_names_its_line() {
 fn lights_of_infinite_power_are_refused_and_maps_that_store_nothing_are_noted() {
     let d = scratch("power");
     let area = "[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = [-0.1, 1.9, -0.1]\nu = [0.2, 0.0, 0.0]\nv = [0.0, 0.0, 0.2]\nspectrum = 1e300\nscale = 1e300\n";
-    std::fs::write(d.join("inf.toml"), format!("{SCENE}\n{area}")).unwrap();
+    std::fs::write(d.join("inf.toml"), format!("{}\n{area}", *SCENE)).unwrap();
     refused(&d, &["check", "inf.toml"], &["inf.toml:", "light"]);
     // A light far beyond the scene: its photons never reach the plate, and the run says so.
     std::fs::write(d.join("far.toml"), SCENE.replace("position = [0.0, 2.0, 0.0]", "position = [0.0, -1e300, 0.0]"))
@@ -264,7 +236,7 @@ fn tonemap_refuses_nan_and_infinite_pixels() {
 #[test]
 fn a_run_that_would_not_fit_in_max_memory_is_refused_before_it_allocates() {
     let d = scratch("mem");
-    std::fs::write(d.join("s.toml"), SCENE).unwrap();
+    std::fs::write(d.join("s.toml"), &*SCENE).unwrap();
     // 2,000 photons cannot fit in 1 MB beside the scene (the process alone holds several MB).
     let err =
         refused(&d, &["render", "s.toml", "--out", "o", "--quiet", "--max-memory", "1M"], &["--max-memory", "MB"]);
@@ -303,4 +275,20 @@ fn max_seconds_stops_a_run_cleanly_and_writes_nothing() {
     for bad in ["0", "-1", "nan", "inf", "1e9"] {
         refused(&d, &["render", "s.toml", "--quiet", &format!("--max-seconds={bad}")], &["--max-seconds"]);
     }
+}
+
+#[test]
+fn a_profile_sensor_with_more_than_4096_depths_is_refused_naming_depths_m() {
+    // The fuzzer's render target found 100,000 depths accepted and a 4 × 4 render of them past
+    // its deadline (every stored photon is tallied at every depth).
+    let example =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/mobley1993_problem1.toml"))
+            .expect("examples/mobley1993_problem1.toml");
+    let list = |n: usize| (0..n).map(|i| format!("{}.0", i % 50)).collect::<Vec<_>>().join(", ");
+    let at_cap = example.replace("depths_m = [1.0, 5.0, 10.0]", &format!("depths_m = [{}]", list(4096)));
+    assert!(at_cap.contains("depths_m = [0.0, 1.0"), "the example's depths line moved");
+    common::scene(&at_cap);
+    let over = example.replace("depths_m = [1.0, 5.0, 10.0]", &format!("depths_m = [{}]", list(4097)));
+    let e = common::scene_error(&over);
+    assert!(e.contains("test.toml:62:") && e.contains("depths_m") && e.contains("4096"), "{e}");
 }

@@ -125,6 +125,7 @@ fn fa7_reproduces_its_table_yield_and_spectrum() {
 /// yield Φ = 0.4 and Gaussian emission at 600 nm (σ 12 nm), so re-emitted light is never
 /// re-absorbed.
 fn fluorescent_sphere(accounting: &str) -> String {
+    let black = common::black_sphere(1.0);
     format!(
         r#"
 [camera]
@@ -147,18 +148,7 @@ name = "dye"
 sigma_a = 0.0
 sigma_s = 0.0
 inelastic = [{{ process = "fluorescence", sigma_a = {{ nm = [400, 500, 510, 700], values = [1, 1, 0, 0] }}, yield = 0.4, emission = {{ type = "gaussian", peak_nm = 600, sigma_nm = 12 }}, accounting = "{accounting}" }}]
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-material = "black"
-
+{black}
 [[light]]
 type = "point"
 position = [0.0, 0.0, 0.0]
@@ -301,6 +291,7 @@ fn path_tracer_sees_fluorescence_as_the_closed_form() {
 #[test]
 fn raman_light_agrees_between_the_volume_map_and_the_path_tracer() {
     let toml = |integrator: &str| {
+        let black = common::black_sphere(1.0);
         format!(
             r#"
 [camera]
@@ -326,18 +317,7 @@ name = "water"
 sigma_a = 0.05
 sigma_s = 0.0
 inelastic = [{{ process = "raman", sigma_s = 0.5, band = "walrafen", accounting = "energy" }}]
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-material = "black"
-
+{black}
 [[light]]
 type = "point"
 position = [0.0, 0.0, 0.0]
@@ -364,6 +344,7 @@ fn render_with_scene(toml: &str) -> Vec<f32> {
 /// (σ_a = 0.05 m⁻¹) and Raman-scatters (b_R = 0.5 m⁻¹, Walrafen band, so 500 nm goes to about
 /// 600 nm), the Raman component limited to excitations in `window` (nm).
 fn raman_sphere(window: &str) -> String {
+    let black = common::black_sphere(1.0);
     format!(
         r#"
 [camera]
@@ -386,18 +367,7 @@ name = "water"
 sigma_a = 0.05
 sigma_s = 0.0
 inelastic = [{{ process = "raman", sigma_s = 0.5, band = "walrafen", accounting = "energy"{window} }}]
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-material = "black"
-
+{black}
 [[light]]
 type = "point"
 position = [0.0, 0.0, 0.0]

@@ -23,6 +23,7 @@ const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/luminair
 
 /// A camera, one band around 555 nm and a black sphere of radius 20 m around the origin.
 fn black_sphere(bands: &str) -> String {
+    let black = common::black_sphere(20.0);
     format!(
         r#"
 [camera]
@@ -34,18 +35,7 @@ height = 8
 
 [output]
 {bands}
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 20.0
-material = "black"
-"#
+{black}"#
     )
 }
 

@@ -94,7 +94,8 @@ fn volumetric_furnace_with_shadow_rays_and_final_gathering() {
 fn absorbing_sphere_takes_the_closed_form_share_of_the_power() {
     // A point light at the centre of a black sphere of radius 1 filled with a purely absorbing
     // medium σ_a = 0.7 m⁻¹: the medium absorbs Φ(1 − e^{−0.7}), the wall the rest.
-    let toml = r#"
+    let toml = &format!(
+        r#"
 [camera]
 position = [0.0, 0.0, 0.5]
 look_at = [0.0, 0.0, 0.0]
@@ -109,24 +110,15 @@ medium = "ink"
 name = "ink"
 sigma_a = 0.7
 sigma_s = 0.0
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-material = "black"
-
+{black}
 [[light]]
 type = "point"
 position = [0.0, 0.0, 0.0]
 spectrum = 1.0
 power_w = 10.0
-"#;
+"#,
+        black = common::black_sphere(1.0)
+    );
     let s = scene(toml);
     let n = 200_000u64;
     let (_, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 7, &|_| {});

@@ -1,6 +1,8 @@
 //! Tone reproduction end to end: spectral images through colorimetry, chromatic adaptation and
 //! the operators; the `tonemap` command and the `[output]` keys, with their errors.
 
+mod common;
+
 use morgana::spectrum::SpectralImage;
 use morgana::spectrum::exr::write_spectral_exr;
 use morgana::spectrum::{Bands, named_illuminant};
@@ -217,48 +219,17 @@ fn bad_tonemap_input_exits_with_2_and_writes_nothing() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-const SCENE: &str = r#"[camera]
-position = [0.0, 1.0, 3.0]
-look_at = [0.0, 0.5, 0.0]
-fov_deg = 40.0
-width = 12
-height = 8
-
-[output]
-name = "t"
-tonemap = "ward_histogram"
-adapt_to = [0.28, 0.31]
-region = [2, 2, 6, 5]
-
-[integrator]
-photons = 2000
-caustic_photons = 0
-spp = 1
-gather_rays = 2
-
-[[material]]
-name = "white"
-type = "lambertian"
-reflectance = 0.7
-
-[[shape]]
-type = "quad"
-origin = [-1.0, 0.0, -1.0]
-u = [0.0, 0.0, 2.0]
-v = [2.0, 0.0, 0.0]
-material = "white"
-
-[[light]]
-type = "point"
-position = [0.0, 2.0, 0.0]
-spectrum = { blackbody_k = 4000 }
-power_w = 10.0
-"#;
+/// A small lit plate (`common::lit_plate`) whose [output] asks for a tone map.
+static SCENE: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+    let output =
+        "\n[output]\nname = \"t\"\ntonemap = \"ward_histogram\"\nadapt_to = [0.28, 0.31]\nregion = [2, 2, 6, 5]\n";
+    common::lit_plate(12, 8, output).replace("caustic_photons = 2000", "caustic_photons = 0")
+});
 
 #[test]
 fn render_applies_the_output_tone_keys_and_rejects_bad_ones() {
     let dir = scratch("render");
-    std::fs::write(dir.join("s.toml"), SCENE).unwrap();
+    std::fs::write(dir.join("s.toml"), &*SCENE).unwrap();
     let out = morgana()
         .current_dir(&dir)
         .args(["render", "s.toml", "--out", "o", "--quiet", "--threads", "1"])
@@ -278,15 +249,8 @@ fn render_applies_the_output_tone_keys_and_rejects_bad_ones() {
         ),
     ];
     for (from, to, want) in bad {
-        let e = common_scene_error(&SCENE.replace(from, to));
+        let e = common::scene_error(&SCENE.replace(from, to));
         assert!(e.starts_with(want), "{to}: {e}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
-}
-
-fn common_scene_error(toml: &str) -> String {
-    match morgana::scene::load_scene_str(toml, Path::new("test.toml"), Path::new("."), "test") {
-        Ok(_) => panic!("accepted:\n{toml}"),
-        Err(e) => e.to_string(),
-    }
 }

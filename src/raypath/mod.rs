@@ -175,6 +175,18 @@ impl<'a> Propagator<'a> {
         self.world.medium(medium).and_then(|m| m.index.as_ref()).map_or(1.0, |f| f.n(wavelength_nm, p))
     }
 
+    /// The factor (n_from/n_to)² by which radiance seen across a boundary from medium `from`
+    /// into medium `to` at `p` scales: the basic radiance L/n² is what a refracting boundary
+    /// conserves (less the Fresnel loss), not L (Veach 1997, §5.2; Nicodemus 1963). 1 where the
+    /// two media are the same (a reflection) or agree in n.
+    pub fn radiance_scale(&self, from: Option<u32>, to: Option<u32>, wavelength_nm: f64, p: DVec3) -> f64 {
+        if from == to {
+            return 1.0;
+        }
+        let ratio = self.n_at(from, wavelength_nm, p) / self.n_at(to, wavelength_nm, p);
+        ratio * ratio
+    }
+
     /// The next event from `state`, not stopping in media.
     pub fn next_event(&self, state: &RayState) -> Event {
         self.next_event_with(state, &mut |_| None)

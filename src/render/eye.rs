@@ -271,8 +271,10 @@ impl<'a> EyeTracer<'a> {
         let across = self.scene.world.medium_across(hit.prim, dir, hit.normal);
         let lt = self.radiance(&self.prop.leave(hit, t_dir, at.wavelength(), across), next, rng, sc);
         for i in 0..lanes.len {
-            let f = crate::material::fresnel_dielectric(cos_i, eta_of(lanes.nm[i]));
-            out[i] = f * lr[i] + (1.0 - f) * lt[i];
+            let eta = eta_of(lanes.nm[i]);
+            let f = crate::material::fresnel_dielectric(cos_i, eta);
+            // Radiance across a refracting boundary scales by (n_here/n_there)² = 1/η².
+            out[i] = f * lr[i] + (1.0 - f) * lt[i] / (eta * eta);
         }
         out
     }
@@ -308,7 +310,11 @@ impl<'a> EyeTracer<'a> {
             return out;
         }
         let (d, across) = self.prop.cross(hit, dir, medium, lanes.nm[0], rng.uniform());
-        self.radiance(&self.prop.leave(hit, d, at.wavelength(), across), at, rng, sc)
+        let mut l = self.radiance(&self.prop.leave(hit, d, at.wavelength(), across), at, rng, sc);
+        for (i, l) in l.iter_mut().enumerate().take(lanes.len) {
+            *l *= self.prop.radiance_scale(medium, across, lanes.nm[i], hit.point);
+        }
+        l
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -363,7 +369,14 @@ impl<'a> EyeTracer<'a> {
         let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
         let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
         for i in 0..lanes.len {
-            out[i] = w[i] * l[i];
+            // The sampled weight carries power; radiance across a refracting boundary also
+            // scales by (n_here/n_there)² (L/n² is conserved).
+            let eta = if s.transmitted {
+                m.transmitted_index_ratio(dir, hit.normal, lanes.nm[i], n_out(lanes.nm[i]))
+            } else {
+                1.0
+            };
+            out[i] = w[i] * l[i] / (eta * eta);
         }
         out
     }

@@ -15,8 +15,9 @@
 //! surfaces counts fully. A path refracted from a medium of index n into one of index n′ has its
 //! throughput multiplied by (n/n′)², because radiance, unlike power, is not conserved across a
 //! refracting boundary — L/n² is (Veach 1997, §5.2): a camera under water sees the sky n² times
-//! brighter (less the Fresnel loss) within Snell's window. (Index-mismatched boundaries without
-//! a material, refracted by the propagator, do not get this factor yet.)
+//! brighter (less the Fresnel loss) within Snell's window. The same holds at index-mismatched
+//! boundaries between media without a material, and for the photon-map eye pass
+//! ([`super::eye`]).
 //! Russian roulette on the throughput after [`ROULETTE_DEPTH`] events (Veach 1997, §10;
 //! Novák et al. 2018 for the volumetric parts).
 //!
@@ -256,6 +257,7 @@ impl<'a> PathTracer<'a> {
         let material = match self.scene.world.material_of(hit.prim) {
             None if self.scene.world.prims[hit.prim as usize].light.is_none() => {
                 let (d, across) = self.prop.cross(hit, dir, medium, w.lambda, rng.uniform());
+                w.beta *= self.prop.radiance_scale(medium, across, w.lambda, hit.point);
                 return Some(self.prop.leave(hit, d, lambda, across));
             }
             None => return None,

@@ -7,7 +7,7 @@
 //! origin = [0.5, 0.8, -0.5]     # a corner of the grid, m
 //! u = [4.0, 0.0, 0.0]           # edge along the grid's i axis
 //! v = [0.0, 0.0, -3.0]          # edge along j; the default normal (u × v) here is +Y (up)
-//! resolution = [40, 30]         # points along u and v (cell centres)
+//! resolution = [40, 30]         # points along u and v (cell centres), each at most 4096
 //! normal = [0.0, 1.0, 0.0]      # optional: the side measured (any direction)
 //! samples = 4                   # optional: estimates averaged per point
 //! gather_rays = 64              # optional: rays for indirect light per sample; 0 = direct only
@@ -19,7 +19,7 @@
 //! u = [100.0, 0.0, 0.0]         # edges of the horizontal square (centred on origin)
 //! v = [0.0, 0.0, 100.0]
 //! normal = [0.0, 1.0, 0.0]      # optional: up, toward the air (default +Y)
-//! depths_m = [1.0, 5.0, 10.0]   # below the surface
+//! depths_m = [1.0, 5.0, 10.0]   # below the surface (at most 4096 depths)
 //! slab_m = 0.2                  # optional: thickness of each measuring slab (default 0.1)
 //! ior = 1.34                    # optional: water's refractive index for Lw (default 1.34)
 //! samples = 64                  # optional: shadow rays per band for Ed(0+)
@@ -124,6 +124,12 @@ fn profile(
     let depths_m = d.get_ref().clone();
     if depths_m.is_empty() || depths_m.iter().any(|z| !(z.is_finite() && *z >= 0.0)) {
         return Err(ctx.err(&d.span(), format!("{what}: depths_m must be a non-empty list of depths ≥ 0 (m)")));
+    }
+    if depths_m.len() > MAX_POINTS as usize {
+        return Err(ctx.err(
+            &d.span(),
+            format!("{what}: depths_m lists {} depths; at most {MAX_POINTS} (every stored photon is tallied at every depth)", depths_m.len()),
+        ));
     }
     let slab_m = s.slab_m.as_ref().map_or(Ok(0.1), |x| ctx.number(x, "slab_m", 0.0, f64::INFINITY, true))?;
     let ior = s.ior.as_ref().map_or(Ok(1.34), |x| ctx.number(x, "ior", 1.0, 3.0, false))?;

@@ -36,3 +36,61 @@ pub fn mean_and_sem(xs: &[f64]) -> (f64, f64) {
     let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
     (mean, (var / n).sqrt())
 }
+
+/// The small scene of the input tests: a 2 m × 2 m plate of reflectance 0.7 under a 10 W,
+/// 4000 K point light 2 m above it, seen by a `width` × `height` camera, with `extra` (TOML
+/// sections) between the camera and the integrator. Tests edit its text to make bad input.
+pub fn lit_plate(width: u32, height: u32, extra: &str) -> String {
+    format!(
+        r#"[camera]
+position = [0.0, 1.0, 3.0]
+look_at = [0.0, 0.5, 0.0]
+fov_deg = 40.0
+width = {width}
+height = {height}
+{extra}
+[integrator]
+photons = 2000
+caustic_photons = 2000
+spp = 1
+gather_rays = 2
+
+[[material]]
+name = "white"
+type = "lambertian"
+reflectance = 0.7
+
+[[shape]]
+type = "quad"
+origin = [-1.0, 0.0, -1.0]
+u = [0.0, 0.0, 2.0]
+v = [2.0, 0.0, 0.0]
+material = "white"
+
+[[light]]
+type = "point"
+position = [0.0, 2.0, 0.0]
+spectrum = {{ blackbody_k = 4000 }}
+power_w = 10.0
+"#
+    )
+}
+
+/// A black Lambertian sphere of `radius_m` at the origin: the enclosure of the tests that count
+/// what a source inside it delivers.
+pub fn black_sphere(radius_m: f64) -> String {
+    format!(
+        r#"
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = {radius_m:?}
+material = "black"
+"#
+    )
+}

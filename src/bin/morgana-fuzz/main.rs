@@ -58,7 +58,8 @@ struct Common {
     /// The repository whose examples, luminaires and atmospheres seed the cases.
     #[arg(long, default_value = env!("CARGO_MANIFEST_DIR"))]
     repo: PathBuf,
-    /// Where workers make their scratch trees.
+    /// The folder in which the run makes its scratch folder (removed at the end; what else the
+    /// folder holds is left alone). Default: the system's temporary folder.
     #[arg(long)]
     scratch: Option<PathBuf>,
 }
@@ -150,10 +151,10 @@ fn target_of(name: &str) -> Result<Target, String> {
 fn limits(c: &Common) -> Limits {
     // The pid alone is not unique across pid namespaces (a run under `unshare --pid`).
     let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.subsec_nanos());
-    let scratch = c
-        .scratch
-        .clone()
-        .unwrap_or_else(|| std::env::temp_dir().join(format!("morgana-fuzz-{}-{nanos}", std::process::id())));
+    // The run's own folder, inside the one given: removing it at the end never touches files the
+    // user keeps there (a replayed input, or the whole folder given as `--scratch .`).
+    let parent = c.scratch.clone().unwrap_or_else(std::env::temp_dir);
+    let scratch = parent.join(format!("morgana-fuzz-{}-{nanos}", std::process::id()));
     Limits { deadline: Duration::from_secs_f64(c.deadline_s), memory_mib: c.memory_mib, repo: c.repo.clone(), scratch }
 }
 
