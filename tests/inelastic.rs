@@ -10,7 +10,7 @@ use morgana::photon::{MapKind, shoot};
 use morgana::quadrature::gauss_legendre;
 use morgana::rng::{Rng, Stream};
 use morgana::testing::chi2::chi2_1d;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The folder of morgana's built-in ocean tables (embedded in the binary; read here as files).
 fn ocean_data() -> PathBuf {
@@ -410,4 +410,28 @@ fn raman_scatters_only_inside_its_excitation_window_in_the_photon_pass() {
             );
         }
     }
+}
+
+/// The eye pass's march steps through a medium that is opaque at some of a path's wavelengths
+/// and clear at others, e.g. a dye with σ_a = 10¹² m⁻¹ at its excitation: the opaque lanes are
+/// dark after the first step, and the others must not be held to 1/σ_t-sized steps (the fuzzer
+/// found the 4 × 4 render of such a glass block marching 10⁸ steps per metre, past its
+/// deadline). Steps: at most twice those of the same block with the published σ_a.
+#[test]
+fn an_opaque_lane_does_not_shrink_the_march_of_the_clear_ones() {
+    let example =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/fluorescent_glass_block.toml"))
+            .expect("examples/fluorescent_glass_block.toml");
+    let small = example
+        .replace("width = 128", "width = 4")
+        .replace("height = 96", "height = 4")
+        .replace("photons = 600000", "photons = 20000")
+        .replace("spp = 4", "spp = 1");
+    assert!(small.contains("width = 4") && small.contains("photons = 20000"), "the example's keys moved");
+    let opaque = small.replace("values = [25.0, 12.0", "values = [1e12, 12.0");
+    assert_ne!(opaque, small, "the example's absorption table moved");
+    let steps = |toml: &str| common::render_with(&scene(toml), 2).stats.rays.medium_steps;
+    let (clear, dark) = (steps(&small), steps(&opaque));
+    assert!(clear > 0, "the eye pass marches the block");
+    assert!(dark <= 2 * clear, "{dark} march steps with σ_a = 1e12 against {clear} with 25 m⁻¹");
 }

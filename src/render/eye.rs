@@ -577,12 +577,18 @@ impl<'a> EyeTracer<'a> {
         };
         let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
         let wo = -c.dir;
-        let sigma_t_max = lanes.nm[..lanes.len].iter().map(|l| m.sigma_t(*l)).fold(0.0, f64::max);
+        let mut sigma_t = [0.0; MAX_BANDS];
+        for (s, l) in sigma_t.iter_mut().zip(&lanes.nm[..lanes.len]) {
+            *s = m.sigma_t(*l);
+        }
         let xi = rng.uniform();
         let (mut t0, mut t_prev) = (0.0f64, 0.0f64);
         let mut level = 0u32;
         let mut last: Option<f64> = None;
         while t0 < c.length {
+            // Steps resolve the lanes that still carry light: a lane the medium has made opaque
+            // (σ_t = 10¹² m⁻¹ at the excitation of a dye) must not hold the others to its steps.
+            let sigma_t_max = (0..lanes.len).filter(|i| along.tr[*i] > 0.0).map(|i| sigma_t[i]).fold(0.0, f64::max);
             let h = self.step_length(m, c, t0, sigma_t_max, level, at.mode);
             let t1 = (t0 + h).min(c.length);
             let s = t0 + xi * (t1 - t0);
