@@ -26,8 +26,10 @@ pub struct Staged {
 }
 
 impl Staged {
-    /// Creates the temporary path for `target` (its directory must exist). The temporary file
-    /// is created empty, so the name is reserved; writers may truncate and rewrite it.
+    /// Creates the temporary path for `target`, and `target`'s directory where it is missing
+    /// (the commands check the location before the work: see `cli::check_output_file`). The
+    /// temporary file is created empty, so the name is reserved; writers may truncate and
+    /// rewrite it.
     pub fn new(target: &Path) -> io::Result<Staged> {
         let name = target.file_name().ok_or_else(|| {
             io::Error::new(
@@ -42,6 +44,14 @@ impl Staged {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
         };
+        if !dir.is_dir() {
+            fs::create_dir_all(&dir).map_err(|e| {
+                io::Error::new(
+                    e.kind(),
+                    format!("cannot create the directory '{}' for '{}': {e}", dir.display(), target.display()),
+                )
+            })?;
+        }
         let mut last_err = None;
         for _ in 0..16 {
             let n = COUNTER.fetch_add(1, Ordering::Relaxed);
@@ -139,10 +149,20 @@ mod tests {
     }
 
     #[test]
-    fn reports_a_missing_directory() {
-        let target = std::env::temp_dir().join("morgana-no-such-dir-x9/out.exr");
-        let err = Staged::new(&target).unwrap_err();
-        assert_eq!(err.kind(), io::ErrorKind::NotFound);
-        assert!(err.to_string().contains("morgana-no-such-dir-x9"), "{err}");
+    fn makes_a_missing_directory_and_names_one_it_cannot_make() {
+        let root = scratch_dir("mkdir");
+        let target = root.join("a/b/out.exr");
+        let s = Staged::new(&target).expect("stage in missing directories");
+        fs::write(&s.temp, b"x").unwrap();
+        s.commit().unwrap();
+        assert_eq!(fs::read(&target).unwrap(), b"x");
+        // A directory below a file cannot be made.
+        let blocked = root.join("a/b/out.exr/c/out.exr");
+        let err = Staged::new(&blocked).unwrap_err();
+        assert!(
+            err.to_string().contains("cannot create the directory") && err.to_string().contains("out.exr/c"),
+            "{err}"
+        );
+        fs::remove_dir_all(&root).ok();
     }
 }

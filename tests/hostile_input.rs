@@ -292,3 +292,21 @@ fn a_profile_sensor_with_more_than_4096_depths_is_refused_naming_depths_m() {
     let e = common::scene_error(&over);
     assert!(e.contains("test.toml:62:") && e.contains("depths_m") && e.contains("4096"), "{e}");
 }
+
+#[test]
+fn every_command_writes_into_missing_directories_its_check_accepted() {
+    // The fuzzer's cli target: `check_output_file` accepts a path whose missing directories can
+    // be made, but `grid --out` and `luminaire --png` then failed with an internal error
+    // ("cannot create a temporary file in 'sub/dir'") after the work.
+    let d = scratch("missing-dirs");
+    let ies = Path::new(env!("CARGO_MANIFEST_DIR")).join("luminaires/road_batwing.ies");
+    let ies = ies.to_str().expect("utf-8 path");
+    for args in [
+        vec!["grid", "--out", "a/b/g.mgrid", "--res", "4", "--octaves", "1"],
+        vec!["luminaire", ies, "--png", "c/d/p.png"],
+    ] {
+        let out = morgana(&d, &args);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    assert!(d.join("a/b/g.mgrid").is_file() && d.join("c/d/p.png").is_file());
+}

@@ -377,14 +377,15 @@ pub fn run(ws: &Workspace, case: &Case, read: &[String], deadline: Duration) -> 
         Some(0) => {
             // An output may be named "inf": arguments echoed are not numbers the command made.
             let mut stdout = stdout;
-            for a in &case.args {
-                let a = a.to_string_lossy();
-                // `--csv=nan` echoes as `nan`.
-                for text in [a.as_ref(), a.split_once('=').map_or("", |(_, v)| v)] {
-                    if !text.is_empty() {
-                        stdout = stdout.replace(text, "");
-                    }
-                }
+            // `--csv=nan` echoes as `nan`. Longest first: removing an argument "0" first would
+            // cut the zeros out of a longer one ("0,180,+inf") and leave its "+inf" standing.
+            let args: Vec<String> = case.args.iter().map(|a| a.to_string_lossy().into_owned()).collect();
+            let mut texts: Vec<&str> =
+                args.iter().flat_map(|a| [a.as_str(), a.split_once('=').map_or("", |(_, v)| v)]).collect();
+            texts.retain(|t| !t.is_empty());
+            texts.sort_by_key(|t| std::cmp::Reverse(t.len()));
+            for text in texts {
+                stdout = stdout.replace(text, "");
             }
             if has_non_finite_word(&stdout) {
                 let l = stdout.lines().find(|l| has_non_finite_word(l)).unwrap_or("");
@@ -421,11 +422,12 @@ pub fn run(ws: &Workspace, case: &Case, read: &[String], deadline: Duration) -> 
 /// an argument of the command line, echoed.
 fn echoes_an_argument(finding: &str, args: &[OsString]) -> bool {
     let mut text = finding.splitn(3, ':').nth(2).unwrap_or(finding).to_string();
-    for a in args {
-        let a = a.to_string_lossy();
-        if !a.is_empty() {
-            text = text.replace(a.as_ref(), "");
-        }
+    let mut args: Vec<String> =
+        args.iter().map(|a| a.to_string_lossy().into_owned()).filter(|a| !a.is_empty()).collect();
+    // Longest first, as for standard output.
+    args.sort_by_key(|a| std::cmp::Reverse(a.len()));
+    for a in &args {
+        text = text.replace(a.as_str(), "");
     }
     !has_non_finite_word(&text)
 }
