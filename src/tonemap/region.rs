@@ -81,7 +81,9 @@ impl Region {
     /// The region's statistics in `image` seen with vertical field of view `fov_deg`.
     pub fn summary(&self, image: &SceneImage, fov_deg: f64) -> RegionSummary {
         let (w, h) = (image.width as f64, image.height as f64);
-        let f = 0.5 * h / (0.5 * fov_deg.to_radians()).tan();
+        // The image plane at unit distance: a pixel is t wide (t = 1/f for a focal length of f
+        // pixels), so tiny fields of view underflow to no illuminance instead of ∞/∞.
+        let t = (0.5 * fov_deg.to_radians()).tan() / (0.5 * h);
         let mut s = RegionSummary {
             pixels: 0,
             mean_cd_m2: 0.0,
@@ -92,12 +94,13 @@ impl Region {
         for (x, y) in self.pixels() {
             let l = image.luminance(y * image.width + x);
             let (u, v) = (x as f64 + 0.5 - 0.5 * w, y as f64 + 0.5 - 0.5 * h);
-            let cos2 = f * f / (f * f + u * u + v * v);
+            let cos2 = 1.0 / (1.0 + t * t * (u * u + v * v));
             s.pixels += 1;
             s.mean_cd_m2 += l;
             s.min_cd_m2 = s.min_cd_m2.min(l);
             s.max_cd_m2 = s.max_cd_m2.max(l);
-            s.camera_illuminance_lx += l * cos2 * cos2 / (f * f);
+            // E = Σ L cos θ dω with dω = cos³θ t² (Nicodemus 1963).
+            s.camera_illuminance_lx += l * cos2 * cos2 * t * t;
         }
         s.mean_cd_m2 /= s.pixels.max(1) as f64;
         s
@@ -157,6 +160,21 @@ mod tests {
         }
         assert!((whole.camera_illuminance_lx / want - 1.0).abs() < 1e-4, "{} vs {want}", whole.camera_illuminance_lx);
         assert_eq!((whole.pixels, whole.mean_cd_m2, whole.min_cd_m2, whole.max_cd_m2), (10201, 7.0, 7.0, 7.0));
+    }
+
+    #[test]
+    fn extreme_fields_of_view_give_finite_illuminance() {
+        // The fuzzer's `tonemap --fov-deg 1e-300` printed NaN lx (f² overflowed, ∞/∞). The
+        // illuminance of a uniform L over a tiny field is L times its solid angle, ≈ L·(w·h)·t².
+        let img = uniform(4, 4, 3.0);
+        let whole = Region::new(0, 0, 4, 4).unwrap();
+        assert_eq!(whole.summary(&img, 1e-300).camera_illuminance_lx, 0.0);
+        let fov = 1e-6f64;
+        let t = (0.5 * fov).to_radians().tan() / 2.0;
+        let e = whole.summary(&img, fov).camera_illuminance_lx;
+        assert!((e / (3.0 * 16.0 * t * t) - 1.0).abs() < 1e-9, "{e}");
+        let wide = whole.summary(&img, 179.999_999).camera_illuminance_lx;
+        assert!(wide.is_finite() && wide > 0.0 && wide < std::f64::consts::PI * 3.0, "{wide}");
     }
 
     #[test]
