@@ -30,6 +30,18 @@ impl BaseProfile {
         }
     }
 
+    /// Altitudes where dT/dz or dP/dz jumps (so ∇n is discontinuous), m: the USA76 layer bases
+    /// and ends; a table's first and last rows (PCHIP is C¹ between them).
+    pub fn kink_heights_m(&self) -> Vec<f64> {
+        match self {
+            BaseProfile::Usa76 => usa76::kink_heights_geometric_m().collect(),
+            BaseProfile::Table(t) => {
+                let (lo, hi) = t.altitude_range();
+                vec![lo, hi]
+            }
+        }
+    }
+
     /// A lower bound of the temperature below `top_m`, K.
     pub fn min_temperature_below(&self, top_m: f64) -> f64 {
         match self {

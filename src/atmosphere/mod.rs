@@ -7,6 +7,7 @@
 mod base;
 mod builtin;
 pub mod dispersion;
+pub mod dual;
 mod earth;
 pub mod edit;
 pub mod file;

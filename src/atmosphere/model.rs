@@ -193,6 +193,26 @@ impl Atmosphere {
         (u * u * (3.0 - 2.0 * u), -6.0 * u * (1.0 - u) / self.taper_m)
     }
 
+    /// The centre about which n is spherically symmetric (n depends only on the distance from
+    /// it): the Earth's centre when the Earth is spherical and every edit depends on height
+    /// alone; `None` otherwise.
+    pub fn radial_centre(&self) -> Option<DVec3> {
+        match &self.earth {
+            Earth::Spherical(s) if self.edits.iter().all(|e| e.is_height_only()) => Some(s.centre),
+            _ => None,
+        }
+    }
+
+    /// Heights below the top where ∇n is not smooth, ascending, m: the base profile's kinks and
+    /// the start of the taper (where d²n/dh² jumps).
+    pub fn kink_heights_m(&self) -> Vec<f64> {
+        let mut k = self.base.kink_heights_m();
+        k.push(self.top_m - self.taper_m);
+        k.retain(|h| *h < self.top_m);
+        k.sort_by(f64::total_cmp);
+        k
+    }
+
     /// Everything below the top: the ball of radius R + top (spherical Earth) or the half-space
     /// h ≤ top (flat Earth).
     pub fn gradient_region(&self) -> GradientRegion {

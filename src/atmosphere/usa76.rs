@@ -79,6 +79,13 @@ impl State {
     }
 }
 
+/// The geometric heights where the lapse rate jumps (the bases of layers 1–6) and where the
+/// model ends (its bottom and top, beyond which the state is held): there dT/dz, so ∇n, is
+/// discontinuous, m.
+pub fn kink_heights_geometric_m() -> impl Iterator<Item = f64> {
+    BASE_H_M[1..].iter().map(|&h| geometric_m(h)).chain([BOTTOM_GEOMETRIC_M, TOP_GEOMETRIC_M])
+}
+
 /// Geopotential height H = r₀z/(r₀ + z) of geometric height z, m.
 pub fn geopotential_m(z_m: f64) -> f64 {
     R0_M * z_m / (R0_M + z_m)

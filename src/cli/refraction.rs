@@ -1,18 +1,68 @@
 //! `morgana refraction`: astronomical refraction through an atmosphere, as a table, a CSV, a
-//! dispersion line or the flattened sun (the work is [`crate::atmosphere::refraction`]).
+//! dispersion line or the flattened sun (the work is [`crate::atmosphere::refraction`]); without
+//! `--atmosphere`, through the model atmosphere of the observer's conditions, by quadrature of
+//! the refraction integral or by the ray trace.
 
+use crate::atmosphere::dispersion::Ciddor;
+use crate::atmosphere::refraction::model::{ModelAtmosphere, Observer, Refractivity};
+use crate::atmosphere::refraction::model_table::{ModelMethod, model_table};
 use crate::atmosphere::refraction::report::{dispersion, sun_text, table};
 use crate::atmosphere::refraction::{Settings, Tracer};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
 
+/// How the refraction is computed in the model atmosphere.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodArg {
+    /// Adaptive quadrature of the refraction integral over the zenith distance.
+    Quadrature,
+    /// The ray trace through the same model (the quadrature's oracle).
+    Trace,
+}
+
+/// The refractivity law of the model atmosphere.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RefractivityArg {
+    /// Ciddor 1996, moist air, 450 µmol/mol CO₂.
+    Ciddor,
+    /// The optical formula of SLALIB slaRefro (IAG 1999 dry air, Hohenkerk & Sinclair water term).
+    HohenkerkSinclair,
+}
+
 /// `morgana refraction --atmosphere usa76 --wavelength-nm 550 --apparent-altitudes-deg 0,1,45`.
 #[derive(clap::Args, Clone, Debug)]
 pub struct RefractionArgs {
     /// An atmosphere file (TOML, see atmospheres/README.md) or a built-in name: usa76, hot_road,
-    /// inversion, fata_morgana, tropical.
+    /// inversion, fata_morgana, tropical. Without it: the model atmosphere of the observer's
+    /// conditions (--pressure-hpa, --temperature-c, --humidity, --latitude-deg,
+    /// --lapse-rate-k-per-m).
     #[arg(long)]
-    pub atmosphere: String,
+    pub atmosphere: Option<String>,
+    /// Model atmosphere: air pressure at the observer, hPa [default: 1013.25].
+    #[arg(long, conflicts_with = "atmosphere")]
+    pub pressure_hpa: Option<f64>,
+    /// Model atmosphere: air temperature at the observer, °C [default: 15].
+    #[arg(long, conflicts_with = "atmosphere", allow_negative_numbers = true)]
+    pub temperature_c: Option<f64>,
+    /// Model atmosphere: relative humidity at the observer, 0–1 [default: 0].
+    #[arg(long, conflicts_with = "atmosphere")]
+    pub humidity: Option<f64>,
+    /// Model atmosphere: the observer's latitude (gravity), degrees [default: 45].
+    #[arg(long, conflicts_with = "atmosphere", allow_negative_numbers = true)]
+    pub latitude_deg: Option<f64>,
+    /// Model atmosphere: tropospheric lapse rate −dT/dh, K/m (0.001–0.01) [default: 0.0065].
+    #[arg(long, conflicts_with = "atmosphere")]
+    pub lapse_rate_k_per_m: Option<f64>,
+    /// Model atmosphere: the refractivity law.
+    #[arg(long, value_enum, conflicts_with = "atmosphere", default_value_t = RefractivityArg::Ciddor)]
+    pub refractivity: RefractivityArg,
+    /// Model atmosphere: quadrature of the refraction integral or the ray trace.
+    #[arg(long, value_enum, conflicts_with = "atmosphere", default_value_t = MethodArg::Quadrature)]
+    pub method: MethodArg,
+    /// Model atmosphere: a table over apparent zenith distances FROM,TO,STEP in degrees (0–90),
+    /// e.g. 0,90,0.1; replaces --apparent-altitudes-deg.
+    #[arg(long, value_delimiter = ',', conflicts_with = "atmosphere")]
+    pub zenith_table_deg: Option<Vec<f64>>,
     /// Wavelength of the table, nm.
     #[arg(long, default_value_t = 550.0)]
     pub wavelength_nm: f64,
@@ -37,13 +87,14 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
     if let Some(csv) = &args.csv {
         super::check_output_file("--csv", csv)?;
     }
+    let Some(atmosphere_name) = &args.atmosphere else { return run_model(args) };
     if args.apparent_altitudes_deg.is_empty() {
         return Err(Error::input(None, "--apparent-altitudes-deg: give at least one altitude"));
     }
     if let Some(a) = args.apparent_altitudes_deg.iter().find(|a| !(a.is_finite() && a.abs() <= 90.0)) {
         return Err(Error::input(None, format!("--apparent-altitudes-deg: {a} is out of range; expected −90 … 90")));
     }
-    let atmosphere = crate::atmosphere::resolve(&args.atmosphere)?;
+    let atmosphere = crate::atmosphere::resolve(atmosphere_name)?;
     // Each flag's problem is named at its flag: the wavelength first, then the height.
     Tracer::new(&atmosphere, args.wavelength_nm, 0.0, Settings::default()).map_err(|e| e.at_flag("--wavelength-nm"))?;
     let tracer = Tracer::new(&atmosphere, args.wavelength_nm, args.observer_height_m, Settings::default())
@@ -62,4 +113,70 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
         out.push_str(&format!("wrote {}\n", path.display()));
     }
     Ok(out)
+}
+
+/// The model-atmosphere table (no `--atmosphere`).
+fn run_model(args: &RefractionArgs) -> Result<String> {
+    if args.wavelengths_nm.is_some() {
+        return Err(Error::input(None, "--wavelengths-nm needs --atmosphere; run the model table once per wavelength"));
+    }
+    let d = Observer::default();
+    let observer = Observer {
+        pressure_hpa: args.pressure_hpa.unwrap_or(d.pressure_hpa),
+        temperature_k: args.temperature_c.map_or(d.temperature_k, |t| t + 273.15),
+        humidity: args.humidity.unwrap_or(d.humidity),
+        height_m: args.observer_height_m,
+        latitude_deg: args.latitude_deg.unwrap_or(d.latitude_deg),
+        lapse_k_per_m: args.lapse_rate_k_per_m.unwrap_or(d.lapse_k_per_m),
+        wavelength_nm: args.wavelength_nm,
+    };
+    let law = match args.refractivity {
+        RefractivityArg::Ciddor => Refractivity::Ciddor(Ciddor::new(450.0).map_err(|e| Error::input(None, e))?),
+        RefractivityArg::HohenkerkSinclair => Refractivity::HohenkerkSinclair,
+    };
+    let model = ModelAtmosphere::new(observer, law).map_err(|e| Error::input(None, e))?;
+    let zeniths = zenith_list(args)?;
+    let method = match args.method {
+        MethodArg::Quadrature => ModelMethod::Quadrature,
+        MethodArg::Trace => ModelMethod::Trace,
+    };
+    let t = model_table(&model, &zeniths, method)?;
+    let mut out = t.to_text();
+    if let Some(path) = &args.csv {
+        t.write_csv(path)?;
+        out.push_str(&format!("wrote {}\n", path.display()));
+    }
+    Ok(out)
+}
+
+/// Most rows of a zenith table.
+const MAX_TABLE_ROWS: usize = 1_000_000;
+
+/// The zenith distances asked for: the table FROM,TO,STEP, or 90° minus each apparent altitude.
+fn zenith_list(args: &RefractionArgs) -> Result<Vec<f64>> {
+    let bad = |m: String| Error::input(None, format!("--zenith-table-deg: {m}"));
+    let Some(t) = args.zenith_table_deg.as_deref() else {
+        return args
+            .apparent_altitudes_deg
+            .iter()
+            .map(|a| {
+                if (0.0..=90.0).contains(a) {
+                    Ok(90.0 - a)
+                } else {
+                    Err(Error::input(None, format!("--apparent-altitudes-deg: {a} is out of range for the model atmosphere; expected 0 … 90 (use --atmosphere for rays below the horizon)")))
+                }
+            })
+            .collect();
+    };
+    let &[from, to, step] = t else {
+        return Err(bad(format!("give FROM,TO,STEP (three numbers, degrees); got {} numbers", t.len())));
+    };
+    if !(0.0..=90.0).contains(&from) || !(0.0..=90.0).contains(&to) || from > to {
+        return Err(bad(format!("{from},{to} is out of range; expected 0 ≤ FROM ≤ TO ≤ 90")));
+    }
+    if !(step.is_finite() && step > 0.0) || (to - from) / step > MAX_TABLE_ROWS as f64 {
+        return Err(bad(format!("step {step} must be positive and give at most {MAX_TABLE_ROWS} rows")));
+    }
+    let n = ((to - from) / step + 1e-9).floor() as usize;
+    Ok((0..=n).map(|i| ((from + i as f64 * step) * 1e9).round() / 1e9).collect())
 }

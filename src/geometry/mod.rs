@@ -7,8 +7,10 @@
 mod aabb;
 mod bvh;
 mod camera;
+pub mod convex_polygon;
 mod frame;
 pub mod mesh;
+pub mod min_rect;
 pub mod rounding;
 pub mod shape;
 mod spawn;

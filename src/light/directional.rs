@@ -5,9 +5,11 @@
 //! scene: by default the square around the scene's bounding sphere, so the emitted flux is
 //! Φ = A_beam ∫E dλ; a directional light's power is only defined relative to the region it
 //! lights, and `report.json` states it. A scene may limit the beam to the rays through a target
-//! box (`target_min`, `target_max` — e.g. a window): the rectangle then covers only the box's
-//! shadow on the emitting plane, photons are not spent on walls no camera sees, and shadow rays
-//! see the light only inside that beam, so both passes simulate the same, limited, light.
+//! box (`target_min`, `target_max` — e.g. a window): photons then start on the box's shadow on
+//! the emitting plane (the convex hull of its corners' projections, in the frame of the smallest
+//! rectangle around it: [`crate::geometry::min_rect`]), so every straight photon path crosses
+//! the box and none is spent on walls no camera sees, and shadow rays see the light only inside
+//! that beam, so both passes simulate the same, limited, light.
 //!
 //! A light of finite angular size (the sun: angular diameter 0.53°) is a uniformly bright disc
 //! of angular radius θ_m: its rays cross the beam plane with the direction density
@@ -15,6 +17,7 @@
 //! into the disc sees the radiance L(λ) = E(λ)/(π sin²θ_m), since E = ∫_disc L cos θ dω.
 
 use crate::geometry::Frame;
+use crate::geometry::convex_polygon::ConvexPolygon;
 use glam::DVec3;
 
 use super::{Incident, LightSpectrum};
@@ -29,7 +32,10 @@ pub struct DirectionalLight {
     pub scene_centre: DVec3,
     /// Radius of the scene's bounding sphere, m.
     pub scene_radius: f64,
-    /// The beam's cross-section in the frame about `dir`: (s, t) ranges.
+    /// The frame of the beam's cross-section: `n` = `dir`; with a target, `s` and `t` along the
+    /// sides of the smallest rectangle around the target's projection.
+    pub frame: Frame,
+    /// The beam's cross-section in `frame`: (s, t) ranges.
     pub beam: [[f64; 2]; 2],
     /// Spectral irradiance normal to the beam, W m⁻² nm⁻¹.
     pub emission: LightSpectrum,
@@ -37,9 +43,13 @@ pub struct DirectionalLight {
     pub sin_max: f64,
     /// The box the beam is aimed at, if the scene gave one.
     pub target: Option<crate::geometry::Aabb>,
+    /// With a target (and a shadow of some area): the target box's shadow along the light in
+    /// `frame`'s (s, t), the convex polygon photons start from unless a projection map's cells
+    /// replace it.
+    pub shadow: Option<Box<ConvexPolygon>>,
     /// Where paths curve, the cells of the beam whose light reaches the target (a projection
     /// map, see [`crate::raypath::projection`]); `None`: the whole rectangle.
-    pub cells: Option<BeamCells>,
+    pub cells: Option<Box<BeamCells>>,
 }
 
 /// A projection map of a beam: the cells of a regular grid over the beam's cross-section from
@@ -89,25 +99,24 @@ impl DirectionalLight {
         target: Option<(DVec3, DVec3)>,
         emission: LightSpectrum,
     ) -> DirectionalLight {
-        let frame = Frame::from_normal(dir);
-        let beam = match target {
-            None => [[-scene_radius, scene_radius], [-scene_radius, scene_radius]],
-            Some((lo, hi)) => {
-                let mut b = [[f64::INFINITY, f64::NEG_INFINITY], [f64::INFINITY, f64::NEG_INFINITY]];
-                for i in 0..8 {
-                    let c = DVec3::new(
-                        if i & 1 == 0 { lo.x } else { hi.x },
-                        if i & 2 == 0 { lo.y } else { hi.y },
-                        if i & 4 == 0 { lo.z } else { hi.z },
-                    );
-                    let (s, t) = ((c - scene_centre).dot(frame.s), (c - scene_centre).dot(frame.t));
-                    b = [[b[0][0].min(s), b[0][1].max(s)], [b[1][0].min(t), b[1][1].max(t)]];
-                }
-                b
-            }
+        let base = Frame::from_normal(dir);
+        let (frame, beam, shadow) = match target {
+            None => (base, [[-scene_radius, scene_radius], [-scene_radius, scene_radius]], None),
+            Some((lo, hi)) => aimed_beam(&base, scene_centre, lo, hi),
         };
         let target = target.map(|(min, max)| crate::geometry::Aabb { min, max });
-        DirectionalLight { dir, scene_centre, scene_radius, beam, emission, sin_max: 0.0, target, cells: None }
+        DirectionalLight {
+            dir,
+            scene_centre,
+            scene_radius,
+            frame,
+            beam,
+            emission,
+            sin_max: 0.0,
+            target,
+            shadow,
+            cells: None,
+        }
     }
 
     /// The same light as a uniformly bright disc of angular diameter `diameter_deg`.
@@ -138,16 +147,24 @@ impl DirectionalLight {
 
     /// Area of the beam's cross-section (of its projection map's cells, when it has one), m².
     pub fn beam_area(&self) -> f64 {
-        match &self.cells {
-            Some(c) => c.area(),
-            None => (self.beam[0][1] - self.beam[0][0]) * (self.beam[1][1] - self.beam[1][0]),
+        match (&self.cells, &self.shadow) {
+            (Some(c), _) => c.area(),
+            (None, Some(p)) => p.area(),
+            (None, None) => (self.beam[0][1] - self.beam[0][0]) * (self.beam[1][1] - self.beam[1][0]),
         }
+    }
+
+    /// With a target and no projection map: the fraction of the beam's photons whose straight
+    /// paths cross the target box (its shadow's area over the beam's: 1 when the beam is the
+    /// shadow).
+    pub fn on_target(&self) -> Option<f64> {
+        let shadow = self.shadow.as_ref()?;
+        self.cells.is_none().then(|| shadow.area() / self.beam_area())
     }
 
     /// The point of the emitting plane at beam coordinates (s, t).
     pub fn plane_point(&self, s: f64, t: f64) -> DVec3 {
-        let frame = Frame::from_normal(self.dir);
-        self.scene_centre - self.dir * (1.001 * self.scene_radius) + s * frame.s + t * frame.t
+        self.scene_centre - self.dir * (1.001 * self.scene_radius) + s * self.frame.s + t * self.frame.t
     }
 
     /// Φ = A_beam ∫ E dλ within the scene's wavelength range, W.
@@ -168,8 +185,7 @@ impl DirectionalLight {
         if let Some([ds, dt]) = self.cells.as_ref().and_then(|c| c.disc_shift)
             && self.sin_max > 0.0
         {
-            let frame = Frame::from_normal(self.dir);
-            let (x, y) = (dir.dot(frame.s) / self.sin_max, dir.dot(frame.t) / self.sin_max);
+            let (x, y) = (dir.dot(self.frame.s) / self.sin_max, dir.dot(self.frame.t) / self.sin_max);
             s += x * ds[0] + y * dt[0];
             t += x * ds[1] + y * dt[1];
         }
@@ -196,9 +212,10 @@ impl DirectionalLight {
 
     /// A uniform point (s, t) of the beam's cross-section or of its projection map's cells.
     fn emit_st(&self, u: [f64; 2]) -> [f64; 2] {
-        match &self.cells {
-            Some(c) => c.sample(u),
-            None => [
+        match (&self.cells, &self.shadow) {
+            (Some(c), _) => c.sample(u),
+            (None, Some(p)) => p.sample(u),
+            (None, None) => [
                 self.beam[0][0] + u[0] * (self.beam[0][1] - self.beam[0][0]),
                 self.beam[1][0] + u[1] * (self.beam[1][1] - self.beam[1][0]),
             ],
@@ -208,11 +225,15 @@ impl DirectionalLight {
     /// Whether the beam passes through `p` (along straight rays: used by shadow rays, which
     /// only run where paths are straight).
     pub fn lights(&self, p: DVec3) -> bool {
-        let frame = Frame::from_normal(self.dir);
-        let (s, t) = ((p - self.scene_centre).dot(frame.s), (p - self.scene_centre).dot(frame.t));
+        let (s, t) = ((p - self.scene_centre).dot(self.frame.s), (p - self.scene_centre).dot(self.frame.t));
         let in_rect =
             (self.beam[0][0]..=self.beam[0][1]).contains(&s) && (self.beam[1][0]..=self.beam[1][1]).contains(&t);
-        in_rect && self.cells.as_ref().is_none_or(|c| c.contains(s, t))
+        let in_shadow = || self.shadow.as_ref().is_none_or(|p| p.contains([s, t], SHADOW_EDGE_M));
+        in_rect
+            && match &self.cells {
+                Some(c) => c.contains(s, t),
+                None => in_shadow(),
+            }
     }
 
     /// Irradiance normal to the beam is E, so weight = 1 toward −dir (or toward a direction
@@ -220,6 +241,32 @@ impl DirectionalLight {
     pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
         self.lights(p).then(|| Incident { wi: -self.sample_dir(u), dist: f64::INFINITY, weight: 1.0 })
     }
+}
+
+/// How far outside the shadow's edges a point still counts as lit, m (rounding of the
+/// projection of points on the target's faces).
+const SHADOW_EDGE_M: f64 = 1e-9;
+
+/// The beam aimed at the box [`lo`, `hi`]: the smallest rectangle around the projection of its
+/// corners along the light onto the plane of `base` (about `centre`), its frame, and the shadow
+/// (the projection's convex hull) in that frame ([`crate::geometry::min_rect`]).
+fn aimed_beam(base: &Frame, centre: DVec3, lo: DVec3, hi: DVec3) -> (Frame, [[f64; 2]; 2], Option<Box<ConvexPolygon>>) {
+    use crate::geometry::min_rect::min_area_rect;
+    let corners: Vec<[f64; 2]> = (0..8)
+        .map(|i| {
+            let c = DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            [(c - centre).dot(base.s), (c - centre).dot(base.t)]
+        })
+        .collect();
+    let rect = min_area_rect(&corners);
+    let (sin, cos) = rect.angle_rad.sin_cos();
+    let frame = Frame { s: cos * base.s + sin * base.t, t: -sin * base.s + cos * base.t, n: base.n };
+    let in_frame: Vec<[f64; 2]> = corners.iter().map(|c| rect.coords(*c)).collect();
+    (frame, rect.extent, ConvexPolygon::hull_of(&in_frame).map(Box::new))
 }
 
 #[cfg(test)]
@@ -239,7 +286,7 @@ mod tests {
         let target = (DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1.0, 1.0));
         let light = DirectionalLight::new(dir, DVec3::new(0.0, -1e7, 0.0), 1e7, Some(target), emission)
             .with_angular_diameter(0.533);
-        let frame = Frame::from_normal(dir);
+        let frame = light.frame;
         let mut rng = Rng::for_task(3, Stream::Test, 0);
         let cos_max = (1.0 - light.sin_max * light.sin_max).sqrt();
         for _ in 0..10_000 {

@@ -142,8 +142,27 @@ impl Controller {
         }
     }
 
-    /// Hairer's starting step size (Hairer I, §II.4, steps a–f) for a method of order 5,
-    /// from y0 and f0 = f(y0); one extra field sample (counted in `evals`).
+    /// The step the error norm² `err_sq` of a step of size `h` predicts for the next one, without
+    /// the bounds on growth: h·safety·err^(−1/5).
+    pub fn predicted_step(&self, h: f64, err_sq: f64) -> f64 {
+        h * SAFETY * (-0.1 * err_sq.ln()).exp()
+    }
+
+    /// The starting step size: the larger of Hairer's estimate (Hairer I, §II.4, steps a–f, for
+    /// a method of order 5, from y0 and f0 = f(y0)) and the step the ray's own scales allow.
+    /// One extra field sample (counted in `evals`).
+    ///
+    /// Hairer's estimate makes h⁶·max(‖f0‖, ‖f′‖) = 0.01 in the scaled norm; for a ray the
+    /// position's derivative (the direction) is large in that norm while it is integrated
+    /// exactly, so the estimate comes out thousands of times too small (centimetres where the
+    /// controller settles at kilometres in air), and the first steps then grow ×10 at a time.
+    /// The ray's scales give a better guess: with curvature κ = |∇n|/n and the length
+    /// L = |∇n|/|d∇n/ds| over which the gradient changes (measured on the same probe step as
+    /// Hairer's f′), the local error of a fifth-order step is about κ·h⁶/L⁴, so
+    ///
+    /// ```text
+    ///     h = (tol·L⁴/κ)^(1/6),  tol = atol + rtol·max|r₀ᵢ|.
+    /// ```
     pub fn initial_step<F: IndexSample>(&self, field: &F, y0: &RayY, f0: &RayY, evals: &mut u64) -> f64 {
         let zero = RayY::default();
         let norm = |x: &RayY| self.error_norm(x, y0, &zero);
@@ -156,7 +175,13 @@ impl Controller {
         let d2 = norm(&(f1 - *f0)) / h0;
         let d = d1.max(d2);
         let h1 = if d <= 1e-15 { (h0 * 1e-3).max(1e-6) } else { (0.01 / d).powf(0.2) };
-        (100.0 * h0).min(h1).min(self.h_max).max(self.h_min)
+        let hairer = (100.0 * h0).min(h1);
+        let (grad, dgrad) = (f0.v.length(), (f1.v - f0.v).length() / h0);
+        let (kappa, scale) = (grad / y0.v.length(), grad / dgrad);
+        let tol = self.atol + self.rtol * y0.r.abs().max_element();
+        let ray = (tol * scale.powi(4) / kappa).powf(1.0 / 6.0);
+        let h = if ray.is_finite() { hairer.max(ray) } else { hairer };
+        h.min(self.h_max).max(self.h_min)
     }
 
     /// Checks the settings, naming the one out of range.

@@ -36,6 +36,7 @@ mod settings;
 pub mod system;
 
 pub use controller::Controller;
+use controller::FAC_MAX;
 pub use dense::Dense;
 pub use error::OdeError;
 pub use settings::CurvedSettings;
@@ -284,6 +285,15 @@ impl Integrator {
         self.steps_since_restart = 0;
     }
 
+    /// Goes on from a new state (a new leg of the same path, not continuous with the last
+    /// step): forgets the cached end slope and restores the step budget, but keeps the step size
+    /// the controller last proposed, a better first step than a fresh guess where the field
+    /// varies on the same scale.
+    pub fn resume(&mut self) {
+        self.end = None;
+        self.steps_since_restart = 0;
+    }
+
     /// One accepted step from `state`, at most `h_limit` (m) long; `state` moves to its end.
     /// `h_limit = 0` gives the zero-length step; a negative or NaN `h_limit` is an error.
     pub fn step<F: IndexSample>(&mut self, field: &F, state: &mut OdeState, h_limit: f64) -> Result<Step, OdeError> {
@@ -401,8 +411,16 @@ impl Integrator {
                     let err_sq = self.controller.error_norm_squared(&t.err, y0, &t.y1);
                     match self.controller.decide_squared(h_try, err_sq) {
                         controller::Decision::Accept { h_next } => {
-                            // A step cut to h_limit says nothing against the uncut proposal.
-                            self.h_next = Some(if capped && h_next >= h_try { h_next.max(h) } else { h_next });
+                            // A step cut to h_limit says nothing against the uncut proposal
+                            // beyond what its error predicts (an untested first guess may be far
+                            // too large); a step cut to less than a tenth of it (just across a
+                            // kink) predicts nothing for it.
+                            let keep = if h_try * FAC_MAX <= h {
+                                h
+                            } else {
+                                h.min(self.controller.predicted_step(h_try, err_sq))
+                            };
+                            self.h_next = Some(if capped && h_next >= h_try { h_next.max(keep) } else { h_next });
                             self.counters.accepted += 1;
                             return Ok((t.y1, t.f1, t.n1, h_try, t.c5));
                         }

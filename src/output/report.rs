@@ -20,6 +20,9 @@ pub struct LightReport {
     pub beam_area_m2: Option<f64>,
     /// Cells of its projection map (`None`: the straight shadow of the target, or the whole scene).
     pub projection_map_cells: Option<usize>,
+    /// With a target and no projection map: the fraction of the beam's photons whose straight
+    /// paths pass through the target box (its shadow's area over the beam's).
+    pub beam_on_target: Option<f64>,
 }
 
 impl LightReport {
@@ -33,11 +36,18 @@ impl LightReport {
             Light::Luminaire(_) => "luminaire",
             Light::Sky(_) => "sky",
         };
-        let (beam_area_m2, projection_map_cells) = match light {
-            Light::Directional(d) => (Some(d.beam_area()), d.cells.as_ref().map(|c| c.cells.len())),
-            _ => (None, None),
+        let (beam_area_m2, projection_map_cells, beam_on_target) = match light {
+            Light::Directional(d) => (Some(d.beam_area()), d.cells.as_ref().map(|c| c.cells.len()), d.on_target()),
+            _ => (None, None, None),
         };
-        LightReport { name: name.to_string(), kind, power_w: light.power_w(), beam_area_m2, projection_map_cells }
+        LightReport {
+            name: name.to_string(),
+            kind,
+            power_w: light.power_w(),
+            beam_area_m2,
+            projection_map_cells,
+            beam_on_target,
+        }
     }
 }
 

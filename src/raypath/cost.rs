@@ -15,6 +15,7 @@ pub struct CurvedWork {
     rhs_evals: AtomicU64,
     chords: AtomicU64,
     lost: AtomicU64,
+    trapped: AtomicU64,
 }
 
 /// A snapshot of [`CurvedWork`], as `report.json` records it.
@@ -32,6 +33,10 @@ pub struct CurvedWorkTotals {
     pub chords: u64,
     /// Paths ended because the integrator failed (a field that gave a non-finite value).
     pub lost: u64,
+    /// Paths taken to escape because they were trapped in a duct past all finite geometry
+    /// ([`super::far`]).
+    #[serde(default)]
+    pub trapped: u64,
 }
 
 impl CurvedWork {
@@ -49,6 +54,11 @@ impl CurvedWork {
         self.lost.fetch_add(1, Relaxed);
     }
 
+    /// Counts a path taken to escape because it is trapped in a duct ([`super::far`]).
+    pub fn trap(&self) {
+        self.trapped.fetch_add(1, Relaxed);
+    }
+
     /// The counts so far.
     pub fn totals(&self) -> CurvedWorkTotals {
         CurvedWorkTotals {
@@ -58,6 +68,7 @@ impl CurvedWork {
             rhs_evals: self.rhs_evals.load(Relaxed),
             chords: self.chords.load(Relaxed),
             lost: self.lost.load(Relaxed),
+            trapped: self.trapped.load(Relaxed),
         }
     }
 }
@@ -71,6 +82,7 @@ impl CurvedWorkTotals {
         self.rhs_evals += o.rhs_evals;
         self.chords += o.chords;
         self.lost += o.lost;
+        self.trapped += o.trapped;
     }
 }
 

@@ -16,6 +16,7 @@
 //! side the path leaves to.
 
 use super::arc::{ChordOnArc, chord_count};
+use super::far::TrapWatch;
 use super::{Chord, Event, Propagator, RayState};
 use crate::field::GradientRegion;
 use crate::geometry::{Hit, Ray};
@@ -39,7 +40,12 @@ struct Walk {
     travelled: f64,
     medium: u32,
     chords: u64,
+    /// Whether the path is trapped in a duct past the geometry ([`super::far`]).
+    trap: TrapWatch,
 }
+
+/// Kink crossings nearer than this are the one the path is on (it was cut there), m.
+const KINK_MIN_M: f64 = 1e-6;
 
 /// How a leg ended.
 enum Leg {
@@ -61,7 +67,14 @@ pub(super) fn next_event(
     let lambda = state.wavelength_nm.unwrap_or(REFERENCE_WAVELENGTH_NM);
     let sample = |p: DVec3| field.n_grad(lambda, p);
     let medium = state.medium.unwrap_or_default();
-    let mut walk = Walk { position: state.position, dir: state.dir, travelled: 0.0, medium, chords: 0 };
+    let mut walk = Walk {
+        position: state.position,
+        dir: state.dir,
+        travelled: 0.0,
+        medium,
+        chords: 0,
+        trap: TrapWatch::default(),
+    };
     let Some(Ok(mut ode)) = prop.curved.map(|c| Integrator::new(c.method)) else {
         prop.work.lose();
         return Event::Lost { position: state.position };
@@ -139,11 +152,14 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     let Ok(mut state) = OdeState::launch(sample, w.position, w.dir) else {
         return Leg::Done(Event::Lost { position: w.position });
     };
-    ode.restart();
+    // A new leg goes on with the step size the last one reached (issue 18, item 2).
+    ode.resume();
     let Some(settings) = prop.curved else { return Leg::Done(Event::Lost { position: w.position }) };
     let h_cap = settings.max_step_m.min(prop.world_radius);
+    let kinks = prop.kinks[w.medium as usize].as_ref();
     loop {
-        let Ok(step) = ode.step(sample, &mut state, h_cap) else {
+        let h_limit = kinks.and_then(|k| k.next_cut(w.position, w.dir, KINK_MIN_M)).map_or(h_cap, |t| t.min(h_cap));
+        let Ok(step) = ode.step(sample, &mut state, h_limit) else {
             return Leg::Done(Event::Lost { position: w.position });
         };
         if let Some(e) = chords_of(prop, &step, settings.arc_tolerance_m, w, visit) {
@@ -156,6 +172,12 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
         }
         if !region.contains(w.position) {
             return Leg::Switch;
+        }
+        if let Some(cone) = &prop.far[w.medium as usize]
+            && w.trap.observe(cone, w.position, w.dir)
+        {
+            prop.work.trap();
+            return Leg::Done(Event::Escape { dir: w.dir });
         }
     }
 }

@@ -23,6 +23,8 @@
 mod arc;
 mod cost;
 pub mod curved;
+pub mod far;
+pub mod kink;
 pub mod projection;
 pub mod trace;
 
@@ -105,6 +107,12 @@ pub enum Event {
     },
 }
 
+/// The kink spheres of a radial field, if it has any.
+fn kink_spheres(f: &IndexField) -> Option<kink::KinkSpheres> {
+    let radii = f.kink_radii_m();
+    (!radii.is_empty()).then_some(kink::KinkSpheres { centre: f.radial_centre()?, radii })
+}
+
 /// Moves light through a world.
 pub struct Propagator<'a> {
     world: &'a World,
@@ -116,6 +124,12 @@ pub struct Propagator<'a> {
     regions: Vec<Option<GradientRegion>>,
     /// Per medium: whether it neither absorbs nor scatters (nothing happens in it but bending).
     clear: Vec<bool>,
+    /// Per medium with a radial field: the cone of finite geometry, past which a path trapped
+    /// in a duct escapes ([`far`]).
+    far: Vec<Option<far::FarCone>>,
+    /// Per medium with a radial field: the spheres where its gradient jumps, where integrator
+    /// steps end ([`kink`]).
+    kinks: Vec<Option<kink::KinkSpheres>>,
     /// Integrator work along curved paths.
     pub work: CurvedWork,
 }
@@ -130,6 +144,10 @@ impl<'a> Propagator<'a> {
             .map(|m| m.index.as_ref().filter(|f| curved.is_some() && !f.is_uniform()).map(|f| f.gradient_region()))
             .collect();
         let clear = world.media.iter().map(|m| m.is_clear()).collect();
+        // Only fields whose paths are followed as curves need the cone and the kinks.
+        let bending = |m: &'a crate::media::Medium| m.index.as_ref().filter(|f| curved.is_some() && !f.is_uniform());
+        let far = world.media.iter().map(|m| bending(m).and_then(|f| far::FarCone::new(world, f))).collect();
+        let kinks = world.media.iter().map(|m| bending(m).and_then(kink_spheres)).collect();
         Propagator {
             world,
             curved,
@@ -137,6 +155,8 @@ impl<'a> Propagator<'a> {
             world_radius: world.reach.radius,
             regions,
             clear,
+            far,
+            kinks,
             work: CurvedWork::default(),
         }
     }

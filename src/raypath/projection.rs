@@ -55,7 +55,7 @@ pub fn build(
 ) -> Option<BeamCells> {
     let target = light.target?;
     let prop = Propagator::new(world, Some(curved));
-    let frame = Frame::from_normal(light.dir);
+    let frame = light.frame;
     let half = [0.5 * (light.beam[0][1] - light.beam[0][0]), 0.5 * (light.beam[1][1] - light.beam[1][0])];
     let centre = [0.5 * (light.beam[0][0] + light.beam[0][1]), 0.5 * (light.beam[1][0] + light.beam[1][1])];
     // Each direction of the disc is aimed on its own: rays from its edges cross the air

@@ -280,7 +280,7 @@ fn aim_beams(scene: &mut Scene) {
         let name = scene.world.names.lights[i].clone();
         if let Light::Directional(d) = &mut scene.world.lights[i] {
             match cells {
-                Some(c) => d.cells = Some(c),
+                Some(c) => d.cells = Some(Box::new(c)),
                 None => scene.warnings.push(format!(
                     "light \"{name}\": no curved path from the beam reaches its target box; its photons start on the box's straight shadow"
                 )),

@@ -45,6 +45,14 @@ impl Edit {
         }
     }
 
+    /// Whether ΔT depends on height alone (so an atmosphere keeps the symmetry of its Earth).
+    pub fn is_height_only(&self) -> bool {
+        match self {
+            Edit::Offset(_) | Edit::HotSurface(_) | Edit::Inversion(_) => true,
+            Edit::Bubble(_) | Edit::Grid(_) => false,
+        }
+    }
+
     /// The smallest and largest ΔT the edit can add, K.
     pub fn range_k(&self) -> (f64, f64) {
         match self {

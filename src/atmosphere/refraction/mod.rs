@@ -31,6 +31,10 @@
 //! - A. T. Young 2004, "Sunset science. IV. Low-altitude refraction", Astron. J. 127:3622.
 
 pub mod formulas;
+pub mod model;
+pub mod model_table;
+pub mod model_trace;
+pub mod quadrature;
 pub mod report;
 pub mod sun;
 mod trace;

@@ -23,6 +23,7 @@ pub use profile::Profile;
 pub use sum::Sum;
 pub use temperature_grid::{GridPressure, TemperatureGrid};
 
+use crate::atmosphere::Earth;
 use crate::field::GradientRegion;
 use crate::geometry::Aabb;
 use glam::DVec3;
@@ -99,6 +100,38 @@ impl IndexField {
             IndexField::Sum(s) => s.bumps.iter().fold(s.base.gradient_region(), |r, b| {
                 r.union(GradientRegion::Shell { centre: b.centre, r_min: 0.0, r_max: b.radius_m })
             }),
+        }
+    }
+
+    /// The centre about which n is spherically symmetric, if it is (n depends only on the
+    /// distance from it: a height profile over a spherical Earth). Light in such a field moves in
+    /// a plane through the centre, round it always the same way (the angular momentum
+    /// n·r × dr/ds is conserved: Born & Wolf, *Principles of Optics*, §3.2.1, Bouguer's formula).
+    pub fn radial_centre(&self) -> Option<DVec3> {
+        let centre = |e: &Earth| match e {
+            Earth::Spherical(s) => Some(s.centre),
+            Earth::Flat { .. } => None,
+        };
+        match self {
+            IndexField::Exponential(e) => centre(&e.earth),
+            IndexField::Profile(f) => centre(&f.earth),
+            IndexField::Atmosphere(a) => a.radial_centre(),
+            IndexField::Constant(_) | IndexField::Linear(_) | IndexField::TemperatureGrid(_) | IndexField::Sum(_) => {
+                None
+            }
+        }
+    }
+
+    /// For a field with a [`IndexField::radial_centre`]: the distances from the centre where ∇n
+    /// is not smooth (a standard atmosphere's layer boundaries), ascending, m — where an
+    /// integrator step should end rather than straddle. Empty for other fields.
+    pub fn kink_radii_m(&self) -> Vec<f64> {
+        match self {
+            IndexField::Atmosphere(a) => match (&a.earth, a.radial_centre()) {
+                (Earth::Spherical(s), Some(_)) => a.kink_heights_m().iter().map(|h| s.radius_m + h).collect(),
+                _ => Vec::new(),
+            },
+            _ => Vec::new(),
         }
     }
 
