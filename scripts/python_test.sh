@@ -10,8 +10,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 ./scripts/setup_venv.sh
 py="$root/.venv/bin/python"
-cargo build --release --quiet --bin morgana
 export PYO3_PYTHON="$py"
+cargo build --release --quiet --workspace --bin morgana
 rm -rf target/wheels
 (cd python && "$root/.venv/bin/maturin" build --release --quiet --interpreter "$py" --out "$root/target/wheels")
 "$py" -m pip install --quiet --force-reinstall --no-deps target/wheels/morgana-*.whl

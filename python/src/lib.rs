@@ -1,7 +1,7 @@
 //! The native module `morgana._native` of the Python package `morgana` (python/morgana/ wraps
 //! it in documented Python classes and NumPy arrays). Every entry point calls the same library
 //! code as the `morgana` command, so Python and the CLI give identical results for the same
-//! scene and seed. Errors become Python exceptions ([`errors`]); panics are caught at the
+//! scene and seed. Errors become Python exceptions (module `errors`); panics are caught at the
 //! boundary.
 
 mod dict_toml;
