@@ -117,7 +117,10 @@ def test_ctrl_c_stops_a_render_cleanly(tmp_path):
         ENDLESS
         + textwrap.dedent(
             """
-            import time
+            import signal
+            # A process started in the background by a non-interactive shell inherits SIGINT
+            # ignored, and Python then installs no handler: install the interactive one.
+            signal.signal(signal.SIGINT, signal.default_int_handler)
             print("started", flush=True)
             try:
                 morgana.render(ENDLESS, threads=1, progress=False)
@@ -133,7 +136,11 @@ def test_ctrl_c_stops_a_render_cleanly(tmp_path):
     time.sleep(1.5)
     sent = time.perf_counter()
     p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=60)
+    try:
+        out, err = p.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        raise
     stopped = time.perf_counter() - sent
     assert p.returncode == 0, err
     assert out.split() == ["interrupted", "alive"], (out, err)
