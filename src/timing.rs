@@ -92,6 +92,30 @@ impl Phases {
     }
 }
 
+/// When a run must stop early: at a wall-clock deadline (`--max-seconds`), when another thread
+/// raises a cancel flag (Ctrl-C in the Python package), either, or never. Work checks it between
+/// batches of photons and rows of pixels, so a run stops within one batch or row of the signal.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Stop<'a> {
+    /// The moment the time budget ends.
+    pub deadline: Option<Instant>,
+    /// A flag that, once true, stops the run.
+    pub cancel: Option<&'a std::sync::atomic::AtomicBool>,
+}
+
+impl Stop<'_> {
+    /// Whether the run must stop now.
+    pub fn reached(&self) -> bool {
+        self.deadline.is_some_and(|d| Instant::now() >= d)
+            || self.cancel.is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
+    }
+
+    /// Whether it stopped (or must stop) because of the cancel flag rather than the deadline.
+    pub fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,5 +141,19 @@ mod tests {
             assert!(s.took().seconds < 30.0, "no CPU time counted after 30 s of work");
         }
         assert!(s.took().seconds > 0.0);
+    }
+
+    #[test]
+    fn a_stop_is_reached_by_its_deadline_or_its_flag() {
+        use std::sync::atomic::{AtomicBool, Ordering};
+        assert!(!Stop::default().reached());
+        let past = Stop { deadline: Some(Instant::now()), cancel: None };
+        assert!(past.reached() && !past.cancelled());
+        let far = Instant::now() + std::time::Duration::from_secs(3600);
+        let flag = AtomicBool::new(false);
+        let stop = Stop { deadline: Some(far), cancel: Some(&flag) };
+        assert!(!stop.reached());
+        flag.store(true, Ordering::Relaxed);
+        assert!(stop.reached() && stop.cancelled());
     }
 }

@@ -109,6 +109,8 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
         quiet: args.quiet,
         max_memory: args.max_memory.map_or(MemoryLimit::Available, MemoryLimit::Limit),
         deadline: args.max_seconds.map(|s| start + std::time::Duration::from_secs_f64(s)),
+        cancel: None,
+        observer: None,
     };
     let rendered = pool.install(|| render_on(comm, &scene, &opts, dist))?;
     let Some(rendered) = rendered else { return Ok(String::new()) };

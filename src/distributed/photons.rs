@@ -53,7 +53,7 @@ pub fn my_share(comm: &Comm, emitted: u64) -> (std::ops::Range<u64>, u64) {
 pub fn shoot(
     comm: &Comm,
     scene: &Scene,
-    deadline: Option<std::time::Instant>,
+    deadline: crate::timing::Stop,
     kind: MapKind,
     emitted: u64,
     pass: &str,

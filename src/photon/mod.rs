@@ -33,9 +33,9 @@ pub struct PassSettings<'a> {
     pub photon_sensors: bool,
     /// The wavelengths simulated, nm; light re-emitted outside them is absorbed.
     pub range_nm: (f64, f64),
-    /// When the run's time budget ends: batches not started by then are skipped (and counted
-    /// in [`PhotonStats::stopped_batches`]).
-    pub deadline: Option<std::time::Instant>,
+    /// When the run must stop (time budget, cancel flag): batches not started by then are
+    /// skipped (and counted in [`PhotonStats::stopped_batches`]).
+    pub deadline: crate::timing::Stop<'a>,
 }
 
 impl<'a> PassSettings<'a> {
@@ -46,7 +46,7 @@ impl<'a> PassSettings<'a> {
             volume_map: scene.plan.volume_map.on,
             photon_sensors: !scene.sensors.is_empty(),
             range_nm: (scene.bands.min_nm, scene.bands.max_nm),
-            deadline: None,
+            deadline: crate::timing::Stop::default(),
         }
     }
 }
@@ -128,7 +128,7 @@ pub fn shoot_batches(
     // Each batch traces into a reused scratch sink (its vectors grow once per worker, not once
     // per batch) and returns an exact-size copy.
     let trace_batch = |out: &mut PhotonSink, b: u64| {
-        if pass.deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+        if pass.deadline.reached() {
             return (PhotonSink::default(), PhotonStats { stopped_batches: 1, ..PhotonStats::default() });
         }
         let mut rng = Rng::for_task(seed, stream, b);

@@ -11,7 +11,7 @@ mod lanes;
 pub mod memory;
 mod path;
 pub mod photon_pass;
-mod progress;
+pub mod progress;
 pub mod sensors;
 pub mod stats;
 
@@ -40,6 +40,19 @@ pub struct RenderOptions {
     /// When the run must stop (`--max-seconds`): a render still running then stops cleanly
     /// with an error saying how far it got, and writes nothing.
     pub deadline: Option<std::time::Instant>,
+    /// A flag another thread may raise to stop the run as the deadline would (Ctrl-C in the
+    /// Python package); the error then says the run was cancelled.
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// Where the progress of the current phase can be read from another thread (the Python
+    /// package's progress bar); with it, no progress bar is drawn on stderr.
+    pub observer: Option<std::sync::Arc<progress::Observer>>,
+}
+
+impl RenderOptions {
+    /// When the run must stop: its deadline or its cancel flag.
+    pub fn stop(&self) -> crate::timing::Stop<'_> {
+        crate::timing::Stop { deadline: self.deadline, cancel: self.cancel.as_deref() }
+    }
 }
 
 /// A finished render.
@@ -80,15 +93,19 @@ pub fn render_on(
     let mut est = memory::estimate(scene, &pass, comm.size());
     distributed::fault::agree(comm, memory::check(&mut est, opts.max_memory))?;
     stats.memory = est;
-    let maps = photon_pass::build(&mut rank, scene, quiet, opts.deadline, &mut stats.phases, &mut stats.maps)?;
+    let bars = progress::Bars { quiet, observer: opts.observer.as_deref() };
+    let maps = photon_pass::build(&mut rank, scene, bars, opts.stop(), &mut stats.phases, &mut stats.maps)?;
     let stopped: u64 = stats.maps.iter().map(|m| m.stats.stopped_batches).sum();
     if stopped > 0 {
         let left: Vec<String> = stats.maps.iter().map(|m| format!("{} map {} photons", m.map, m.emitted)).collect();
-        return Err(out_of_time(format!(
-            "during the photon pass ({stopped} batches of {} photons not shot; passes: {})",
-            crate::photon::BATCH,
-            left.join(", ")
-        )));
+        return Err(out_of_time(
+            opts,
+            format!(
+                "during the photon pass ({stopped} batches of {} photons not shot; passes: {})",
+                crate::photon::BATCH,
+                left.join(", ")
+            ),
+        ));
     }
     for m in stats.maps.iter().filter(|m| m.emitted > 0 && m.stored == 0) {
         stats.warnings.push(format!(
@@ -101,7 +118,7 @@ pub fn render_on(
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
     let t = Span::start();
-    let (data, work, curved) = eye_pass(&rank, scene, &maps, quiet, opts.deadline);
+    let (data, work, curved) = eye_pass(&rank, scene, &maps, bars, opts.stop());
     stats.phases.add("eye pass", t);
     rank.report.eye = work;
     rank.report.eye_curved = curved;
@@ -109,10 +126,13 @@ pub fn render_on(
     let stopped_rows: u64 = ranks.iter().map(|r| r.eye.rays.stopped_rows).sum();
     if stopped_rows > 0 {
         let h = scene.camera.height;
-        return Err(out_of_time(format!(
-            "during the eye pass ({} of {h} rows rendered; the photon maps were complete)",
-            h as u64 - stopped_rows.min(h as u64)
-        )));
+        return Err(out_of_time(
+            opts,
+            format!(
+                "during the eye pass ({} of {h} rows rendered; the photon maps were complete)",
+                h as u64 - stopped_rows.min(h as u64)
+            ),
+        ));
     }
     stats.memory.measured_peak_bytes = crate::memory::peak_rss_bytes();
     let Some(data) = data else { return Ok(None) };
@@ -133,9 +153,11 @@ pub fn render_on(
     Ok(Some(Rendered { image, stats, sensors, profiles }))
 }
 
-/// The error of a run whose time budget ran out: exit code 1, nothing written.
-fn out_of_time(progress: String) -> crate::error::Error {
-    crate::error::Error::internal(format!("the time budget (--max-seconds) ran out {progress}; no output was written"))
+/// The error of a run whose time budget ran out or that was cancelled: exit code 1, nothing
+/// written.
+fn out_of_time(opts: &RenderOptions, progress: String) -> crate::error::Error {
+    let why = if opts.stop().cancelled() { "the run was cancelled" } else { "the time budget (--max-seconds) ran out" };
+    crate::error::Error::internal(format!("{why} {progress}; no output was written"))
 }
 
 /// This rank's part of the eye pass: the image's band averages (row-major, `bands.count` per
@@ -144,22 +166,26 @@ fn eye_pass(
     rank: &Rank,
     scene: &Scene,
     maps: &photon_pass::Maps,
-    quiet: bool,
-    deadline: Option<std::time::Instant>,
+    bars: progress::Bars,
+    stop: crate::timing::Stop,
 ) -> (Option<Vec<f32>>, distributed::eye::EyeWork, crate::raypath::CurvedWorkTotals) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
     let tracer = Tracer::new(scene, maps);
     let ranks = rank.comm.size();
-    progress::note(quiet, ranks, &format!("eye pass: {h} rows over {ranks} ranks, {:?} leases", rank.options.schedule));
-    let pb = progress::bar(quiet, h as u64, "eye pass");
+    progress::note(
+        bars.quiet,
+        ranks,
+        &format!("eye pass: {h} rows over {ranks} ranks, {:?} leases", rank.options.schedule),
+    );
+    let pb = bars.bar(h as u64, "eye pass");
     let render_rows = |rows: std::ops::Range<usize>| -> (Vec<f32>, RayCounts) {
         let done: Vec<(Vec<f32>, RayCounts)> = rows
             .into_par_iter()
             .map_init(Scratch::default, |sc, y| {
                 let before = sc.rays;
                 let mut row = vec![0f32; w * nb];
-                if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                if stop.reached() {
                     pb.inc(1);
                     return (row, RayCounts { stopped_rows: 1, ..RayCounts::default() });
                 }

@@ -32,8 +32,8 @@ pub struct Maps {
 pub fn build(
     rank: &mut Rank,
     scene: &Scene,
-    quiet: bool,
-    deadline: Option<std::time::Instant>,
+    bars: progress::Bars,
+    stop: crate::timing::Stop,
     phases: &mut Phases,
     reports: &mut Vec<MapReport>,
 ) -> Result<Maps> {
@@ -41,7 +41,7 @@ pub fn build(
     let plan = &scene.plan;
     let mut maps = Maps::default();
     if plan.global_map.on || plan.volume_map.on {
-        let shot = shoot(rank, scene, MapKind::Global, s.photons, "global", (quiet, deadline), phases);
+        let shot = shoot(rank, scene, MapKind::Global, s.photons, "global", (bars, stop), phases);
         if plan.global_map.on {
             let (map, report) = build_map(rank, &shot.sink.surface, "global", s.photons, &shot, phases)?;
             reports.push(report);
@@ -54,7 +54,7 @@ pub fn build(
         }
     }
     if plan.caustic_map.on {
-        let shot = shoot(rank, scene, MapKind::Caustic, s.caustic_photons, "caustic", (quiet, deadline), phases);
+        let shot = shoot(rank, scene, MapKind::Caustic, s.caustic_photons, "caustic", (bars, stop), phases);
         let (map, report) = build_map(rank, &shot.sink.surface, "caustic", s.caustic_photons, &shot, phases)?;
         reports.push(report);
         maps.caustic = Some(map);
@@ -81,26 +81,26 @@ pub fn build(
 }
 
 /// This rank's share of a pass (statistics summed over ranks), with its time as "NAME photon
-/// tracing"; `(quiet, deadline)`: no progress bar, and when batches stop being started.
+/// tracing"; `(bars, stop)`: where progress shows, and when batches stop being started.
 fn shoot(
     rank: &mut Rank,
     scene: &Scene,
     kind: MapKind,
     emitted: u64,
     name: &str,
-    (quiet, deadline): (bool, Option<std::time::Instant>),
+    (bars, stop): (progress::Bars, crate::timing::Stop),
     phases: &mut Phases,
 ) -> Shot {
     let batches = crate::photon::batch_count(emitted);
     progress::note(
-        quiet,
+        bars.quiet,
         rank.comm.size(),
         &format!("{name} photons: {batches} batches over {} ranks", rank.comm.size()),
     );
     let t = Span::start();
     let (_, mine) = distributed::photons::my_share(rank.comm, emitted);
-    let pb = progress::bar(quiet, mine, &format!("{name} photons"));
-    let shot = distributed::photons::shoot(rank.comm, scene, deadline, kind, emitted, name, &|n| pb.inc(n));
+    let pb = bars.bar(mine, &format!("{name} photons"));
+    let shot = distributed::photons::shoot(rank.comm, scene, stop, kind, emitted, name, &|n| pb.inc(n));
     pb.finish_and_clear();
     phases.add(&format!("{name} photon tracing"), t);
     rank.report.photons.push(shot.mine.clone());
