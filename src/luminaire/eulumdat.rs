@@ -301,6 +301,7 @@ pub fn read(src: &SourceText, _path: &Path) -> Result<Photometry, ParseError> {
     if h.dg > 0.0 && g.iter().enumerate().any(|(i, x)| (x - g[0] - i as f64 * h.dg).abs() > 1e-6) {
         notes.push(format!("Dg = {} but the γ-angles are not evenly spaced by it; the listed angles are used", h.dg));
     }
+    let table_line = tok.rest().1.unwrap_or(l.next);
     let stored = intensities(&mut tok, &h, &c, &g)?;
     let (left, first) = tok.rest();
     if let Some(line) = first {
@@ -309,7 +310,7 @@ pub fn read(src: &SourceText, _path: &Path) -> Result<Photometry, ParseError> {
     let lamp_flux = lamps[0].flux_lm.unwrap_or(0.0);
     let symmetry = symmetry_of(h.isym);
     let stored_grid = (stored.len(), g.len());
-    let web = build_web(stored, symmetry, g, h.conversion * lamp_flux / 1000.0, &mut notes)?;
+    let web = build_web(stored, symmetry, g, h.conversion * lamp_flux / 1000.0, table_line, &mut notes)?;
     Ok(Photometry {
         format: "EULUMDAT".into(),
         encoding: src.encoding,
@@ -345,6 +346,7 @@ fn build_web(
     symmetry: Symmetry,
     g: Vec<f64>,
     cd_per_value: f64,
+    table_line: usize,
     notes: &mut Vec<String>,
 ) -> Result<PhotometricWeb, ParseError> {
     let mut planes = symmetry::expand(stored, symmetry);
@@ -356,7 +358,14 @@ fn build_web(
     let c: Vec<f64> = planes.iter().map(|p| p.0).collect();
     let cd: Vec<f64> = planes.into_iter().flat_map(|p| p.1).map(|v| v * cd_per_value).collect();
     let web = PhotometricWeb::new(WebAxes::TYPE_C, c, true, g, cd)
-        .map_err(|e| ParseError::whole_file("EULUMDAT intensity table (field 30)", e, "a valid photometric web"))?;
+        .map_err(|e| {
+            ParseError::new(
+                table_line,
+                "EULUMDAT intensity table (field 30)",
+                e,
+                "a valid photometric web (the values in cd/klm times the lamp flux, field 26c, and the conversion factor, field 22)",
+            )
+        })?;
     if let Some(n) = web.pole_note() {
         notes.push(n.to_string());
     }
@@ -476,6 +485,13 @@ mod tests {
         let e = read_str(&full.replace("\n140\n", "\n-140\n")).unwrap_err();
         assert!(e.field.contains("field 30") && e.field.contains("C90° γ45°"), "{e}");
         assert_eq!(e.found, "-140");
+        // A lamp flux that makes the table's flux overflow: the table's first line (line 50 of
+        // this file) and the fields that scale it (the fuzzer found it without a line).
+        let huge = full.replacen("\nLED\n2000\n", "\nLED\n1e308\n", 1).replacen("\n80\n1.0\n", "\n80\n1e6\n", 1);
+        assert_ne!(huge, full);
+        let e = read_str(&huge).unwrap_err();
+        assert_eq!(e.line, Some(50), "{e}");
+        assert!(e.field.contains("field 30") && e.expected.contains("26c"), "{e}");
     }
 
     #[test]

@@ -220,11 +220,14 @@ fn positive(x: f64, line: usize, field: &str) -> Result<(), ParseError> {
 }
 
 /// `n` strictly ascending angles within [lo, hi].
-fn angle_list(tok: &mut Tokens, n: usize, which: &str, lo: f64, hi: f64) -> Result<Vec<f64>, ParseError> {
+/// The `n` ascending angles of a list, and the line of its last one (0 for an empty list).
+fn angle_list(tok: &mut Tokens, n: usize, which: &str, lo: f64, hi: f64) -> Result<(Vec<f64>, usize), ParseError> {
     let mut v: Vec<f64> = Vec::with_capacity(n);
+    let mut last_line = 0;
     for i in 0..n {
         let field = format!("LM-63 {which} angle {} of {n}", i + 1);
         let (a, line) = tok.number_in(&field, lo, hi)?;
+        last_line = line;
         if let Some(prev) = v.last()
             && a <= *prev
         {
@@ -232,7 +235,7 @@ fn angle_list(tok: &mut Tokens, n: usize, which: &str, lo: f64, hi: f64) -> Resu
         }
         v.push(a);
     }
-    Ok(v)
+    Ok((v, last_line))
 }
 
 /// The candela table: one plane per horizontal angle.
@@ -279,8 +282,8 @@ pub fn read(src: &SourceText, path: &Path) -> Result<Photometry, ParseError> {
         PhotometricType::C => (0.0, 180.0, 0.0, 360.0),
         _ => (-90.0, 90.0, -180.0, 180.0),
     };
-    let v = angle_list(&mut tok, p.nv, "vertical", vlo, vhi)?;
-    let hz = angle_list(&mut tok, p.nh, "horizontal", hlo, hhi)?;
+    let (v, _) = angle_list(&mut tok, p.nv, "vertical", vlo, vhi)?;
+    let (hz, hz_line) = angle_list(&mut tok, p.nh, "horizontal", hlo, hhi)?;
     let planes = table(&mut tok, &hz, &v)?;
     let (left, first) = tok.rest();
     if let Some(line) = first {
@@ -290,7 +293,7 @@ pub fn read(src: &SourceText, path: &Path) -> Result<Photometry, ParseError> {
     if matches!(h.edition, Edition::E1986 | Edition::E1991 | Edition::E1995) {
         scale *= p.factor2;
     }
-    let (symmetry, web) = build_web(p.ptype, planes, v, scale, &mut notes)?;
+    let (symmetry, web) = build_web(p.ptype, planes, v, scale, hz_line, &mut notes)?;
     Ok(photometry(src, &h, &p, symmetry, web, tilt, notes))
 }
 
@@ -347,11 +350,13 @@ fn build_web(
     planes: Vec<Plane>,
     v: Vec<f64>,
     scale: f64,
+    horizontal_line: usize,
     notes: &mut Vec<String>,
 ) -> Result<(Symmetry, PhotometricWeb), ParseError> {
     let symmetry = match ptype {
         PhotometricType::C => type_c_symmetry(&planes.iter().map(|p| p.0).collect::<Vec<_>>()).map_err(|found| {
-            ParseError::whole_file(
+            ParseError::new(
+                horizontal_line,
                 "LM-63 horizontal angles (type C)",
                 found,
                 "last 0° (rotational), 0–90°, 0–180°, 90–270°, or 0° to more than 180°",
@@ -521,6 +526,8 @@ mod tests {
         assert!(e.expected.contains("ascending"), "{e}");
         let e = read_str(&base.replace("0 45 90\n", "0 45 120\n")).unwrap_err();
         assert!(e.field.contains("horizontal angles") && e.found == "first 0°, last 120°", "{e}");
+        // The line of the list's last angle (the fuzzer found this error without a line).
+        assert_eq!(e.line, Some(12), "{e}");
         let e = read_str(&base.replace("TILT=NONE\n", "")).unwrap_err();
         assert!(e.field.contains("TILT"), "{e}");
         let e = read_str(&base.replace("1 50000", "1 0")).unwrap_err();

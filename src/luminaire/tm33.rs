@@ -479,9 +479,16 @@ fn intensity_web(
     }
     let mut grid: Vec<Option<f64>> = vec![None; r.nh * r.nv];
     for d in &r.values {
-        let (Ok(i), Ok(j)) = (hs.binary_search_by(|x| x.total_cmp(&d.h)), vs.binary_search_by(|x| x.total_cmp(&d.v)))
-        else {
-            return Err(ParseError::whole_file(&data_field, "an angle not in the grid", "a full grid"));
+        // `+ 0.0` makes −0 equal 0, as in `distinct` (total_cmp orders them apart; the fuzzer
+        // wrote "-0.0").
+        let find = |grid: &[f64], a: f64| grid.binary_search_by(|x| x.total_cmp(&(a + 0.0)));
+        let (Ok(i), Ok(j)) = (find(&hs, d.h), find(&vs, d.v)) else {
+            return Err(ParseError::new(
+                d.line,
+                &data_field,
+                format!("the angle pair ({}°, {}°), not in the grid", d.h, d.v),
+                "a full grid",
+            ));
         };
         if grid[i * r.nv + j].replace(d.cd).is_some() {
             return Err(ParseError::new(
@@ -503,7 +510,7 @@ fn intensity_web(
 }
 
 fn distinct(xs: impl Iterator<Item = f64>) -> Vec<f64> {
-    let mut v: Vec<f64> = xs.collect();
+    let mut v: Vec<f64> = xs.map(|x| x + 0.0).collect();
     v.sort_by(f64::total_cmp);
     v.dedup();
     v
@@ -661,6 +668,17 @@ mod tests {
         let p = read_str(&tm33_23(&[0.0, 90.0], "<Symm>Symm _ Arbitrary</Symm>", "")).unwrap();
         assert_eq!(p.symmetry, Symmetry::Quadrant);
         assert_eq!(p.notes.len(), 1);
+    }
+
+    #[test]
+    fn minus_zero_is_the_angle_zero() {
+        // The fuzzer's luminaire target: v="-0.0" in one IntData was "an angle not in the grid"
+        // (total_cmp orders −0 before 0), a refusal without a line. (Every pair of distinct
+        // angles is now on the grid, so that refusal is left for NaN angles, with their line.)
+        let good = tm33_23(&[0.0, 90.0], "", "");
+        let minus = good.replacen("<IntData h=\"90\" v=\"0\">", "<IntData h=\"90\" v=\"-0.0\">", 1);
+        assert_ne!(minus, good);
+        assert_eq!(read_str(&minus).unwrap().web, read_str(&good).unwrap().web);
     }
 
     #[test]

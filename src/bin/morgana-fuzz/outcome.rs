@@ -189,7 +189,8 @@ pub fn has_non_finite_word(text: &str) -> bool {
 /// The non-finite words of a line (as [`has_non_finite_word`] finds them), with their signs,
 /// joined by spaces: `+inf`, `NaN`.
 pub fn non_finite_words(line: &str) -> String {
-    line.split(|c: char| c.is_whitespace() || c == ',' || c == '"' || c == '=' || c == ':')
+    // Split at anything that cannot be part of a signed number ("(catalogue -inf)" gives "-inf").
+    line.split(|c: char| !(c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.' | '_')))
         .filter(|w| has_non_finite_word(w))
         .collect::<Vec<_>>()
         .join(" ")
@@ -289,5 +290,6 @@ mod tests {
         assert!(has_non_finite_word("flux NaN lm"));
         assert!(has_non_finite_word("peak -inf cd"));
         assert!(!has_non_finite_word("info: influx 3.5"));
+        assert_eq!(super::non_finite_words("downlight (catalogue -inf), nan"), "-inf nan");
     }
 }

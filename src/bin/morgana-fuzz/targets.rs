@@ -633,7 +633,16 @@ fn judge(
     match r {
         Ok(text) => {
             // A word of the input echoed (a maker named "+inf") is not a number the code made.
-            let echoed = |w: &str| inputs.iter().any(|(_, b)| String::from_utf8_lossy(b).contains(w));
+            // A GLDF is a zip: its words are in its entries, not in its compressed bytes.
+            let texts: Vec<String> = inputs
+                .iter()
+                .flat_map(|(name, b)| {
+                    let entries = if name.ends_with(".gldf") { bytes_of_gldf(b) } else { Vec::new() };
+                    std::iter::once(b.clone()).chain(entries.into_iter().map(|(_, e)| e))
+                })
+                .map(|b| String::from_utf8_lossy(&b).into_owned())
+                .collect();
+            let echoed = |w: &str| texts.iter().any(|t| t.contains(w));
             let made = |l: &&str| has_non_finite_word(l) && !echoed(&non_finite_words(l));
             if let Some(l) = text.lines().find(made) {
                 return Outcome::new(Class::NonFinite, format!("printed: {l}"));
