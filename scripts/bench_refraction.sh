@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs="${1:-7}"
 shift || true
-cargo build --release --quiet --bin morgana
+[ "${SKIP_BUILD:-0}" = 1 ] || cargo build --release --quiet --bin morgana
 bin=target/release/morgana
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
