@@ -38,6 +38,16 @@ pub fn splitmix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The seed of progressive pass `pass` (0-based) of a run seeded with `seed`: `seed` itself for
+/// the first pass (so a one-pass run is the run it always was), and a SplitMix64 hash of
+/// (seed, pass) for the others, so every pass draws from streams independent of the others'.
+pub fn pass_seed(seed: u64, pass: u32) -> u64 {
+    if pass == 0 {
+        return seed;
+    }
+    splitmix64(seed ^ splitmix64(0x5EED_0000_0000_0000 ^ u64::from(pass)))
+}
+
 /// A per-task random generator.
 #[derive(Clone, Debug)]
 pub struct Rng(Pcg64Mcg);
@@ -74,6 +84,14 @@ impl Rng {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pass_seeds_keep_the_first_and_differ_after() {
+        assert_eq!(pass_seed(7, 0), 7);
+        let seeds: std::collections::BTreeSet<u64> = (0..1000).map(|p| pass_seed(7, p)).collect();
+        assert_eq!(seeds.len(), 1000);
+        assert_ne!(pass_seed(7, 1), pass_seed(8, 1));
+    }
 
     #[test]
     fn streams_and_tasks_differ_and_repeat() {

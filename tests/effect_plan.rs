@@ -204,3 +204,11 @@ fn inelastic_scattering() {
     );
     check("inelastic_scattering", &off, &on, &|r| maps_stat(r, "reemitted") + maps_stat(r, "raman_events"));
 }
+
+#[test]
+fn progressive_passes() {
+    // Work: the passes after the first, and the report says which rule stopped the run.
+    let (off, on) = (scene(DIFFUSE, "", ""), scene(DIFFUSE, "", "passes = 3"));
+    check("progressive_passes", &off, &on, &|r| r["progressive"]["passes"].as_u64().unwrap_or(0) - 1);
+    assert_eq!(report(&on)["progressive"]["stopped"]["rule"], "passes");
+}

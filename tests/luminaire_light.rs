@@ -246,7 +246,7 @@ fn a_sensor_reads_direct_illuminance_i_cos3_over_h2() {
     );
     let s = scene(&toml);
     let maps = morgana::render::photon_pass::Maps::default();
-    let r = &morgana::render::sensors::evaluate_all(&s, &maps)[0];
+    let r = &morgana::render::sensors::evaluate_all(&s, &s.integrator, &maps)[0];
     assert_eq!(r.columns[0].0, "E_lx");
     for (p, e) in r.points.iter().zip(&r.columns[0].1) {
         let want = illuminance(3.0, p.x, p.z);

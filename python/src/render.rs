@@ -62,7 +62,14 @@ pub fn render(
     };
     let cancel = Arc::new(AtomicBool::new(false));
     let observer = progress.as_ref().map(|_| Arc::new(Observer::default()));
-    let opts = RenderOptions { quiet, max_memory, deadline, cancel: Some(cancel.clone()), observer: observer.clone() };
+    let opts = RenderOptions {
+        quiet,
+        max_memory,
+        deadline,
+        cancel: Some(cancel.clone()),
+        observer: observer.clone(),
+        started: Some(start),
+    };
     let shared = scene.scene.clone();
     let (tx, rx) = mpsc::channel::<Outcome>();
     std::thread::Builder::new()

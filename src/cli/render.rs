@@ -45,6 +45,41 @@ pub struct RenderArgs {
     /// "static" (interleaved blocks). The image does not depend on it.
     #[arg(long, default_value = "dynamic", value_parser = parse_schedule)]
     pub schedule: Schedule,
+    /// Progressive passes and when they stop.
+    #[command(flatten)]
+    pub stop: StopArgs,
+}
+
+/// When progressive passes stop (each flag overrides its `[integrator]` key; without any, one
+/// pass). See the book's "Convergence" page.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct StopArgs {
+    /// Progressive passes to run (each with fresh photon maps and smaller gather radii).
+    #[arg(long, allow_negative_numbers = true)]
+    pub passes: Option<i64>,
+    /// Wall-clock budget of the whole run, e.g. 90s, 1.5min, 2h: passes run while the next is
+    /// predicted (from the last one's time) to end within it.
+    #[arg(long, allow_hyphen_values = true)]
+    pub time: Option<String>,
+    /// Stop when the relative standard error of the target's mean falls below this, e.g. 0.01.
+    #[arg(long, allow_negative_numbers = true)]
+    pub target_rel_error: Option<f64>,
+    /// What --target-rel-error is measured on: "image" (default), a sensor's name, or a pixel
+    /// region x0,y0,x1,y1 (x1, y1 exclusive).
+    #[arg(long)]
+    pub target: Option<String>,
+}
+
+impl StopArgs {
+    /// The flags as the scene's stopping rules take them.
+    pub fn flags(&self) -> crate::scene::progressive::Flags {
+        crate::scene::progressive::Flags {
+            passes: self.passes,
+            time: self.time.clone(),
+            target_rel_error: self.target_rel_error,
+            target: self.target.clone(),
+        }
+    }
 }
 
 /// Renders on every rank of this run's comm (one process, or an MPI job under `mpirun`); rank
@@ -95,7 +130,8 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
         builder = builder.num_threads(t);
     }
     let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
-    let scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
+    let mut scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
+    apply_stop(&mut scene, &args.stop)?;
     // Rank 0 writes the outputs: it checks where, before any work, and every rank learns.
     let destination = if comm.is_root() { crate::output::check_destination(&scene, &args.out, true) } else { Ok(()) };
     distributed::fault::agree(comm, destination)?;
@@ -111,6 +147,7 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
         deadline: args.max_seconds.map(|s| start + std::time::Duration::from_secs_f64(s)),
         cancel: None,
         observer: None,
+        started: Some(start),
     };
     let rendered = pool.install(|| render_on(comm, &scene, &opts, dist))?;
     let Some(rendered) = rendered else { return Ok(String::new()) };
@@ -120,6 +157,20 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
     let threads = pool.current_num_threads();
     let outputs = crate::output::write_outputs(&scene, &rendered, &args.out, threads, start.elapsed().as_secs_f64())?;
     Ok(outputs.iter().map(|p| format!("wrote {}\n", p.display())).collect())
+}
+
+/// Applies the command line's stopping rules to the scene and checks the target names one of
+/// its sensors or a region of its image.
+fn apply_stop(scene: &mut crate::scene::Scene, stop: &StopArgs) -> Result<()> {
+    let p = &mut scene.integrator.progressive;
+    p.apply(&stop.flags())?;
+    let names: Vec<String> = scene.sensors.iter().map(|s| s.name.clone()).collect();
+    p.check_target(&names, scene.camera.width, scene.camera.height).map_err(|e| {
+        let flag = stop.target.as_ref().map_or("[integrator] target".to_string(), |t| format!("--target {t}"));
+        Error::input(None, format!("{flag} {e}"))
+    })?;
+    scene.plan.progressive_passes = crate::scene::EffectPlan::progressive_decision(&scene.integrator);
+    Ok(())
 }
 
 fn parse_schedule(s: &str) -> std::result::Result<Schedule, String> {

@@ -61,6 +61,10 @@ pub struct TonemapArgs {
     /// CSV file for --region: x, y, luminance, scotopic luminance, illuminance per pixel.
     #[arg(long)]
     pub csv: Option<PathBuf>,
+    /// Show the relative standard error of each pixel (from a render of several passes) in
+    /// false colour instead of the image.
+    #[arg(long)]
+    pub stderr: bool,
 }
 
 impl TonemapArgs {
@@ -90,6 +94,7 @@ impl TonemapArgs {
             options,
             region: self.region.clone(),
             csv: self.csv.clone(),
+            stderr: self.stderr,
         })
     }
 }
@@ -115,6 +120,8 @@ pub struct TonemapCommand {
     pub region: Option<String>,
     /// `--csv FILE`: where the region's luminance goes.
     pub csv: Option<PathBuf>,
+    /// `--stderr`: draw the relative standard error instead of the image.
+    pub stderr: bool,
 }
 
 /// The command-line spelling of an `[output]` option name.
@@ -137,6 +144,9 @@ pub fn run_args(args: &TonemapArgs) -> Result<String> {
 /// Runs the command; returns the lines to print (what was written and how).
 pub fn run(cmd: &TonemapCommand) -> Result<Vec<String>> {
     let settings = cmd.options.validate().map_err(option_error)?;
+    if cmd.stderr {
+        return run_stderr(cmd);
+    }
     let region = match (&cmd.region, &cmd.csv) {
         (Some(r), Some(_)) => Some(Region::parse(r).map_err(|m| Error::input(None, format!("--region: {m}")))?),
         (None, None) => None,
@@ -168,6 +178,26 @@ pub fn run(cmd: &TonemapCommand) -> Result<Vec<String>> {
         s.commit().map_err(|e| Error::internal(format!("cannot write {}: {e}", target.display())))?;
         lines.insert(0, format!("wrote {}", target.display()));
     }
+    Ok(lines)
+}
+
+/// `--stderr`: the relative-error map of the input's standard-error layer.
+fn run_stderr(cmd: &TonemapCommand) -> Result<Vec<String>> {
+    if cmd.region.is_some() || cmd.csv.is_some() || cmd.options.false_colour || cmd.options.operator.is_some() {
+        return Err(Error::input(
+            None,
+            "--stderr draws the relative standard error by itself: leave out --region, --csv, --false-colour and --operator",
+        ));
+    }
+    super::check_output_file("--out", &cmd.out)?;
+    let e = crate::tonemap::stderr_map::read_relative_error(&cmd.input)
+        .map_err(|m| Error::input(Some(Location::file(&cmd.input)), m))?;
+    let out = crate::tonemap::relative_error_false_colour(&e);
+    let s = stage(&cmd.out, |p| write_rgb8(p, out.width, out.height, &out.rgb))?;
+    let target = s.target.clone();
+    s.commit().map_err(|e| Error::internal(format!("cannot write {}: {e}", target.display())))?;
+    let mut lines = vec![format!("wrote {}", target.display())];
+    lines.extend(out.notes.iter().map(|n| format!("  {n}")));
     Ok(lines)
 }
 

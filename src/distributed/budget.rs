@@ -58,6 +58,11 @@ impl Budget {
         self.held
     }
 
+    /// Forgets every map held (a progressive pass dropped its maps before the next builds its own).
+    pub fn release_all(&mut self) {
+        self.held = 0;
+    }
+
     /// Checks that `what` (`bytes` on every rank) fits, on every rank; records it as held.
     /// Collective: if it does not fit on some rank, every rank returns that rank's error.
     pub fn reserve(&mut self, comm: &Comm, what: &str, bytes: u64) -> Result<()> {

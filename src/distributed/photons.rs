@@ -48,11 +48,13 @@ pub fn my_share(comm: &Comm, emitted: u64) -> (std::ops::Range<u64>, u64) {
     (batches, photons)
 }
 
-/// Shoots this rank's share of a pass and sums the statistics over ranks. Collective.
+/// Shoots this rank's share of a pass seeded with `seed` and sums the statistics over ranks.
+/// Collective.
 #[allow(clippy::too_many_arguments)]
 pub fn shoot(
     comm: &Comm,
     scene: &Scene,
+    seed: u64,
     deadline: crate::timing::Stop,
     kind: MapKind,
     emitted: u64,
@@ -66,7 +68,7 @@ pub fn shoot(
         &photon::PassSettings { deadline, ..photon::PassSettings::of(scene) },
         kind,
         emitted,
-        scene.integrator.seed,
+        seed,
         batches.clone(),
         on_batch,
     );

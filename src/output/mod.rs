@@ -79,7 +79,9 @@ pub fn write_outputs(
     let mut next = || dir.join(files.next().map_or("unplanned", |n| n.as_str()));
     let mut staged: Vec<Staged> = Vec::new();
     if o.exr {
-        stage(&mut staged, next(), &|p| crate::spectrum::exr::write_spectral_exr(p, &r.image))?;
+        stage(&mut staged, next(), &|p| {
+            crate::spectrum::exr::write_spectral_exr_with_error(p, &r.image, r.std_error.as_deref())
+        })?;
     }
     if o.png {
         stage(&mut staged, next(), &|p| match &o.tone {

@@ -19,6 +19,7 @@ mod filter;
 mod irradiance;
 mod kdtree;
 mod photon;
+pub mod progressive;
 
 pub use crate::spectrum::BandValues;
 pub use estimate::{Estimator, Paths};

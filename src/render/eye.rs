@@ -30,7 +30,7 @@ use crate::media::{Medium, tracking};
 use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
-use crate::scene::Scene;
+use crate::scene::{IntegratorSettings, Scene};
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -104,9 +104,9 @@ pub struct EyeTracer<'a> {
 }
 
 impl<'a> EyeTracer<'a> {
-    /// An eye tracer over `scene` reading `maps` with the scene's estimate settings.
-    pub fn new(scene: &'a Scene, maps: &'a Maps) -> EyeTracer<'a> {
-        let s = &scene.integrator;
+    /// An eye tracer over `scene` reading `maps` with the estimate settings `s` (the scene's
+    /// own, or a progressive pass's: see [`IntegratorSettings::for_pass`]).
+    pub fn new(scene: &'a Scene, s: &IntegratorSettings, maps: &'a Maps) -> EyeTracer<'a> {
         let est =
             |map, k, max_radius, paths| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands, paths };
         // Under shadow rays the maps' direct photons are left out (the rays count that light).

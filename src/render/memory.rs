@@ -22,6 +22,11 @@
 //!   outputs      4·W·H·(B + 3) (EXR channels) + 3·W·H (PNG bytes) + the image
 //! ```
 //!
+//! A run that may make several progressive passes also holds, through every phase of its
+//! passes after the first, the running mean and spread of each band value (2 · 8·W·H·B), and
+//! writes their standard errors (4·W·H·B, and as many EXR channels): the maps of one pass are
+//! dropped before the next builds its own, so the rest stays that of one pass.
+//!
 //! and the estimate is the scene's memory plus the largest of the phases (with the maps held
 //! from earlier phases). The constants are the sizes of `PhotonRecord` (96 bytes) and `Photon`
 //! (32), and the layouts of the irradiance cache and the image; `scripts/memory_check.sh`
@@ -121,15 +126,16 @@ pub fn estimate(scene: &Scene, pass: &PassSettings, ranks: usize) -> MemoryEstim
     let irradiance_build = (8.0 * bands * n_irr).max(4.0 * bands * n_irr + 76.0 * n_irr + nodes_bytes(n_irr));
     let pixels = (scene.camera.width * scene.camera.height) as f64;
     let image = 4.0 * pixels * bands;
+    let (acc, se) = if s.progressive.pass_limit() > 1 { (16.0 * pixels * bands, 2.0 * image) } else { (0.0, 0.0) };
     let phases = [
-        ("global photon tracing", global_records + group(g_surface + g_volume, s.photons)),
-        ("global map build", global_records + global_maps + wire(g_surface.max(g_volume))),
-        ("caustic photon tracing", global_maps + records(c_surface) + group(c_surface, s.caustic_photons)),
-        ("caustic map build", global_maps + records(c_surface) + map_bytes(c_surface) + wire(c_surface)),
-        ("irradiance cache", global_maps + map_bytes(c_surface) + irradiance_build),
-        ("eye pass", global_maps + map_bytes(c_surface) + irradiance + 2.0 * image + 12.0 * pixels),
+        ("global photon tracing", acc + global_records + group(g_surface + g_volume, s.photons)),
+        ("global map build", acc + global_records + global_maps + wire(g_surface.max(g_volume))),
+        ("caustic photon tracing", acc + global_maps + records(c_surface) + group(c_surface, s.caustic_photons)),
+        ("caustic map build", acc + global_maps + records(c_surface) + map_bytes(c_surface) + wire(c_surface)),
+        ("irradiance cache", acc + global_maps + map_bytes(c_surface) + irradiance_build),
+        ("eye pass", acc + global_maps + map_bytes(c_surface) + irradiance + 2.0 * image + 12.0 * pixels),
         // The maps are gone by now (the render returns its image, then the outputs are written).
-        ("outputs", image + 12.0 * pixels + 4.0 * pixels * (bands + 3.0) + 3.0 * pixels),
+        ("outputs", image + se + 12.0 * pixels + 4.0 * pixels * (bands + 3.0) + 3.0 * pixels),
     ];
     let (name, largest) = phases.iter().fold(("", 0.0f64), |best, p| if p.1 > best.1 { (p.0, p.1) } else { best });
     MemoryEstimate {

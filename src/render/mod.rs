@@ -12,6 +12,7 @@ pub mod memory;
 mod path;
 pub mod photon_pass;
 pub mod progress;
+pub mod progressive;
 pub mod sensors;
 pub mod stats;
 
@@ -46,6 +47,9 @@ pub struct RenderOptions {
     /// Where the progress of the current phase can be read from another thread (the Python
     /// package's progress bar); with it, no progress bar is drawn on stderr.
     pub observer: Option<std::sync::Arc<progress::Observer>>,
+    /// When the run started, for the `time` budget of progressive passes (default: when
+    /// [`render_on`] is called).
+    pub started: Option<std::time::Instant>,
 }
 
 impl RenderOptions {
@@ -59,6 +63,9 @@ impl RenderOptions {
 pub struct Rendered {
     /// The spectral radiance image, W m⁻² sr⁻¹ nm⁻¹ per band.
     pub image: SpectralImage,
+    /// The standard error of each band value of the image, from the spread of the progressive
+    /// passes (row-major, the bands of a pixel together; `None` after one pass).
+    pub std_error: Option<Vec<f32>>,
     /// Timings, photon and ray counts, for `report.json`.
     pub stats: RenderStats,
     /// What the scene's sensors measured.
@@ -76,25 +83,102 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Rendered {
     }
 }
 
-/// Renders `scene` on every rank of `comm` (each on its current rayon pool): the photon passes
-/// and the eye pass are split across ranks (see [`crate::distributed`]) and the image, the same
-/// for any number of ranks, is returned on rank 0 (`None` on the others). Collective. Fails, on
-/// every rank, if the photon maps would not fit in `dist.map_memory`.
+/// Renders `scene` on every rank of `comm` (each on its current rayon pool): the progressive
+/// passes the scene asks for ([`progressive`]), each with its photon passes and eye pass split
+/// across ranks (see [`crate::distributed`]); the image, the same for any number of ranks, is
+/// returned on rank 0 (`None` on the others). Collective. Fails, on every rank, if the photon
+/// maps would not fit in `dist.map_memory`.
 pub fn render_on(
     comm: &Comm,
     scene: &Scene,
     opts: &RenderOptions,
     dist: &distributed::Options,
 ) -> Result<Option<Rendered>> {
+    let started = opts.started.unwrap_or_else(std::time::Instant::now);
     let mut rank = Rank::new(comm, *dist);
     let quiet = opts.quiet || !comm.is_root();
     let mut stats = RenderStats::default();
-    let pass = crate::photon::PassSettings::of(scene);
-    let mut est = memory::estimate(scene, &pass, comm.size());
+    let settings = crate::photon::PassSettings::of(scene);
+    let mut est = memory::estimate(scene, &settings, comm.size());
     distributed::fault::agree(comm, memory::check(&mut est, opts.max_memory))?;
+    let p = &scene.integrator.progressive;
+    let mut outputs = progressive::Outputs::default();
+    let mut target = progressive::Scalar::default();
+    let mut report = progressive::ProgressiveReport {
+        alpha: p.alpha,
+        target: progressive::target_label(&p.target),
+        ..Default::default()
+    };
+    let mut ranks = Vec::new();
+    for pass in 0.. {
+        let s = scene.integrator.for_pass(pass);
+        let t = std::time::Instant::now();
+        let (pass_stats, out, pass_ranks) = one_pass(&mut rank, scene, &s, opts)?;
+        rank.budget.release_all();
+        stats.merge(pass_stats);
+        ranks = pass_ranks;
+        let mut stop = None;
+        if let Some(out) = out {
+            let v = progressive::target_value(
+                &p.target,
+                (&out.data, scene.camera.width, scene.bands.count),
+                &out.sensors,
+                &out.profiles,
+            );
+            target.add(v);
+            outputs.add(out.data, out.sensors, out.profiles);
+            let (elapsed, seconds) = (started.elapsed().as_secs_f64(), t.elapsed().as_secs_f64());
+            report.history.push(progressive::record(pass, &s, (elapsed, seconds), &target));
+            stop = progressive::decide(p, pass + 1, elapsed, seconds, target.rel_error());
+        }
+        let go_on = comm.broadcast(vec![u8::from(stop.is_none())]);
+        if go_on.first() != Some(&1) {
+            report.passes = pass + 1;
+            report.stopped = stop;
+            break;
+        }
+        if let Some(r) = report.history.last().filter(|_| !quiet) {
+            let e = r.rel_error.map_or(String::new(), |e| format!(", relative standard error {e:.2e}"));
+            eprintln!("morgana: pass {} done at {:.1} s{e}", r.pass, r.elapsed_s);
+        }
+    }
     stats.memory = est;
-    let bars = progress::Bars { quiet, observer: opts.observer.as_deref() };
-    let maps = photon_pass::build(&mut rank, scene, bars, opts.stop(), &mut stats.phases, &mut stats.maps)?;
+    stats.memory.measured_peak_bytes = crate::memory::peak_rss_bytes();
+    if !comm.is_root() {
+        return Ok(None);
+    }
+    stats.distributed = Some(DistributedReport::new(comm.kind(), dist.schedule, ranks));
+    report.rel_error = target.rel_error();
+    let done = outputs.finish();
+    report.image_mean_rel_error = done.image_se.as_ref().and_then(|se| progressive::mean_rel_error(&done.image, se));
+    stats.progressive = report;
+    let t = Span::start();
+    let image = to_image(scene, done.image);
+    stats.phases.add("colour conversion", t);
+    Ok(Some(Rendered { image, std_error: done.image_se, stats, sensors: done.sensors, profiles: done.profiles }))
+}
+
+/// What one pass produced on rank 0: the image's band values and the readings.
+struct PassOutput {
+    data: Vec<f32>,
+    sensors: Vec<crate::sensor::Reading>,
+    profiles: Vec<crate::sensor::ProfileReading>,
+}
+
+/// One progressive pass with settings `s`: photon maps, eye pass and sensors (`opts`: progress,
+/// deadline and cancel flag). Returns the pass's statistics, its outputs on rank 0, and every
+/// rank's report. Collective.
+fn one_pass(
+    rank: &mut Rank,
+    scene: &Scene,
+    s: &crate::scene::IntegratorSettings,
+    opts: &RenderOptions,
+) -> Result<(RenderStats, Option<PassOutput>, Vec<distributed::RankReport>)> {
+    let quiet = opts.quiet || !rank.comm.is_root();
+    let (bars, stop) = (progress::Bars { quiet, observer: opts.observer.as_deref() }, opts.stop());
+    let mut stats = RenderStats::default();
+    rank.report.photons.clear();
+    let maps = photon_pass::build(rank, scene, s, bars, stop, &mut stats.phases, &mut stats.maps)?;
     let stopped: u64 = stats.maps.iter().map(|m| m.stats.stopped_batches).sum();
     if stopped > 0 {
         let left: Vec<String> = stats.maps.iter().map(|m| format!("{} map {} photons", m.map, m.emitted)).collect();
@@ -118,7 +202,7 @@ pub fn render_on(
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
     let t = Span::start();
-    let (data, work, curved) = eye_pass(&rank, scene, &maps, bars, opts.stop());
+    let (data, work, curved) = eye_pass(rank, scene, s, &maps, bars, stop);
     stats.phases.add("eye pass", t);
     rank.report.eye = work;
     rank.report.eye_curved = curved;
@@ -134,23 +218,18 @@ pub fn render_on(
             ),
         ));
     }
-    stats.memory.measured_peak_bytes = crate::memory::peak_rss_bytes();
-    let Some(data) = data else { return Ok(None) };
+    let Some(data) = data else { return Ok((stats, None, ranks)) };
     for r in &ranks {
         stats.rays.add(&r.eye.rays);
         stats.eye_curved.add(&r.eye_curved);
     }
-    stats.distributed = Some(DistributedReport::new(comm.kind(), dist.schedule, ranks));
     let t = Span::start();
-    let image = to_image(scene, data);
-    stats.phases.add("colour conversion", t);
-    let t = Span::start();
-    let sensors = sensors::evaluate_all(scene, &maps);
-    let profiles = sensors::evaluate_profiles(scene, &maps);
+    let sensors = sensors::evaluate_all(scene, s, &maps);
+    let profiles = sensors::evaluate_profiles(scene, s.seed, &maps);
     if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
-    Ok(Some(Rendered { image, stats, sensors, profiles }))
+    Ok((stats, Some(PassOutput { data, sensors, profiles }), ranks))
 }
 
 /// The error of a run whose time budget ran out or that was cancelled: exit code 1, nothing
@@ -165,13 +244,14 @@ fn out_of_time(opts: &RenderOptions, progress: String) -> crate::error::Error {
 fn eye_pass(
     rank: &Rank,
     scene: &Scene,
+    s: &crate::scene::IntegratorSettings,
     maps: &photon_pass::Maps,
     bars: progress::Bars,
     stop: crate::timing::Stop,
 ) -> (Option<Vec<f32>>, distributed::eye::EyeWork, crate::raypath::CurvedWorkTotals) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let nb = scene.bands.count;
-    let tracer = Tracer::new(scene, maps);
+    let tracer = Tracer::new(scene, s, maps);
     let ranks = rank.comm.size();
     progress::note(
         bars.quiet,
@@ -190,7 +270,7 @@ fn eye_pass(
                     return (row, RayCounts { stopped_rows: 1, ..RayCounts::default() });
                 }
                 for x in 0..w {
-                    let px = pixel(scene, &tracer, x, y, sc);
+                    let px = pixel((scene, s.seed), &tracer, x, y, sc);
                     for b in 0..nb {
                         row[x * nb + b] = px[b] as f32;
                     }
@@ -223,18 +303,25 @@ enum Tracer<'a> {
 }
 
 impl<'a> Tracer<'a> {
-    fn new(scene: &'a Scene, maps: &'a photon_pass::Maps) -> Tracer<'a> {
+    fn new(scene: &'a Scene, s: &crate::scene::IntegratorSettings, maps: &'a photon_pass::Maps) -> Tracer<'a> {
         match scene.integrator.method {
-            Method::PhotonMap => Tracer::PhotonMap(Box::new(EyeTracer::new(scene, maps))),
+            Method::PhotonMap => Tracer::PhotonMap(Box::new(EyeTracer::new(scene, s, maps))),
             Method::Path => Tracer::Path(path::PathTracer::new(scene)),
         }
     }
 }
 
-/// The band averages of one pixel: the mean over `spp` jittered samples.
-fn pixel(scene: &Scene, tracer: &Tracer, x: usize, y: usize, sc: &mut Scratch) -> [f64; crate::spectrum::MAX_BANDS] {
+/// The band averages of one pixel: the mean over `spp` jittered samples, drawn from the pass's
+/// `seed`.
+fn pixel(
+    (scene, seed): (&Scene, u64),
+    tracer: &Tracer,
+    x: usize,
+    y: usize,
+    sc: &mut Scratch,
+) -> [f64; crate::spectrum::MAX_BANDS] {
     let s = &scene.integrator;
-    let mut rng = Rng::for_task(s.seed, Stream::Eye, (y * scene.camera.width + x) as u64);
+    let mut rng = Rng::for_task(seed, Stream::Eye, (y * scene.camera.width + x) as u64);
     let weight = Lanes::film_weight(&scene.bands, scene.sampling) / s.spp as f64;
     let mut acc = [0.0; crate::spectrum::MAX_BANDS];
     for _ in 0..s.spp {

@@ -7,7 +7,7 @@ use crate::distributed::{self, Rank, assemble, photons::Shot};
 use crate::error::Result;
 use crate::photon::MapKind;
 use crate::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
-use crate::scene::Scene;
+use crate::scene::{IntegratorSettings, Scene};
 use crate::timing::Span;
 
 /// Every stride-th global photon gets a precomputed irradiance estimate (Christensen uses 4).
@@ -26,22 +26,23 @@ pub struct Maps {
     pub irradiance: Option<IrradianceCache>,
 }
 
-/// Runs the photon passes the plan asks for, on every rank of `rank`'s comm: each rank shoots
-/// its share of the batches and every rank assembles the whole maps (see
-/// [`crate::distributed`]). Fails, on every rank, if a map would not fit in the rank's budget.
+/// Runs the photon passes the plan asks for with the settings `s` of one progressive pass (see
+/// [`IntegratorSettings::for_pass`]), on every rank of `rank`'s comm: each rank shoots its
+/// share of the batches and every rank assembles the whole maps (see [`crate::distributed`]).
+/// Fails, on every rank, if a map would not fit in the rank's budget.
 pub fn build(
     rank: &mut Rank,
     scene: &Scene,
+    s: &IntegratorSettings,
     bars: progress::Bars,
     stop: crate::timing::Stop,
     phases: &mut Phases,
     reports: &mut Vec<MapReport>,
 ) -> Result<Maps> {
-    let s = &scene.integrator;
     let plan = &scene.plan;
     let mut maps = Maps::default();
     if plan.global_map.on || plan.volume_map.on {
-        let shot = shoot(rank, scene, MapKind::Global, s.photons, "global", (bars, stop), phases);
+        let shot = shoot(rank, scene, (MapKind::Global, s.seed), s.photons, "global", (bars, stop), phases);
         if plan.global_map.on {
             let (map, report) = build_map(rank, &shot.sink.surface, "global", s.photons, &shot, phases)?;
             reports.push(report);
@@ -54,7 +55,7 @@ pub fn build(
         }
     }
     if plan.caustic_map.on {
-        let shot = shoot(rank, scene, MapKind::Caustic, s.caustic_photons, "caustic", (bars, stop), phases);
+        let shot = shoot(rank, scene, (MapKind::Caustic, s.seed), s.caustic_photons, "caustic", (bars, stop), phases);
         let (map, report) = build_map(rank, &shot.sink.surface, "caustic", s.caustic_photons, &shot, phases)?;
         reports.push(report);
         maps.caustic = Some(map);
@@ -80,12 +81,13 @@ pub fn build(
     Ok(maps)
 }
 
-/// This rank's share of a pass (statistics summed over ranks), with its time as "NAME photon
-/// tracing"; `(bars, stop)`: where progress shows, and when batches stop being started.
+/// This rank's share of a pass of `kind` seeded with `seed` (statistics summed over ranks), with
+/// its time as "NAME photon tracing"; `(bars, stop)`: where progress shows, and when batches stop
+/// being started.
 fn shoot(
     rank: &mut Rank,
     scene: &Scene,
-    kind: MapKind,
+    (kind, seed): (MapKind, u64),
     emitted: u64,
     name: &str,
     (bars, stop): (progress::Bars, crate::timing::Stop),
@@ -100,7 +102,7 @@ fn shoot(
     let t = Span::start();
     let (_, mine) = distributed::photons::my_share(rank.comm, emitted);
     let pb = bars.bar(mine, &format!("{name} photons"));
-    let shot = distributed::photons::shoot(rank.comm, scene, stop, kind, emitted, name, &|n| pb.inc(n));
+    let shot = distributed::photons::shoot(rank.comm, scene, seed, stop, kind, emitted, name, &|n| pb.inc(n));
     pb.finish_and_clear();
     phases.add(&format!("{name} photon tracing"), t);
     rank.report.photons.push(shot.mine.clone());

@@ -46,7 +46,49 @@ pub struct RenderStats {
     pub irradiance_memory_bytes: u64,
     /// Integrator work along the eye pass's curved paths.
     pub eye_curved: crate::raypath::CurvedWorkTotals,
-    /// Ranks, per-rank photon counts and phase times, bytes moved (see [`crate::distributed`]).
+    /// Ranks, per-rank photon counts and phase times, bytes moved (see [`crate::distributed`];
+    /// of the last progressive pass).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub distributed: Option<crate::distributed::DistributedReport>,
+    /// The progressive passes: how many, why they stopped, the error after each.
+    pub progressive: crate::render::progressive::ProgressiveReport,
+}
+
+impl RenderStats {
+    /// Adds one progressive pass's statistics: phase times summed by name, maps' photon counts
+    /// and times summed (memory: the largest), rays and work added, warnings kept once.
+    pub fn merge(&mut self, pass: RenderStats) {
+        for ph in pass.phases.0 {
+            match self.phases.0.iter_mut().find(|p| p.phase == ph.phase) {
+                Some(p) => {
+                    p.seconds += ph.seconds;
+                    p.cpu_seconds += ph.cpu_seconds;
+                }
+                None => self.phases.0.push(ph),
+            }
+        }
+        for m in pass.maps {
+            match self.maps.iter_mut().find(|x| x.map == m.map) {
+                Some(x) => {
+                    x.emitted += m.emitted;
+                    x.stored += m.stored;
+                    x.memory_bytes = x.memory_bytes.max(m.memory_bytes);
+                    x.trace_seconds += m.trace_seconds;
+                    x.build_seconds += m.build_seconds;
+                    x.stats.add(&m.stats);
+                    x.stats.emitted += m.stats.emitted;
+                }
+                None => self.maps.push(m),
+            }
+        }
+        for w in pass.warnings {
+            if !self.warnings.contains(&w) {
+                self.warnings.push(w);
+            }
+        }
+        self.rays.add(&pass.rays);
+        self.irradiance_points = self.irradiance_points.max(pass.irradiance_points);
+        self.irradiance_memory_bytes = self.irradiance_memory_bytes.max(pass.irradiance_memory_bytes);
+        self.eye_curved.add(&pass.eye_curved);
+    }
 }

@@ -9,6 +9,7 @@ mod luminaires;
 mod materials;
 mod media;
 mod plan;
+pub mod progressive;
 pub mod raw;
 mod refractive_index;
 mod sensors;
@@ -206,6 +207,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     check_index_fields(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     curved_integrator(ctx, raw, &media, &mut integrator)?;
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
+    check_target(ctx, raw, &integrator, &sensors, &camera)?;
     let bvh = Bvh::build(&shapes);
     let reach = Reach::around(&bounds.include(camera.position));
     let names = WorldNames { materials: material_names, media: medium_names, prims: prim_names, lights: light_names };
@@ -241,6 +243,21 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     check_output_names(ctx, raw, &scene)?;
     aim_beams(&mut scene);
     Ok(scene)
+}
+
+/// `[integrator] target` must name a sensor of the scene or a region inside the image.
+fn check_target(
+    ctx: &Ctx,
+    raw: &RawScene,
+    s: &IntegratorSettings,
+    sensors: &[crate::sensor::NamedSensor],
+    camera: &Camera,
+) -> Result<()> {
+    let names: Vec<String> = sensors.iter().map(|s| s.name.clone()).collect();
+    s.progressive.check_target(&names, camera.width, camera.height).map_err(|e| {
+        let span = raw.integrator.as_ref().and_then(|i| i.get_ref().target.as_ref()).map_or(0..0, |t| t.span());
+        ctx.err(&span, format!("[integrator] target {e}"))
+    })
 }
 
 /// Every file a render would write must have a name the file system takes (at most

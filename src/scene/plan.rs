@@ -48,6 +48,9 @@ pub struct EffectPlan {
     pub curved_paths: Decision,
     /// Fluorescence and Raman re-emission at other wavelengths.
     pub inelastic_scattering: Decision,
+    /// Repeated passes with fresh photon maps and shrinking radii, averaged (progressive photon
+    /// mapping), and the rules that stop them.
+    pub progressive_passes: Decision,
 }
 
 /// What the scene contains, as far as the plan cares.
@@ -130,6 +133,33 @@ impl EffectPlan {
             volume_map: volume_map_decision(&facts.used_media, facts.photon_sensors, s),
             curved_paths: curved_decision(&facts.used_media, s),
             inelastic_scattering: inelastic_decision(&facts.used_media),
+            progressive_passes: Self::progressive_decision(s),
+        }
+    }
+
+    /// Whether a run makes several passes, and which rules stop them.
+    pub fn progressive_decision(s: &IntegratorSettings) -> Decision {
+        let p = &s.progressive;
+        let mut rules = Vec::new();
+        if let Some(n) = p.passes {
+            rules.push(format!("at most {n} passes"));
+        }
+        if let Some(t) = p.time_s {
+            rules.push(format!("while the next pass fits in {t} s of wall time"));
+        }
+        if let Some(e) = p.target_rel_error {
+            let on = crate::scene::progressive::label(&p.target);
+            rules.push(format!("until the relative standard error of the {on}'s mean is at most {e}"));
+        }
+        match p.pass_limit() {
+            1 => Decision::off(
+                "one pass: no passes > 1, time or target_rel_error (or --passes, --time, --target-rel-error)",
+            ),
+            _ => Decision::on(format!(
+                "passes with fresh maps and radii shrinking by Knaus & Zwicker's rule (alpha = {:.3}), averaged {}",
+                p.alpha,
+                rules.join(", ")
+            )),
         }
     }
 
@@ -160,11 +190,12 @@ impl EffectPlan {
             volume_map: off(),
             curved_paths: curved_decision(&facts.used_media, s),
             inelastic_scattering: inelastic_decision(&facts.used_media),
+            progressive_passes: Self::progressive_decision(s),
         }
     }
 
     /// (name, decision) in a fixed order, for printing.
-    pub fn entries(&self) -> [(&'static str, &Decision); 9] {
+    pub fn entries(&self) -> [(&'static str, &Decision); 10] {
         [
             ("global photon map", &self.global_map),
             ("caustic photon map", &self.caustic_map),
@@ -175,6 +206,7 @@ impl EffectPlan {
             ("volume photon map", &self.volume_map),
             ("curved light paths", &self.curved_paths),
             ("inelastic scattering", &self.inelastic_scattering),
+            ("progressive passes", &self.progressive_passes),
         ]
     }
 }

@@ -226,6 +226,17 @@ pub struct RawIntegrator {
     pub ode_max_step_m: S<f64>,
     /// `[integrator] arc_tolerance_m`: how far a chord may stray from the curved path, m.
     pub arc_tolerance_m: S<f64>,
+    /// `[integrator] passes`: progressive photon-mapping passes to run.
+    pub passes: S<i64>,
+    /// `[integrator] time`: wall-clock budget of the whole run, e.g. `"90s"` or a number of seconds.
+    pub time: S<toml::Value>,
+    /// `[integrator] target_rel_error`: stop when the relative standard error falls below this.
+    pub target_rel_error: S<f64>,
+    /// `[integrator] target`: what `target_rel_error` is measured on: `"image"`, a sensor's name
+    /// or a pixel region `"x0,y0,x1,y1"`.
+    pub target: S<String>,
+    /// `[integrator] alpha`: how fast progressive gather radii shrink (Knaus & Zwicker's α).
+    pub alpha: S<f64>,
 }
 
 /// `[[material]]`: a surface material; the union of every type's keys.

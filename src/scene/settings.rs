@@ -1,5 +1,6 @@
 //! Camera, `[output]` and `[integrator]`: validated settings.
 
+use super::progressive::Progressive;
 use super::raw::{RawCamera, RawIntegrator, RawOutput};
 use crate::geometry::Aabb;
 use crate::geometry::Camera;
@@ -114,6 +115,28 @@ pub struct IntegratorSettings {
     pub filter: Filter,
     /// How curved paths are stepped where a medium's index varies.
     pub curved: CurvedSettings,
+    /// Progressive passes and the rules that stop them.
+    pub progressive: Progressive,
+}
+
+impl IntegratorSettings {
+    /// The settings of progressive pass `pass` (0-based): the seed of that pass and the gather
+    /// parameters shrunk by Knaus & Zwicker's schedule (see [`crate::photon_map::progressive`]);
+    /// pass 0 is these settings unchanged.
+    pub fn for_pass(&self, pass: u32) -> IntegratorSettings {
+        use crate::photon_map::progressive::{k, surface_radius, volume_radius};
+        let a = self.progressive.alpha;
+        IntegratorSettings {
+            seed: crate::rng::pass_seed(self.seed, pass),
+            k: k(self.k, pass, a),
+            max_radius_m: surface_radius(self.max_radius_m, pass, a),
+            caustic_k: k(self.caustic_k, pass, a),
+            caustic_max_radius_m: surface_radius(self.caustic_max_radius_m, pass, a),
+            volume_k: k(self.volume_k, pass, a),
+            volume_max_radius_m: volume_radius(self.volume_max_radius_m, pass, a),
+            ..self.clone()
+        }
+    }
 }
 
 /// Validated `[output]`: which files are written and how the PNG is made.
@@ -259,6 +282,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         seed: 1,
         filter: Filter::Cone { k: 1.1 },
         curved: CurvedSettings::default(),
+        progressive: Progressive::default(),
     };
     let Some(i) = i else { return Ok(s) };
     let r = i.get_ref();
@@ -312,6 +336,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
     };
     s.filter = filter(ctx, r)?;
     s.curved = curved(ctx, r)?;
+    s.progressive = super::progressive::progressive(ctx, r)?;
     Ok(s)
 }
 

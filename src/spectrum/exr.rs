@@ -48,8 +48,24 @@ pub fn emissive_channel_name(centre_nm: f64) -> String {
     format!("S0.{}nm", text.replace('.', ","))
 }
 
+/// The prefix of the standard-error layer: channel `stderr.S0.550,0nm` holds the standard error
+/// of channel `S0.550,0nm` (same units). Readers of the Fichet et al. layout skip it: its
+/// names do not match the layout's `^S[0-3]\.` pattern, and EXR reads `stderr` as a layer name.
+pub const STDERR_LAYER: &str = "stderr";
+
+/// The standard-error channel of emissive band centre `centre_nm`: `stderr.S0.<nm>nm`.
+pub fn stderr_channel_name(centre_nm: f64) -> String {
+    format!("{STDERR_LAYER}.{}", emissive_channel_name(centre_nm))
+}
+
 /// Writes `image` to `path` (not atomically: callers write to a staged temporary path).
 pub fn write_spectral_exr(path: &Path, image: &SpectralImage) -> io::Result<()> {
+    write_spectral_exr_with_error(path, image, None)
+}
+
+/// Writes `image` to `path` and, when given, the standard error of each band value (laid out
+/// as `image.data`) as the [`STDERR_LAYER`] channels.
+pub fn write_spectral_exr_with_error(path: &Path, image: &SpectralImage, std_error: Option<&[f32]>) -> io::Result<()> {
     check_shape(image)?;
     let (w, h, n) = (image.width, image.height, image.bands.count);
     let pixels = w * h;
@@ -69,6 +85,13 @@ pub fn write_spectral_exr(path: &Path, image: &SpectralImage) -> io::Result<()> 
         }
         let samples = (0..pixels).map(|p| image.data[p * n + b]).collect();
         channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(samples)));
+        if let Some(se) = std_error.filter(|se| se.len() == image.data.len()) {
+            let samples = (0..pixels).map(|p| se[p * n + b]).collect();
+            channels.push(AnyChannel::new(
+                stderr_channel_name(image.bands.centre_nm(b)).as_str(),
+                FlatSamples::F32(samples),
+            ));
+        }
         names.push(name);
     }
     let mut layer_attributes = LayerAttributes {

@@ -42,6 +42,7 @@ pub mod scene_image;
 pub mod scotopic;
 pub mod settings;
 pub mod spectral_weights;
+pub mod stderr_map;
 pub mod threshold;
 pub mod ward_histogram;
 pub mod white;
@@ -111,13 +112,25 @@ pub fn tonemap(input: &SceneImage, settings: &ToneSettings) -> ToneOutput {
 /// logarithmic scale of whole decades with the luminance ramp and a legend
 /// ([`crate::raster::false_colour`]).
 fn false_colour(lum: &[f64], width: usize, height: usize) -> ToneOutput {
+    false_colour_of(lum, (width, height), "luminance", "cd/m2")
+}
+
+/// The relative standard error per pixel ([`stderr_map`]) in false colour, on a logarithmic
+/// scale of whole decades with a legend.
+pub fn relative_error_false_colour(e: &stderr_map::RelativeError) -> ToneOutput {
+    false_colour_of(&e.values, (e.width, e.height), "relative standard error", "rel. SE")
+}
+
+/// `values` (row-major, `width × height`) in false colour on a log scale with a legend;
+/// `what` and `unit` name them in the note and on the colour bar.
+fn false_colour_of(values: &[f64], (width, height): (usize, usize), what: &str, unit: &str) -> ToneOutput {
     use crate::raster::false_colour::{ColourMap, Grid, Look, Rows, Scale, draw};
-    let scale = Scale::log_decades_for(lum);
-    let grid = Grid { nx: width, ny: height, values: lum, rows: Rows::Downward };
+    let scale = Scale::log_decades_for(values);
+    let grid = Grid { nx: width, ny: height, values, rows: Rows::Downward };
     let look = Look {
         scale,
         map: ColourMap::Ramp,
-        unit: "cd/m2",
+        unit,
         heading: None,
         cell: 1,
         background: crate::raster::BLACK,
@@ -126,8 +139,8 @@ fn false_colour(lum: &[f64], width: usize, height: usize) -> ToneOutput {
     };
     let canvas = draw(&grid, &look);
     let note = match scale {
-        Scale::LogDecades { lo, hi } => format!("false colour: luminance 10^{lo} to 10^{hi} cd/m2, log scale"),
-        Scale::Linear { top } => format!("false colour: luminance 0 to {top} cd/m2"),
+        Scale::LogDecades { lo, hi } => format!("false colour: {what} 10^{lo} to 10^{hi} {unit}, log scale"),
+        Scale::Linear { top } => format!("false colour: {what} 0 to {top} {unit}"),
     };
     ToneOutput { width: canvas.width, height: canvas.height, rgb: canvas.pixels.concat(), notes: vec![note] }
 }

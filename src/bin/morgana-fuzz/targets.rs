@@ -688,6 +688,7 @@ fn execute(target: Target, ws: &Workspace, case: &Case, read: &[String], deadlin
                 max_memory: None,
                 max_seconds: None,
                 schedule: morgana::distributed::Schedule::Dynamic,
+                stop: Default::default(),
             };
             let r = morgana::cli::render::run(&args);
             let outputs = std::fs::read_dir(&out)

@@ -18,14 +18,20 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
-/// Measures every point; sensor `index` seeds its random streams.
-pub fn evaluate(plane: &IlluminancePlane, scene: &Scene, tracer: &EyeTracer, name: &str, index: u64) -> Reading {
+/// Measures every point; sensor `index` and the pass's `seed` seed its random streams.
+pub fn evaluate(
+    plane: &IlluminancePlane,
+    (scene, seed): (&Scene, u64),
+    tracer: &EyeTracer,
+    name: &str,
+    index: u64,
+) -> Reading {
     let n = plane.nx * plane.ny;
     let values: Vec<(f64, f64)> = (0..n)
         .into_par_iter()
         .map_init(Scratch::default, |sc, k| {
             let task = (index << 40) | k as u64;
-            let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, task);
+            let mut rng = Rng::for_task(seed, Stream::Sensor, task);
             at(plane, scene, tracer, plane.point(k % plane.nx, k / plane.nx), &mut rng, sc)
         })
         .collect();

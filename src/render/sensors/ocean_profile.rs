@@ -14,8 +14,8 @@ use crate::sensor::{OceanProfile, ProfileReading, ProfileRow};
 use crate::spectrum::BandValues;
 use glam::DVec3;
 
-/// Measures the profile; sensor `index` seeds the shadow rays.
-pub fn evaluate(s: &OceanProfile, scene: &Scene, maps: &Maps, name: &str, index: u64) -> ProfileReading {
+/// Measures the profile; sensor `index` and the pass's `seed` seed the shadow rays.
+pub fn evaluate(s: &OceanProfile, (scene, seed): (&Scene, u64), maps: &Maps, name: &str, index: u64) -> ProfileReading {
     let bands = scene.bands;
     let mut depths = s.depths_m.clone();
     depths.push(0.0);
@@ -23,7 +23,7 @@ pub fn evaluate(s: &OceanProfile, scene: &Scene, maps: &Maps, name: &str, index:
     if let Some(map) = &maps.volume {
         for i in 0..map.len() as u32 {
             let p = map.record(i);
-            let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, (index << 40) | u64::from(i));
+            let mut rng = Rng::for_task(seed, Stream::Sensor, (index << 40) | u64::from(i));
             tally(s, scene, &p, &depths, &mut sums, &mut rng);
         }
     }
@@ -44,7 +44,7 @@ pub fn evaluate(s: &OceanProfile, scene: &Scene, maps: &Maps, name: &str, index:
     };
     let rows =
         (0..s.depths_m.len()).flat_map(|k| (0..bands.count).map(move |b| (k, b))).map(|(k, b)| row(k, b)).collect();
-    let ed0 = ed_above(s, scene, index);
+    let ed0 = ed_above(s, (scene, seed), index);
     let t = 1.0 - ((s.ior - 1.0) / (s.ior + 1.0)).powi(2);
     let surface = (0..bands.count)
         .map(|b| {
@@ -112,12 +112,12 @@ fn tally(
 }
 
 /// E_d(0+) per band from the lights, by shadow rays from just above the surface.
-fn ed_above(s: &OceanProfile, scene: &Scene, index: u64) -> Vec<f64> {
+fn ed_above(s: &OceanProfile, (scene, seed): (&Scene, u64), index: u64) -> Vec<f64> {
     let bands = scene.bands;
     let prop = Propagator::new(&scene.world, scene.curved());
     let p = spawn_origin(s.origin, s.up, s.up);
     let medium = scene.world.medium_at(p);
-    let mut rng = Rng::for_task(scene.integrator.seed, Stream::Sensor, (index << 40) | 0xED);
+    let mut rng = Rng::for_task(seed, Stream::Sensor, (index << 40) | 0xED);
     (0..bands.count)
         .map(|b| {
             let (lo, hi) = bands.edges_nm(b);

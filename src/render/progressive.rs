@@ -1,0 +1,431 @@
+//! Progressive passes (Knaus & Zwicker 2011): the running mean and pass-to-pass spread of
+//! every output value, and the rules that end the run.
+//!
+//! Pass i of a run traces fresh photon maps from the seed of (seed, i) and gathers with the
+//! shrunk kernels of [`crate::photon_map::progressive`]; its image, sensor readings and profile
+//! rows are independent of the other passes', so their mean over N passes has the standard
+//! error s/√N, s² the sample variance of the passes (Welford 1962, one pass over the data):
+//!
+//! nₖ = nₖ₋₁ + 1,  δ = x − x̄ₖ₋₁,  x̄ₖ = x̄ₖ₋₁ + δ/nₖ,  Mₖ = Mₖ₋₁ + δ (x − x̄ₖ),
+//! SE = √(M / (n (n − 1))).
+//!
+//! (The passes are independent but not identically distributed: later passes have less bias
+//! and more variance. The spread of the passes then bounds the error of the mean from above
+//! for the variance part, and the bias that remains is what the shrinking radii remove.)
+//!
+//! A one-pass run keeps its values untouched (no accumulator is allocated), so its outputs are
+//! those of a render without passes, byte for byte.
+//!
+//! # References
+//! - B. P. Welford (1962), "Note on a method for calculating corrected sums of squares and
+//!   products", Technometrics 4(3), 419–420.
+
+use crate::scene::IntegratorSettings;
+pub use crate::scene::progressive::label as target_label;
+use crate::scene::progressive::{Progressive, Target};
+use serde::Serialize;
+
+/// A value [`Welford`] accumulates: stored as itself after one pass, as f64 after two.
+pub trait Value: Copy + Into<f64> {
+    /// The value nearest to `x`.
+    fn from_f64(x: f64) -> Self;
+}
+
+impl Value for f32 {
+    fn from_f64(x: f64) -> f32 {
+        x as f32
+    }
+}
+
+impl Value for f64 {
+    fn from_f64(x: f64) -> f64 {
+        x
+    }
+}
+
+/// The running mean and spread of a fixed-length vector of values over passes.
+#[derive(Clone, Debug)]
+pub struct Welford<T> {
+    n: u32,
+    /// The first pass's values, kept as they are until a second pass arrives.
+    first: Vec<T>,
+    mean: Vec<f64>,
+    m2: Vec<f64>,
+}
+
+impl<T> Default for Welford<T> {
+    fn default() -> Self {
+        Welford { n: 0, first: Vec::new(), mean: Vec::new(), m2: Vec::new() }
+    }
+}
+
+impl<T: Value> Welford<T> {
+    /// Adds one pass's values (the same length every time).
+    pub fn add(&mut self, x: Vec<T>) {
+        self.n += 1;
+        if self.n == 1 {
+            self.first = x;
+            return;
+        }
+        if self.n == 2 {
+            self.mean = self.first.iter().map(|v| (*v).into()).collect();
+            self.m2 = vec![0.0; self.mean.len()];
+            self.first = Vec::new();
+        }
+        let n = f64::from(self.n);
+        for ((m, m2), v) in self.mean.iter_mut().zip(&mut self.m2).zip(&x) {
+            let v: f64 = (*v).into();
+            let d = v - *m;
+            *m += d / n;
+            *m2 += d * (v - *m);
+        }
+    }
+
+    /// Passes added.
+    pub fn passes(&self) -> u32 {
+        self.n
+    }
+
+    /// The mean of the passes (the first pass's values themselves after one pass).
+    pub fn mean(self) -> Vec<T> {
+        if self.n <= 1 { self.first } else { self.mean.iter().map(|m| T::from_f64(*m)).collect() }
+    }
+
+    /// The standard error of the mean, √(M/(n(n − 1))), per value; `None` before two passes.
+    pub fn std_error(&self) -> Option<Vec<T>> {
+        (self.n >= 2).then(|| {
+            let n = f64::from(self.n);
+            self.m2.iter().map(|m2| T::from_f64((m2.max(0.0) / (n * (n - 1.0))).sqrt())).collect()
+        })
+    }
+}
+
+/// The running mean and spread of one number over passes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Scalar {
+    n: u32,
+    mean: f64,
+    m2: f64,
+}
+
+impl Scalar {
+    /// Adds one pass's value.
+    pub fn add(&mut self, x: f64) {
+        self.n += 1;
+        let d = x - self.mean;
+        self.mean += d / f64::from(self.n);
+        self.m2 += d * (x - self.mean);
+    }
+
+    /// The mean so far.
+    pub fn mean(&self) -> f64 {
+        self.mean
+    }
+
+    /// The relative standard error of the mean, SE/|mean|; `None` before two passes or for a
+    /// zero mean.
+    pub fn rel_error(&self) -> Option<f64> {
+        if self.n < 2 || self.mean == 0.0 {
+            return None;
+        }
+        let n = f64::from(self.n);
+        Some((self.m2.max(0.0) / (n * (n - 1.0))).sqrt() / self.mean.abs())
+    }
+}
+
+/// Which rule ended a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Rule {
+    /// The passes asked for are done (one pass when no rule was given).
+    Passes,
+    /// The next pass would have ended past the time budget.
+    Time,
+    /// The relative standard error fell below the target.
+    TargetRelError,
+}
+
+/// Why a run stopped, for the report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stop {
+    /// The rule.
+    pub rule: Rule,
+    /// In words.
+    pub why: String,
+}
+
+/// One finished pass, as `report.json` records it.
+#[derive(Clone, Debug, Serialize)]
+pub struct PassRecord {
+    /// The pass, from 1.
+    pub pass: u32,
+    /// Wall time since the run started when the pass ended, s.
+    pub elapsed_s: f64,
+    /// Wall time of the pass, s.
+    pub seconds: f64,
+    /// Nearest photons per global-map estimate in the pass (the kernels shrink with k).
+    pub k: usize,
+    /// Largest gather radius of the global map in the pass, m.
+    pub max_radius_m: f64,
+    /// The mean of the target over the passes so far.
+    pub target_mean: f64,
+    /// The relative standard error of that mean (from the second pass).
+    pub rel_error: Option<f64>,
+}
+
+/// The progressive run as `report.json` records it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct ProgressiveReport {
+    /// Passes run.
+    pub passes: u32,
+    /// Knaus & Zwicker's α.
+    pub alpha: f64,
+    /// What the target error is measured on ("image", a sensor or a region).
+    pub target: String,
+    /// The rule that ended the run and why.
+    pub stopped: Option<Stop>,
+    /// The relative standard error of the target's mean at the end (from two passes).
+    pub rel_error: Option<f64>,
+    /// The mean, over every pixel and band with a positive value, of its relative standard
+    /// error (from two passes).
+    pub image_mean_rel_error: Option<f64>,
+    /// The error estimate after each pass against elapsed time.
+    pub history: Vec<PassRecord>,
+}
+
+/// Every output of a run, accumulated over its passes.
+#[derive(Default)]
+pub struct Outputs {
+    image: Welford<f32>,
+    sensors: Vec<Welford<f64>>,
+    profiles: Vec<Welford<f64>>,
+    sensor_shapes: Vec<crate::sensor::Reading>,
+    profile_shapes: Vec<crate::sensor::ProfileReading>,
+}
+
+impl Outputs {
+    /// Adds one pass's image band values and readings.
+    pub fn add(
+        &mut self,
+        data: Vec<f32>,
+        sensors: Vec<crate::sensor::Reading>,
+        profiles: Vec<crate::sensor::ProfileReading>,
+    ) {
+        self.image.add(data);
+        if self.sensors.is_empty() {
+            self.sensors = sensors.iter().map(|_| Welford::default()).collect();
+            self.profiles = profiles.iter().map(|_| Welford::default()).collect();
+        }
+        for (w, r) in self.sensors.iter_mut().zip(&sensors) {
+            w.add(r.columns.iter().flat_map(|c| c.1.iter().copied()).collect());
+        }
+        for (w, p) in self.profiles.iter_mut().zip(&profiles) {
+            w.add(profile_values(p));
+        }
+        self.sensor_shapes = sensors;
+        self.profile_shapes = profiles;
+    }
+
+    /// The image's band values so far (the mean of the passes) and their standard errors.
+    pub fn image_error(&self) -> Option<Vec<f32>> {
+        self.image.std_error()
+    }
+
+    /// The means: image band values, their standard errors (from two passes), the sensor
+    /// readings (with a `<column>_se` column per column from two passes) and the profiles.
+    pub fn finish(self) -> Finished {
+        let image_se = self.image.std_error();
+        let image = self.image.mean();
+        let sensors = self
+            .sensors
+            .into_iter()
+            .zip(self.sensor_shapes)
+            .map(|(w, mut r)| {
+                let se = w.std_error();
+                refill(&mut r, &w.mean());
+                if let Some(se) = se {
+                    let mut with_se = r.clone();
+                    refill(&mut with_se, &se);
+                    let se_columns: Vec<(String, Vec<f64>)> =
+                        with_se.columns.into_iter().map(|(n, v)| (format!("{n}_se"), v)).collect();
+                    r.columns.extend(se_columns);
+                }
+                r
+            })
+            .collect();
+        let profiles = self
+            .profiles
+            .into_iter()
+            .zip(self.profile_shapes)
+            .map(|(w, mut p)| {
+                set_profile_values(&mut p, &w.mean());
+                p
+            })
+            .collect();
+        Finished { image, image_se, sensors, profiles }
+    }
+}
+
+/// What [`Outputs::finish`] returns.
+pub struct Finished {
+    /// Band values per pixel, the mean over passes.
+    pub image: Vec<f32>,
+    /// Their standard errors (two passes or more).
+    pub image_se: Option<Vec<f32>>,
+    /// Sensor readings, means, with `_se` columns after two passes.
+    pub sensors: Vec<crate::sensor::Reading>,
+    /// Profile readings, means.
+    pub profiles: Vec<crate::sensor::ProfileReading>,
+}
+
+/// Puts `values` (columns one after the other) back into `r`'s columns.
+fn refill(r: &mut crate::sensor::Reading, values: &[f64]) {
+    let mut it = values.iter();
+    for (_, c) in &mut r.columns {
+        c.iter_mut().for_each(|v| *v = it.next().copied().unwrap_or(0.0));
+    }
+}
+
+/// A profile's measured values in a fixed order: per row Ed, Eu, Eod, Eou, Lu; per band of
+/// the surface Ed(0+), Lu(0−), Lw, Rrs.
+fn profile_values(p: &crate::sensor::ProfileReading) -> Vec<f64> {
+    let rows = p.rows.iter().flat_map(|r| [r.ed, r.eu, r.eod, r.eou, r.lu]);
+    rows.chain(p.surface.iter().flat_map(|s| s[1..].to_vec())).collect()
+}
+
+/// Writes values in the order of [`profile_values`] back into `p`.
+fn set_profile_values(p: &mut crate::sensor::ProfileReading, values: &[f64]) {
+    let mut it = values.iter().copied();
+    let mut next = || it.next().unwrap_or(0.0);
+    for r in &mut p.rows {
+        [r.ed, r.eu, r.eod, r.eou, r.lu] = [next(), next(), next(), next(), next()];
+    }
+    for s in &mut p.surface {
+        s[1..].iter_mut().for_each(|v| *v = next());
+    }
+}
+
+/// Decides after `done` passes whether the run stops: the target reached, the passes asked for
+/// done, or the next pass — predicted to take as long as the last one, `last_s` — ending past
+/// the time budget measured from the run's start (`elapsed_s` now).
+pub fn decide(p: &Progressive, done: u32, elapsed_s: f64, last_s: f64, rel: Option<f64>) -> Option<Stop> {
+    if let (Some(target), Some(e)) = (p.target_rel_error, rel)
+        && e <= target
+    {
+        return Some(Stop {
+            rule: Rule::TargetRelError,
+            why: format!("after {done} passes the relative standard error {e:.3e} is at most the target {target:e}"),
+        });
+    }
+    if done >= p.pass_limit() {
+        let why = match p.passes {
+            Some(n) => format!("the {n} passes asked for are done"),
+            None if p.time_s.is_none() && p.target_rel_error.is_none() => {
+                "one pass: no --passes, --time or --target-rel-error given".to_string()
+            }
+            None => format!("the limit of {done} passes is reached"),
+        };
+        return Some(Stop { rule: Rule::Passes, why });
+    }
+    if let Some(budget) = p.time_s
+        && elapsed_s + last_s > budget
+    {
+        return Some(Stop {
+            rule: Rule::Time,
+            why: format!(
+                "after {done} passes and {elapsed_s:.2} s, another pass (≈ {last_s:.2} s, as the last) would end past the {budget} s budget"
+            ),
+        });
+    }
+    None
+}
+
+/// The value the target error is measured on, from one pass's image (`nb` bands per pixel,
+/// `width` pixels per row) and readings: the mean over the target's values.
+pub fn target_value(
+    target: &Target,
+    (data, width, nb): (&[f32], usize, usize),
+    sensors: &[crate::sensor::Reading],
+    profiles: &[crate::sensor::ProfileReading],
+) -> f64 {
+    let mean = |v: &mut dyn Iterator<Item = f64>| {
+        let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+        if n == 0 { 0.0 } else { s / n as f64 }
+    };
+    match target {
+        Target::Image => mean(&mut data.iter().map(|v| f64::from(*v))),
+        Target::Region([x0, y0, x1, y1]) => mean(
+            &mut (*y0..*y1)
+                .flat_map(|y| (*x0..*x1).map(move |x| y * width + x))
+                .flat_map(|p| data[p * nb..(p + 1) * nb].iter().map(|v| f64::from(*v))),
+        ),
+        Target::Sensor(name) => {
+            if let Some(r) = sensors.iter().find(|r| &r.name == name) {
+                return mean(&mut r.columns[0].1.iter().copied());
+            }
+            profiles.iter().find(|p| &p.name == name).map_or(0.0, |p| mean(&mut p.rows.iter().map(|r| r.ed)))
+        }
+    }
+}
+
+/// The record of pass `pass` (0-based) run with settings `s`.
+pub fn record(pass: u32, s: &IntegratorSettings, (elapsed_s, seconds): (f64, f64), target: &Scalar) -> PassRecord {
+    PassRecord {
+        pass: pass + 1,
+        elapsed_s,
+        seconds,
+        k: s.k,
+        max_radius_m: s.max_radius_m,
+        target_mean: target.mean(),
+        rel_error: target.rel_error(),
+    }
+}
+
+/// The mean over values with a positive mean of SE/mean (`None` when there are none).
+pub fn mean_rel_error(mean: &[f32], se: &[f32]) -> Option<f64> {
+    let (s, n) = mean
+        .iter()
+        .zip(se)
+        .filter(|(m, _)| **m > 0.0)
+        .fold((0.0, 0usize), |(s, n), (m, e)| (s + f64::from(*e) / f64::from(*m), n + 1));
+    (n > 0).then(|| s / n as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welford_matches_the_two_pass_formulas() {
+        let passes = [[1.0f32, 10.0], [2.0, 10.0], [4.0, 13.0], [5.0, 7.0]];
+        let mut w = Welford::<f32>::default();
+        for p in passes {
+            w.add(p.to_vec());
+        }
+        let se = w.std_error().expect("two passes or more");
+        for (j, want_mean) in [3.0f64, 10.0].iter().enumerate() {
+            let var: f64 = passes.iter().map(|p| (f64::from(p[j]) - want_mean).powi(2)).sum::<f64>() / 3.0;
+            assert!((f64::from(se[j]) - (var / 4.0).sqrt()).abs() < 1e-6);
+        }
+        assert_eq!(w.mean(), vec![3.0, 10.0]);
+    }
+
+    #[test]
+    fn one_pass_is_kept_bit_for_bit() {
+        let mut w = Welford::<f32>::default();
+        let x = vec![0.1f32, 3.3e-7, f32::MIN_POSITIVE];
+        w.add(x.clone());
+        assert!(w.std_error().is_none());
+        assert_eq!(w.mean(), x);
+    }
+
+    #[test]
+    fn rules_stop_in_order() {
+        let p = Progressive { passes: Some(3), time_s: Some(10.0), target_rel_error: Some(0.01), ..Default::default() };
+        assert!(decide(&p, 1, 1.0, 1.0, None).is_none());
+        assert_eq!(decide(&p, 2, 2.0, 1.0, Some(0.005)).map(|s| s.rule), Some(Rule::TargetRelError));
+        assert_eq!(decide(&p, 2, 9.5, 1.0, Some(0.5)).map(|s| s.rule), Some(Rule::Time));
+        assert_eq!(decide(&p, 3, 3.0, 1.0, Some(0.5)).map(|s| s.rule), Some(Rule::Passes));
+        assert_eq!(decide(&Progressive::default(), 1, 1.0, 1.0, None).map(|s| s.rule), Some(Rule::Passes));
+    }
+}
