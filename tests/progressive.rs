@@ -274,3 +274,39 @@ fn passes_write_a_standard_error_layer_and_a_target_stops_the_run() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--passes"), "{}", String::from_utf8_lossy(&o.stderr));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn sensor_csvs_gain_standard_error_columns_and_a_sensor_can_be_the_target() {
+    let (dir, scene) = scratch("sensor");
+    let sensor = "\n[[sensor]]\nname = \"floor\"\ntype = \"illuminance_plane\"\norigin = [0.0, -0.5, 0.0]\nu = [0.5, 0.0, 0.0]\nv = [0.0, 0.0, -0.5]\nresolution = [2, 2]\nsamples = 16\ngather_rays = 0\n";
+    let text = std::fs::read_to_string(&scene).expect("scene") + sensor;
+    std::fs::write(&scene, text).expect("scene with a sensor");
+    let out = dir.join("out");
+    let o = morgana()
+        .args([
+            "render",
+            &scene,
+            "--quiet",
+            "--passes",
+            "20",
+            "--target-rel-error",
+            "0.5",
+            "--target",
+            "floor",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .expect("run morgana");
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("furnace_floor.csv")).expect("the sensor's CSV");
+    let header = csv.lines().next().unwrap_or_default();
+    for column in ["E_lx", "E_lx_se", "E_direct_lx_se", "E_indirect_lx_se"] {
+        assert!(header.split(',').any(|c| c == column), "no {column} in {header}");
+    }
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report")).expect("json");
+    assert_eq!(report["progressive"]["target"], "sensor floor");
+    assert_eq!(report["progressive"]["stopped"]["rule"], "target_rel_error", "{}", report["progressive"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
