@@ -115,8 +115,16 @@ impl Worker {
     /// Sends SIGKILL to the worker's process group. Only while the worker is not yet reaped:
     /// its pid is the group's id.
     fn kill_group(&self) {
-        let pid = self.child.id();
-        let _ = Command::new("kill").arg("-KILL").arg(format!("-{pid}")).stderr(Stdio::null()).status();
+        // kill(2) on the negated group id, never on 0 or −1 (the caller's group, or every
+        // process). Not the `kill` program: procps-ng 4.0.2 took `kill -KILL -PGID` as a kill
+        // of every process the user may signal.
+        let Ok(pgid) = libc::pid_t::try_from(self.child.id()) else { return };
+        if pgid > 1 {
+            // SAFETY: kill(2) takes plain integers and touches no memory of this process.
+            unsafe {
+                libc::kill(-pgid, libc::SIGKILL);
+            }
+        }
     }
 
     fn stderr_tail(&self) -> String {
