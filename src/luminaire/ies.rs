@@ -192,7 +192,7 @@ fn params(tok: &mut Tokens) -> Result<Params, ParseError> {
     let (units, _) = tok.integer_in("LM-63 units type (1 = feet, 2 = metres)", 1, 2)?;
     let mut dims = [0.0; 3];
     for (d, name) in dims.iter_mut().zip(["width", "length", "height"]) {
-        *d = tok.number(&format!("LM-63 luminous opening {name}"), "a number")?.0;
+        *d = tok.number_in(&format!("LM-63 luminous opening {name}"), -super::MAX_OPENING, super::MAX_OPENING)?.0;
     }
     let (ballast, line) = tok.number_in("LM-63 ballast factor", 0.0, f64::INFINITY)?;
     positive(ballast, line, "LM-63 ballast factor")?;
@@ -528,6 +528,10 @@ mod tests {
         assert!(e.field.contains("horizontal angles") && e.found == "first 0°, last 120°", "{e}");
         // The line of the list's last angle (the fuzzer found this error without a line).
         assert_eq!(e.line, Some(12), "{e}");
+        // An opening of 1.8e308 ft printed as "inf × 300 mm" (the fuzzer): at most 10^4 units.
+        let e = read_str(&base.replace("1 1 .5 .6 0", "1 1 .5 1.7976931348623157e308 0")).unwrap_err();
+        assert_eq!(e.line, Some(9), "{e}");
+        assert!(e.field.contains("luminous opening length") && e.expected.contains("10000"), "{e}");
         let e = read_str(&base.replace("TILT=NONE\n", "")).unwrap_err();
         assert!(e.field.contains("TILT"), "{e}");
         let e = read_str(&base.replace("1 50000", "1 0")).unwrap_err();

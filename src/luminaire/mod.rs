@@ -168,6 +168,9 @@ pub struct Reader {
 pub const MAX_TABLE_VALUE: f64 = 1e12;
 /// The largest candela multiplier or conversion factor a photometric file may state.
 pub const MAX_MULTIPLIER: f64 = 1e6;
+/// The largest luminous-opening dimension a file may give, in its own units (feet or metres):
+/// 10 km or 10,000 ft, far beyond any luminaire, and a bound that keeps sizes finite in mm.
+pub const MAX_OPENING: f64 = 1e4;
 
 /// The formats morgana can read, for messages ("IES LM-63 (.ies), EULUMDAT (.ldt, .eul), …").
 pub fn supported_formats() -> String {

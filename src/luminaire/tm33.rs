@@ -302,7 +302,7 @@ fn raw_opening(e: Node) -> Result<RawOpening, ParseError> {
     }
     let a = bottom[0];
     let num = |name: &str| -> Result<f64, ParseError> {
-        xml::number(xml::require(a, name, W, "a length in metres")?, W, f64::NEG_INFINITY, f64::INFINITY)
+        xml::number(xml::require(a, name, W, "a length in metres")?, W, -super::MAX_OPENING, super::MAX_OPENING)
     };
     let (length_m, width_m) = (num("Length")?, num("Width")?);
     let offsets = child_number(a, "LengthOffset", W, f64::NEG_INFINITY, f64::INFINITY)?.unwrap_or(0.0).abs()
@@ -668,6 +668,17 @@ mod tests {
         let p = read_str(&tm33_23(&[0.0, 90.0], "<Symm>Symm _ Arbitrary</Symm>", "")).unwrap();
         assert_eq!(p.symmetry, Symmetry::Quadrant);
         assert_eq!(p.notes.len(), 1);
+    }
+
+    #[test]
+    fn an_opening_of_1e308_metres_is_refused() {
+        // The fuzzer: a BottomArea Length of 1e308 m printed as "600 × inf mm".
+        let area = "<EmissionAreas><BottomFace><NumberBottom>1</NumberBottom><BottomArea><Length>LEN</Length>\
+                    <Width>0.3</Width></BottomArea></BottomFace></EmissionAreas>";
+        read_str(&tm33_23(&[0.0], "", &area.replace("LEN", "0.6"))).unwrap();
+        let e = read_str(&tm33_23(&[0.0], "", &area.replace("LEN", "1e308"))).unwrap_err();
+        assert!(e.field.contains("Length") && e.expected.contains("10000"), "{e}");
+        assert!(e.line.is_some(), "{e}");
     }
 
     #[test]
