@@ -107,6 +107,7 @@ fn wait(
     observer: Option<&Observer>,
     progress: Option<&Py<PyAny>>,
 ) -> PyResult<Outcome> {
+    let mut sent = Vec::new();
     loop {
         let received = py.detach(|| match rx.lock() {
             Ok(r) => r.recv_timeout(POLL),
@@ -114,7 +115,7 @@ fn wait(
         });
         match received {
             Ok(out) => {
-                report(py, observer, progress)?;
+                report(py, observer, progress, &mut sent)?;
                 return Ok(out);
             }
             Err(mpsc::RecvTimeoutError::Disconnected) => {
@@ -122,7 +123,7 @@ fn wait(
             }
             Err(mpsc::RecvTimeoutError::Timeout) => {}
         }
-        let checked = py.check_signals().and_then(|_| report(py, observer, progress));
+        let checked = py.check_signals().and_then(|_| report(py, observer, progress, &mut sent));
         if let Err(e) = checked {
             cancel.store(true, Ordering::Relaxed);
             py.detach(|| {
@@ -135,11 +136,25 @@ fn wait(
     }
 }
 
-/// Calls `progress(phase, done, total)` with the current phase's progress.
-fn report(py: Python<'_>, observer: Option<&Observer>, progress: Option<&Py<PyAny>>) -> PyResult<()> {
-    if let (Some(o), Some(cb)) = (observer, progress)
-        && let Some(p) = o.read()
-    {
+/// Calls `progress(phase, done, total)` for each phase whose progress changed.
+/// Phases are reported in the order they started, each when its progress changed since the
+/// last call (`sent` holds what was sent), so a phase that began and ended between two polls is
+/// still reported at its end.
+fn report(
+    py: Python<'_>,
+    observer: Option<&Observer>,
+    progress: Option<&Py<PyAny>>,
+    sent: &mut Vec<(u64, u64)>,
+) -> PyResult<()> {
+    let (Some(o), Some(cb)) = (observer, progress) else { return Ok(()) };
+    for (i, p) in o.read_all().into_iter().enumerate() {
+        if sent.get(i) == Some(&(p.done, p.total)) {
+            continue;
+        }
+        if i >= sent.len() {
+            sent.resize(i + 1, (u64::MAX, u64::MAX));
+        }
+        sent[i] = (p.done, p.total);
         cb.call1(py, (p.phase, p.done, p.total))?;
     }
     Ok(())

@@ -31,10 +31,12 @@ impl Bars<'_> {
     }
 }
 
-/// The progress bar of the phase running now, readable from another thread.
+/// The progress bars of a run's phases, in the order they started, readable from another
+/// thread (a reader polling now and then also sees the phases that started and ended between
+/// two of its polls).
 #[derive(Debug, Default)]
 pub struct Observer {
-    current: Mutex<Option<ProgressBar>>,
+    phases: Mutex<Vec<ProgressBar>>,
 }
 
 /// A phase's progress as an [`Observer`] reads it.
@@ -50,16 +52,22 @@ pub struct PhaseProgress {
 
 impl Observer {
     fn watch(&self, pb: &ProgressBar) {
-        if let Ok(mut c) = self.current.lock() {
-            *c = Some(pb.clone());
+        if let Ok(mut c) = self.phases.lock() {
+            c.push(pb.clone());
         }
     }
 
-    /// The current phase's progress (`None` before the first phase starts).
+    /// The latest phase's progress (`None` before the first phase starts).
     pub fn read(&self) -> Option<PhaseProgress> {
-        let c = self.current.lock().ok()?;
-        let pb = c.as_ref()?;
-        Some(PhaseProgress { phase: pb.prefix(), done: pb.position(), total: pb.length().unwrap_or(0) })
+        self.read_all().pop()
+    }
+
+    /// Every phase's progress so far, in the order the phases started.
+    pub fn read_all(&self) -> Vec<PhaseProgress> {
+        let Ok(c) = self.phases.lock() else { return Vec::new() };
+        c.iter()
+            .map(|pb| PhaseProgress { phase: pb.prefix(), done: pb.position(), total: pb.length().unwrap_or(0) })
+            .collect()
     }
 }
 
@@ -100,5 +108,8 @@ mod tests {
         let quiet = Bars { quiet: true, observer: Some(&o) };
         quiet.bar(5, "hidden").inc(1);
         assert_eq!(o.read().map(|p| p.phase), Some("eye pass".to_string()));
+        // Every phase stays readable at its last position, also one that ended between polls.
+        let all: Vec<(String, u64)> = o.read_all().into_iter().map(|p| (p.phase, p.done)).collect();
+        assert_eq!(all, vec![("global photons".to_string(), 4), ("eye pass".to_string(), 3)]);
     }
 }
