@@ -217,18 +217,19 @@ fn bad_stopping_flags_exit_2_naming_the_flag() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Renders `scene` quietly into `out` with `args`, asserts success and returns report.json.
+fn render_report(scene: &str, out: &std::path::Path, args: &[&str]) -> serde_json::Value {
+    let o =
+        morgana().args(["render", scene, "--quiet"]).args(args).arg("--out").arg(out).output().expect("run morgana");
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report")).expect("json")
+}
+
 #[test]
 fn a_time_budget_stops_the_passes_and_says_so() {
     let (dir, scene) = scratch("time");
     let out = dir.join("out");
-    let o = morgana()
-        .args(["render", &scene, "--quiet", "--threads", "2", "--time", "4s", "--out"])
-        .arg(&out)
-        .output()
-        .expect("run morgana");
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-    let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report")).expect("json");
+    let report = render_report(&scene, &out, &["--threads", "2", "--time", "4s"]);
     let p = &report["progressive"];
     assert_eq!(p["stopped"]["rule"], "time", "{p}");
     assert!(p["passes"].as_u64().unwrap_or(0) >= 1, "{p}");
@@ -242,14 +243,7 @@ fn a_time_budget_stops_the_passes_and_says_so() {
 fn passes_write_a_standard_error_layer_and_a_target_stops_the_run() {
     let (dir, scene) = scratch("layers");
     let out = dir.join("out");
-    let o = morgana()
-        .args(["render", &scene, "--quiet", "--target-rel-error", "0.2", "--passes", "50", "--out"])
-        .arg(&out)
-        .output()
-        .expect("run morgana");
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-    let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report")).expect("json");
+    let report = render_report(&scene, &out, &["--target-rel-error", "0.2", "--passes", "50"]);
     let p = &report["progressive"];
     assert_eq!(p["stopped"]["rule"], "target_rel_error", "{p}");
     assert!(p["rel_error"].as_f64().is_some_and(|e| e <= 0.2), "{p}");
@@ -282,30 +276,12 @@ fn sensor_csvs_gain_standard_error_columns_and_a_sensor_can_be_the_target() {
     let text = std::fs::read_to_string(&scene).expect("scene") + sensor;
     std::fs::write(&scene, text).expect("scene with a sensor");
     let out = dir.join("out");
-    let o = morgana()
-        .args([
-            "render",
-            &scene,
-            "--quiet",
-            "--passes",
-            "20",
-            "--target-rel-error",
-            "0.5",
-            "--target",
-            "floor",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .expect("run morgana");
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let report = render_report(&scene, &out, &["--passes", "20", "--target-rel-error", "0.5", "--target", "floor"]);
     let csv = std::fs::read_to_string(out.join("furnace_floor.csv")).expect("the sensor's CSV");
     let header = csv.lines().next().unwrap_or_default();
     for column in ["E_lx", "E_lx_se", "E_direct_lx_se", "E_indirect_lx_se"] {
         assert!(header.split(',').any(|c| c == column), "no {column} in {header}");
     }
-    let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report")).expect("json");
     assert_eq!(report["progressive"]["target"], "sensor floor");
     assert_eq!(report["progressive"]["stopped"]["rule"], "target_rel_error", "{}", report["progressive"]);
     let _ = std::fs::remove_dir_all(&dir);
