@@ -107,11 +107,23 @@ class Scene:
         cannot hold (None, an object)."""
         return _native.NativeScene.dict_to_toml(d)
 
-    def with_overrides(self, **overrides: Optional[int]) -> "Scene":
+    def with_overrides(self, **overrides: Any) -> "Scene":
         """The scene with the overrides of ``morgana render`` applied; a new scene.
 
-        Accepted: ``photons`` (photons of each photon map, like ``--photons``) and ``seed``
-        (like ``--seed``). None leaves a setting as it is; an unknown name is a TypeError.
+        Accepted (each like the flag of ``morgana render`` it names):
+
+        - ``photons``: photons of each photon map (``--photons``); ``seed`` (``--seed``).
+        - ``passes``: progressive passes to run (``--passes``).
+        - ``time``: wall-clock budget of the whole render, seconds or a text such as ``"90s"``,
+          ``"1.5min"`` (``--time``).
+        - ``target_rel_error``: stop when the relative standard error of the target's mean falls
+          below it, e.g. 0.01 (``--target-rel-error``).
+        - ``target``: what that error is measured on: ``"image"``, a sensor's name or a pixel
+          region ``(x0, y0, x1, y1)``, x1 and y1 exclusive (``--target``).
+
+        A stopping rule replaces the scene's ``[integrator]`` key of the same name. None leaves
+        a setting as it is; an unknown name or a value of the wrong type is a TypeError, a value
+        out of range (``passes=0``, ``time=-1``, a target naming no sensor) a ValueError.
         """
         return Scene(self._native.with_overrides(overrides))
 
@@ -187,8 +199,9 @@ class Result:
         W m^-2 sr^-1 nm^-1 (what the spectral EXR holds).
       rgb: float32 array (height, width, 3), linear sRGB (D65), Y in cd m^-2.
       wavelengths_nm: band centres; band_edges_nm: band edges (bands + 1).
-      stderr: the radiance's standard error where the run estimates it; None (this version of
-        the library does not estimate it).
+      stderr: float32 array like ``radiance``: each pixel's and band's standard error from the
+        spread between progressive passes (the EXR's ``stderr`` layer), W m^-2 sr^-1 nm^-1;
+        None after a single pass, which has no estimate.
       sensors: sensor name -> {column: array}, the columns of its CSV file.
       derived: ocean-profile sensor name -> {"surface": {column: array}, "kd": {column: array}},
         the two tables of its ``_derived.csv`` (Ed(0+), Lu(0-), Lw, Rrs per band; K_d between
@@ -205,7 +218,10 @@ class Result:
         self.rgb: np.ndarray = np.frombuffer(native.rgb_bytes(), dtype=np.float32).reshape(h, w, 3).copy()
         self.wavelengths_nm: np.ndarray = np.asarray(native.wavelengths_nm)
         self.band_edges_nm: np.ndarray = np.asarray(native.band_edges_nm)
-        self.stderr: Optional[np.ndarray] = None
+        se = native.stderr_bytes()
+        self.stderr: Optional[np.ndarray] = (
+            None if se is None else np.frombuffer(se, dtype=np.float32).reshape(h, w, nb).copy()
+        )
         self.sensors: Dict[str, Dict[str, np.ndarray]] = {}
         self.derived: Dict[str, Dict[str, np.ndarray]] = {}
         for name, _kind, text, derived in native.sensor_csvs():

@@ -200,6 +200,12 @@ impl NativeResult {
         f32_bytes(py, &self.rendered.image.data)
     }
 
+    /// The radiance's standard error from the pass-to-pass spread, laid out like the radiance;
+    /// `None` after a single pass.
+    fn stderr_bytes<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyBytes>> {
+        self.rendered.std_error.as_deref().map(|se| f32_bytes(py, se))
+    }
+
     /// Linear sRGB (D65; Y in cd m⁻²), float32, row-major (y, x, channel).
     fn rgb_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
         f32_bytes(py, &self.rendered.image.rgb)

@@ -2,6 +2,7 @@
 //! overrides re-read the same text (a scene is built once and never mutated in place).
 
 use crate::errors::{arg_error, guard, must_exist, scene_error};
+use morgana::scene::progressive::{FlagStyle, Flags};
 use morgana::scene::{Scene, load_scene_str};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -24,17 +25,20 @@ pub struct Source {
     pub from_file: bool,
 }
 
-/// The overrides the CLI's `morgana render` flags apply to a scene (`--photons`, `--seed`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// The overrides the CLI's `morgana render` flags apply to a scene (`--photons`, `--seed` and the
+/// stopping rules `--passes`, `--time`, `--target-rel-error`, `--target`).
+#[derive(Clone, Debug, Default)]
 pub struct Overrides {
     /// `--photons`: photons of each photon map.
     pub photons: Option<u64>,
     /// `--seed`: the random seed.
     pub seed: Option<u64>,
+    /// `--passes`, `--time`, `--target-rel-error`, `--target`.
+    pub stop: Flags,
 }
 
 /// The names `with_overrides` accepts (the scene-changing flags of `morgana render`).
-pub const OVERRIDES: [&str; 2] = ["photons", "seed"];
+pub const OVERRIDES: [&str; 6] = ["photons", "seed", "passes", "time", "target_rel_error", "target"];
 
 /// A validated scene (native part of `morgana.Scene`).
 #[pyclass(module = "morgana._native", frozen)]
@@ -59,6 +63,7 @@ impl NativeScene {
             morgana::scene::check_photons_override(n).map_err(|e| arg_error(e.at_flag("photons")))?;
         }
         scene.apply_overrides(overrides.photons, overrides.seed);
+        scene.apply_stopping_rules(&overrides.stop).map_err(arg_error)?;
         Ok(NativeScene { scene: Arc::new(scene), source, overrides })
     }
 }
@@ -90,17 +95,25 @@ impl NativeScene {
 
     /// The scene with some of `morgana render`'s overrides applied (a new scene).
     fn with_overrides(&self, py: Python<'_>, kwargs: &Bound<'_, PyDict>) -> PyResult<NativeScene> {
-        let mut o = self.overrides;
+        let mut o = self.overrides.clone();
         for (k, v) in kwargs.iter() {
             let key: String = k.extract()?;
-            let n: Option<u64> = if v.is_none() {
-                None
-            } else {
-                Some(v.extract().map_err(|_| PyTypeError::new_err(format!("{key}: expected a non-negative integer")))?)
-            };
+            if v.is_none() {
+                continue;
+            }
+            let wrong = |what: &str| PyTypeError::new_err(format!("{key}: expected {what}"));
             match key.as_str() {
-                "photons" => o.photons = n.or(o.photons),
-                "seed" => o.seed = n.or(o.seed),
+                "photons" => o.photons = Some(v.extract().map_err(|_| wrong("a non-negative integer"))?),
+                "seed" => o.seed = Some(v.extract().map_err(|_| wrong("a non-negative integer"))?),
+                "passes" => o.stop.passes = Some(v.extract().map_err(|_| wrong("an integer"))?),
+                "time" => {
+                    o.stop.time = Some(duration_text(&v).ok_or_else(|| wrong("seconds or a text such as '90s'"))?)
+                }
+                "target_rel_error" => o.stop.target_rel_error = Some(v.extract().map_err(|_| wrong("a number"))?),
+                "target" => {
+                    o.stop.target =
+                        Some(target_text(&v).ok_or_else(|| wrong("'image', a sensor name or (x0, y0, x1, y1)"))?)
+                }
                 _ => {
                     return Err(PyTypeError::new_err(format!(
                         "with_overrides() got an unexpected keyword argument '{key}'; accepted: {}",
@@ -109,6 +122,7 @@ impl NativeScene {
                 }
             }
         }
+        o.stop.style = FlagStyle::Keyword;
         NativeScene::build(py, self.source.clone(), o)
     }
 
@@ -182,4 +196,25 @@ pub fn band_edges(b: &morgana::spectrum::Bands) -> Vec<f64> {
         e.push(b.edges_nm(b.count - 1).1);
     }
     e
+}
+
+/// `time=`: seconds as a number, or a text such as `"90s"` or `"1.5min"` (as `--time` reads it).
+fn duration_text(v: &Bound<'_, PyAny>) -> Option<String> {
+    if let Ok(t) = v.extract::<String>() {
+        return Some(t);
+    }
+    if v.is_instance_of::<pyo3::types::PyBool>() {
+        return None;
+    }
+    v.extract::<f64>().ok().map(|x| x.to_string())
+}
+
+/// `target=`: `"image"`, a sensor's name, or a pixel region as four integers (as `--target`
+/// reads `x0,y0,x1,y1`).
+fn target_text(v: &Bound<'_, PyAny>) -> Option<String> {
+    if let Ok(t) = v.extract::<String>() {
+        return Some(t);
+    }
+    let r: [i64; 4] = v.extract().ok()?;
+    Some(r.map(|x| x.to_string()).join(","))
 }

@@ -94,6 +94,40 @@ def test_the_radiance_is_what_the_spectral_exr_holds(tmp_path, cli):
         np.testing.assert_array_equal(np.asarray(channels[k].pixels, dtype=np.float32), result.radiance[:, :, b])
 
 
+def exr_layers(OpenEXR, path: Path, prefix: str) -> list:
+    """The channels `prefix<λ>nm` of a spectral EXR, ordered by wavelength, as float32 arrays."""
+    channels = OpenEXR.File(str(path), separate_channels=True).channels()
+    names = [k for k in channels if k.startswith(prefix) and k[len(prefix) :].rstrip("nm").replace(",", ".").replace(".", "", 1).isdigit()]
+    names.sort(key=lambda k: float(k[len(prefix) :].rstrip("nm").replace(",", ".")))
+    return [np.asarray(channels[k].pixels, dtype=np.float32) for k in names]
+
+
+def test_progressive_passes_give_the_cli_image_and_its_error_layer(tmp_path, cli):
+    """`with_overrides(passes=3)` renders what `morgana render --passes 3` renders, and
+    `.stderr` is the EXR's standard-error layer (`stderr.S0.<λ>nm`) the CLI writes."""
+    OpenEXR = pytest.importorskip("OpenEXR")
+    path = scene_file(tmp_path, "white_furnace.toml", exr=True)
+    cli("render", path, "--out", tmp_path / "cli", "--photons", 5_000, "--seed", 3, "--passes", 3, "--quiet")
+    scene = morgana.Scene.from_file(path).with_overrides(photons=5_000, seed=3, passes=3)
+    result = morgana.render(scene, threads=2, progress=False)
+    exr = next((tmp_path / "cli").glob("*.exr"))
+    radiance, stderr = exr_layers(OpenEXR, exr, "S0."), exr_layers(OpenEXR, exr, "stderr.S0.")
+    assert result.stderr is not None and result.stderr.shape == result.radiance.shape
+    assert len(radiance) == len(stderr) == result.radiance.shape[2]
+    for b in range(result.radiance.shape[2]):
+        np.testing.assert_array_equal(radiance[b], result.radiance[:, :, b])
+        np.testing.assert_array_equal(stderr[b], result.stderr[:, :, b])
+    # Three passes of independent maps differ, so the spread is positive somewhere (and never
+    # negative or NaN); the report says three passes ran and why they stopped.
+    assert np.all(np.isfinite(result.stderr)) and np.all(result.stderr >= 0) and np.any(result.stderr > 0)
+    p = result.report["progressive"]
+    assert p["passes"] == 3 and len(p["history"]) == 3 and p["stopped"]["rule"] == "passes"
+    assert scene.plan()["progressive_passes"]["on"]
+    # One pass has no spread to estimate from: None.
+    single = morgana.render(scene.with_overrides(passes=1), progress=False)
+    assert single.stderr is None and single.report["progressive"]["passes"] == 1
+
+
 def test_the_thread_count_does_not_change_the_image():
     scene = morgana.Scene.from_file(EXAMPLES / "white_furnace.toml").with_overrides(photons=10_000, seed=2)
     one = morgana.render(scene, threads=1, progress=False)

@@ -3,6 +3,7 @@
 import copy
 import math
 import random
+import re
 import tomllib
 
 import numpy as np
@@ -60,10 +61,54 @@ def test_overrides_change_the_integrator_and_reject_unknown_names():
     assert (o.integrator()["photons"], o.integrator()["seed"]) == (1234, 99)
     assert s.integrator()["photons"] == 400000  # the original is unchanged
     assert o.with_overrides(seed=None).integrator()["seed"] == 99
-    with pytest.raises(TypeError, match="accepted: photons, seed"):
+    with pytest.raises(TypeError, match="accepted: photons, seed, passes, time, target_rel_error, target"):
         s.with_overrides(spp=4)
     with pytest.raises(ValueError):
         s.with_overrides(photons=0)
+
+
+def test_stopping_rules_are_the_render_flags():
+    """passes/time/target_rel_error/target replace the [integrator] keys as --passes, --time,
+    --target-rel-error and --target do, and the effect plan says which rules stop the run."""
+    s = morgana.Scene.from_file(EXAMPLES / "white_furnace.toml")
+    assert not s.plan()["progressive_passes"]["on"]
+    p = s.with_overrides(passes=5).integrator()["progressive"]
+    assert p["passes"] == 5
+    assert s.with_overrides(time=90).integrator()["progressive"]["time_s"] == 90.0
+    assert s.with_overrides(time="1.5min").integrator()["progressive"]["time_s"] == 90.0
+    t = s.with_overrides(target_rel_error=0.02, target=(0, 0, 4, 4))
+    assert t.integrator()["progressive"]["target_rel_error"] == 0.02
+    assert t.integrator()["progressive"]["target"] == {"region": [0, 0, 4, 4]}
+    reason = t.plan()["progressive_passes"]
+    assert reason["on"] and "region 0,0,4,4" in reason["why"], reason
+    # Overrides accumulate; None leaves a rule as it is.
+    both = s.with_overrides(passes=5).with_overrides(time=None, target_rel_error=0.1)
+    assert both.integrator()["progressive"]["passes"] == 5
+    assert both.integrator()["progressive"]["target_rel_error"] == 0.1
+
+
+@pytest.mark.parametrize(
+    "overrides,message",
+    [
+        ({"passes": 0}, "passes=0: expected between 1 and"),
+        ({"time": -1}, "time=-1: expected a positive duration"),
+        ({"time": "soon"}, "time=soon: expected a duration"),
+        ({"target_rel_error": 2.0}, "target_rel_error=2: expected a relative standard error"),
+        ({"target": "image"}, "target=image needs target_rel_error"),
+        ({"target": "desk", "target_rel_error": 0.1}, 'target=desk names the sensor "desk"'),
+        ({"target": (0, 0, 999, 4), "target_rel_error": 0.1}, "is not a non-empty rectangle"),
+    ],
+)
+def test_bad_stopping_rules_are_value_errors_naming_the_keyword(overrides, message):
+    s = morgana.Scene.from_file(EXAMPLES / "white_furnace.toml")
+    with pytest.raises(ValueError, match=re.escape(message)):
+        s.with_overrides(**overrides)
+
+
+@pytest.mark.parametrize("overrides", [{"passes": "3"}, {"time": [1]}, {"target": 3}, {"target_rel_error": "x"}])
+def test_stopping_rules_of_the_wrong_type_are_type_errors(overrides):
+    with pytest.raises(TypeError):
+        morgana.Scene.from_file(EXAMPLES / "white_furnace.toml").with_overrides(**overrides)
 
 
 def white_furnace_lines():

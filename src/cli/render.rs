@@ -78,6 +78,7 @@ impl StopArgs {
             time: self.time.clone(),
             target_rel_error: self.target_rel_error,
             target: self.target.clone(),
+            style: crate::scene::progressive::FlagStyle::Cli,
         }
     }
 }
@@ -131,7 +132,7 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
     }
     let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
     let mut scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
-    apply_stop(&mut scene, &args.stop)?;
+    scene.apply_stopping_rules(&args.stop.flags())?;
     // Rank 0 writes the outputs: it checks where, before any work, and every rank learns.
     let destination = if comm.is_root() { crate::output::check_destination(&scene, &args.out, true) } else { Ok(()) };
     distributed::fault::agree(comm, destination)?;
@@ -157,20 +158,6 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
     let threads = pool.current_num_threads();
     let outputs = crate::output::write_outputs(&scene, &rendered, &args.out, threads, start.elapsed().as_secs_f64())?;
     Ok(outputs.iter().map(|p| format!("wrote {}\n", p.display())).collect())
-}
-
-/// Applies the command line's stopping rules to the scene and checks the target names one of
-/// its sensors or a region of its image.
-fn apply_stop(scene: &mut crate::scene::Scene, stop: &StopArgs) -> Result<()> {
-    let p = &mut scene.integrator.progressive;
-    p.apply(&stop.flags())?;
-    let names: Vec<String> = scene.sensors.iter().map(|s| s.name.clone()).collect();
-    p.check_target(&names, scene.camera.width, scene.camera.height).map_err(|e| {
-        let flag = stop.target.as_ref().map_or("[integrator] target".to_string(), |t| format!("--target {t}"));
-        Error::input(None, format!("{flag} {e}"))
-    })?;
-    scene.plan.progressive_passes = crate::scene::EffectPlan::progressive_decision(&scene.integrator);
-    Ok(())
 }
 
 fn parse_schedule(s: &str) -> std::result::Result<Schedule, String> {

@@ -91,6 +91,22 @@ impl Scene {
         self.plan = decide_plan(&self.world, &self.integrator, &self.sensors, self.sampling, &self.bands);
     }
 
+    /// Applies a front end's stopping rules (`morgana render`'s flags, the Python package's
+    /// keywords) over the scene's `[integrator]` keys, checks that the target names one of its
+    /// sensors or a region of its image, and decides the progressive plan again.
+    pub fn apply_stopping_rules(&mut self, flags: &progressive::Flags) -> crate::error::Result<()> {
+        let p = &mut self.integrator.progressive;
+        p.apply(flags)?;
+        let names: Vec<String> = self.sensors.iter().map(|s| s.name.clone()).collect();
+        p.check_target(&names, self.camera.width, self.camera.height).map_err(|e| {
+            let rule =
+                flags.target.as_ref().map_or("[integrator] target".to_string(), |t| flags.style.said("target", t));
+            crate::error::Error::input(None, format!("{rule} {e}"))
+        })?;
+        self.plan.progressive_passes = EffectPlan::progressive_decision(&self.integrator);
+        Ok(())
+    }
+
     /// How curved paths are followed, when the plan follows them (`None`: every path is
     /// straight).
     pub fn curved(&self) -> Option<&CurvedSettings> {

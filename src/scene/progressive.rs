@@ -67,23 +67,27 @@ impl Progressive {
         }
     }
 
-    /// Applies the command line's rules over the scene's (each flag replaces its key).
+    /// Applies a front end's rules over the scene's (each one given replaces its key); errors
+    /// name the flag or keyword as `flags.style` spells it.
     pub fn apply(&mut self, flags: &Flags) -> crate::error::Result<()> {
+        let said = |key: &str, value: &dyn std::fmt::Display| flags.style.said(key, value);
         if let Some(n) = flags.passes {
-            self.passes = Some(check_passes(n).map_err(|e| cli_error(format!("--passes {n}: {e}")))?);
+            self.passes = Some(check_passes(n).map_err(|e| input_error(format!("{}: {e}", said("passes", &n))))?);
         }
         if let Some(t) = &flags.time {
-            self.time_s = Some(parse_duration(t).map_err(|e| cli_error(format!("--time {t}: {e}")))?);
+            self.time_s = Some(parse_duration(t).map_err(|e| input_error(format!("{}: {e}", said("time", t))))?);
         }
         if let Some(e) = flags.target_rel_error {
             self.target_rel_error =
-                Some(check_rel_error(e).map_err(|m| cli_error(format!("--target-rel-error {e}: {m}")))?);
+                Some(check_rel_error(e).map_err(|m| input_error(format!("{}: {m}", said("target_rel_error", &e))))?);
         }
         if let Some(t) = &flags.target {
-            self.target = parse_target(t).map_err(|e| cli_error(format!("--target {t}: {e}")))?;
+            self.target = parse_target(t).map_err(|e| input_error(format!("{}: {e}", said("target", t))))?;
             if self.target_rel_error.is_none() {
-                return Err(cli_error(format!(
-                    "--target {t} needs --target-rel-error (or target_rel_error in [integrator]): it names what that error is measured on"
+                return Err(input_error(format!(
+                    "{} needs {} (or target_rel_error in [integrator]): it names what that error is measured on",
+                    said("target", t),
+                    flags.style.name("target_rel_error")
                 )));
             }
         }
@@ -111,7 +115,8 @@ impl Progressive {
     }
 }
 
-/// The command line's stopping rules (`None`: not given).
+/// A front end's stopping rules (`None`: not given): `morgana render`'s flags or the Python
+/// package's keyword arguments.
 #[derive(Clone, Debug, Default)]
 pub struct Flags {
     /// `--passes N`.
@@ -122,9 +127,39 @@ pub struct Flags {
     pub target_rel_error: Option<f64>,
     /// `--target SENSOR|x0,y0,x1,y1`.
     pub target: Option<String>,
+    /// How messages spell the rules.
+    pub style: FlagStyle,
 }
 
-fn cli_error(message: String) -> crate::error::Error {
+/// How a front end spells a stopping rule in its messages.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FlagStyle {
+    /// Command-line flags: `--target-rel-error 0.5`.
+    #[default]
+    Cli,
+    /// Keyword arguments: `target_rel_error=0.5`.
+    Keyword,
+}
+
+impl FlagStyle {
+    /// The rule `key` (as `[integrator]` spells it) as this front end names it.
+    pub fn name(self, key: &str) -> String {
+        match self {
+            FlagStyle::Cli => format!("--{}", key.replace('_', "-")),
+            FlagStyle::Keyword => key.to_string(),
+        }
+    }
+
+    /// The rule `key` given `value`, as the user wrote it.
+    pub fn said(self, key: &str, value: &dyn std::fmt::Display) -> String {
+        match self {
+            FlagStyle::Cli => format!("{} {value}", self.name(key)),
+            FlagStyle::Keyword => format!("{key}={value}"),
+        }
+    }
+}
+
+fn input_error(message: String) -> crate::error::Error {
     crate::error::Error::input(None, message)
 }
 
