@@ -47,20 +47,26 @@ pub struct ModelTable {
     pub rows: Vec<ModelRow>,
 }
 
-/// The refraction at each apparent zenith distance (degrees, 0–90) of `zeniths_deg`.
+/// The refraction at each apparent zenith distance (degrees, 0–90) of `zeniths_deg`; the rows
+/// are computed in parallel (each is independent of the others, so the table does not depend on
+/// the thread count).
 pub fn model_table(model: &ModelAtmosphere, zeniths_deg: &[f64], method: ModelMethod) -> Result<ModelTable> {
-    let mut rows = Vec::with_capacity(zeniths_deg.len());
-    for &z in zeniths_deg {
-        let (refraction_rad, work) = match method {
-            ModelMethod::Quadrature => {
-                let q = refraction(model, z.to_radians(), QUADRATURE_TOL_RAD).map_err(|e| Error::input(None, e))?;
-                (q.total_rad(), q.evaluations)
-            }
-            ModelMethod::Trace => traced_refraction(model, z.to_radians()).map_err(|e| Error::input(None, e))?,
-        };
-        rows.push(ModelRow { zenith_deg: z, refraction_rad, work });
-    }
+    use rayon::prelude::*;
+    let rows = zeniths_deg.par_iter().map(|&z| model_row(model, z, method)).collect::<Result<Vec<_>>>()?;
     Ok(ModelTable { model: *model, method, rows })
+}
+
+/// One row of [`model_table`].
+fn model_row(model: &ModelAtmosphere, zenith_deg: f64, method: ModelMethod) -> Result<ModelRow> {
+    let (refraction_rad, work) = match method {
+        ModelMethod::Quadrature => {
+            let q =
+                refraction(model, zenith_deg.to_radians(), QUADRATURE_TOL_RAD).map_err(|e| Error::input(None, e))?;
+            (q.total_rad(), q.evaluations)
+        }
+        ModelMethod::Trace => traced_refraction(model, zenith_deg.to_radians()).map_err(|e| Error::input(None, e))?,
+    };
+    Ok(ModelRow { zenith_deg, refraction_rad, work })
 }
 
 impl ModelTable {
