@@ -67,6 +67,12 @@ impl Progressive {
         }
     }
 
+    /// Whether any stopping rule is given (a progressive run, which keeps checkpoints), rather
+    /// than the one pass of a run without rules.
+    pub fn has_rules(&self) -> bool {
+        self.passes.is_some() || self.time_s.is_some() || self.target_rel_error.is_some()
+    }
+
     /// Applies the command line's rules over the scene's (each flag replaces its key).
     pub fn apply(&mut self, flags: &Flags) -> crate::error::Result<()> {
         if let Some(n) = flags.passes {
