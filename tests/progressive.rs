@@ -379,6 +379,7 @@ fn a_deadline_keeps_the_passes_finished_before_it() {
     let r = render_report(&scene, &cut, &["--threads", "2", "--passes", "100000", "--max-seconds", "3"]);
     let p = &r["progressive"];
     assert_eq!(p["stopped"]["rule"], "max_seconds", "{p}");
+    assert!(r["run_warnings"].to_string().contains("--max-seconds"), "the cut is reported: {}", r["run_warnings"]);
     let n = p["passes"].as_u64().expect("passes");
     assert!(n >= 1, "{p}");
     let whole = dir.join("whole");

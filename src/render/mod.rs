@@ -139,6 +139,9 @@ pub fn render_on(
         }
         pass += 1;
     }
+    if let Some(cut) = stop.as_ref().filter(|s| s.rule == progressive::Rule::MaxSeconds) {
+        stats.warnings.push(cut.why.clone());
+    }
     let mut report = run.report;
     report.passes = report.history.len() as u32;
     report.stopped = stop;
