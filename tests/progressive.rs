@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{render_with, scene, scene_error};
+use common::{mean_and_sem, render_with, scene, scene_error};
 use std::f64::consts::PI;
 
 /// A grey plane (ρ = 0.5) under a point light of I = 0.02 W sr⁻¹ nm⁻¹ at h = 1 m, seen in one
@@ -207,6 +207,7 @@ fn bad_stopping_flags_exit_2_naming_the_flag() {
         (vec!["--target-rel-error", "2"], "--target-rel-error"),
         (vec!["--target-rel-error", "0.01", "--target", "desk"], "--target desk"),
         (vec!["--target-rel-error", "0.01", "--target", "0,0,99,99"], "--target 0,0,99,99"),
+        (vec!["--convergence", "conv.png"], "--convergence conv.png"),
     ] {
         let o = morgana().args(["render", &scene, "--quiet", "--out", &out]).args(&args).output().expect("run morgana");
         let stderr = String::from_utf8_lossy(&o.stderr);
@@ -216,6 +217,9 @@ fn bad_stopping_flags_exit_2_naming_the_flag() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An illuminance plane for the furnace scene.
+const FLOOR_SENSOR: &str = "\n[[sensor]]\nname = \"floor\"\ntype = \"illuminance_plane\"\norigin = [0.0, -0.5, 0.0]\nu = [0.5, 0.0, 0.0]\nv = [0.0, 0.0, -0.5]\nresolution = [2, 2]\nsamples = 16\ngather_rays = 0\n";
 
 /// Renders `scene` quietly into `out` with `args`, asserts success and returns report.json.
 fn render_report(scene: &str, out: &std::path::Path, args: &[&str]) -> serde_json::Value {
@@ -272,8 +276,7 @@ fn passes_write_a_standard_error_layer_and_a_target_stops_the_run() {
 #[test]
 fn sensor_csvs_gain_standard_error_columns_and_a_sensor_can_be_the_target() {
     let (dir, scene) = scratch("sensor");
-    let sensor = "\n[[sensor]]\nname = \"floor\"\ntype = \"illuminance_plane\"\norigin = [0.0, -0.5, 0.0]\nu = [0.5, 0.0, 0.0]\nv = [0.0, 0.0, -0.5]\nresolution = [2, 2]\nsamples = 16\ngather_rays = 0\n";
-    let text = std::fs::read_to_string(&scene).expect("scene") + sensor;
+    let text = std::fs::read_to_string(&scene).expect("scene") + FLOOR_SENSOR;
     std::fs::write(&scene, text).expect("scene with a sensor");
     let out = dir.join("out");
     let report = render_report(&scene, &out, &["--passes", "20", "--target-rel-error", "0.5", "--target", "floor"]);
@@ -284,5 +287,196 @@ fn sensor_csvs_gain_standard_error_columns_and_a_sensor_can_be_the_target() {
     }
     assert_eq!(report["progressive"]["target"], "sensor floor");
     assert_eq!(report["progressive"]["stopped"]["rule"], "target_rel_error", "{}", report["progressive"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The bytes of each output file of a furnace run with the floor sensor in `dir`.
+fn output_bytes(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    ["furnace.exr", "furnace.png", "furnace_floor.csv", "furnace_floor.png"]
+        .iter()
+        .map(|f| (f.to_string(), std::fs::read(dir.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"))))
+        .collect()
+}
+
+/// The furnace scene with the floor sensor, in a scratch directory.
+fn scratch_with_sensor(name: &str) -> (std::path::PathBuf, String) {
+    let (dir, scene) = scratch(name);
+    let text = std::fs::read_to_string(&scene).expect("scene") + FLOOR_SENSOR;
+    std::fs::write(&scene, text).expect("scene with a sensor");
+    (dir, scene)
+}
+
+#[test]
+fn a_resumed_run_writes_the_bytes_of_an_uninterrupted_one() {
+    // A run killed after pass 1 and resumed to pass 3, killed again and resumed to pass 5,
+    // against 5 passes in one go: the kill is simulated by --passes i (the checkpoint after
+    // pass i is what a kill during pass i + 1 leaves). The second resume runs on one thread.
+    let (dir, scene) = scratch_with_sensor("resume");
+    let whole = dir.join("whole");
+    let report = render_report(&scene, &whole, &["--threads", "2", "--passes", "5"]);
+    assert!(whole.join("progressive.checkpoint").exists(), "a progressive run keeps its checkpoint");
+    assert_eq!(report["progressive"]["checkpoint"], "progressive.checkpoint");
+    let part = dir.join("part");
+    render_report(&scene, &part, &["--threads", "2", "--passes", "1"]);
+    let r = render_report(&scene, &part, &["--threads", "2", "--resume", &part.display().to_string(), "--passes", "3"]);
+    assert_eq!(r["progressive"]["resumed_after_pass"], 1, "{}", r["progressive"]);
+    let r = render_report(&scene, &part, &["--threads", "1", "--resume", &part.display().to_string(), "--passes", "5"]);
+    assert_eq!(r["progressive"]["resumed_after_pass"], 3);
+    assert_eq!(r["progressive"]["passes"], 5);
+    let history = r["progressive"]["history"].as_array().expect("history");
+    assert_eq!(history.iter().map(|h| h["pass"].as_u64().unwrap_or(0)).collect::<Vec<_>>(), vec![1, 2, 3, 4, 5]);
+    assert_eq!(r["progressive"]["rel_error"], report["progressive"]["rel_error"]);
+    for ((name, a), (_, b)) in output_bytes(&whole).iter().zip(output_bytes(&part)) {
+        assert!(*a == b, "{name} differs between the uninterrupted and the resumed run");
+    }
+    // A checkpoint already holding the passes asked for writes its outputs without a pass.
+    let again = dir.join("again");
+    let r = render_report(&scene, &again, &["--resume", &whole.display().to_string(), "--passes", "5"]);
+    assert_eq!(r["progressive"]["passes"], 5);
+    assert_eq!(std::fs::read(again.join("furnace.exr")).ok(), std::fs::read(whole.join("furnace.exr")).ok());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_resume_from_other_options_is_refused_naming_what_differs() {
+    let (dir, scene) = scratch("refuse");
+    let out = dir.join("out");
+    let outs = out.display().to_string();
+    render_report(&scene, &out, &["--passes", "2"]);
+    let other_k = dir.join("other_k.toml");
+    std::fs::write(&other_k, std::fs::read_to_string(&scene).expect("scene").replace("k = 50", "k = 40"))
+        .expect("scene");
+    let other_k = other_k.display().to_string();
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(&empty).expect("empty directory");
+    let empty = empty.display().to_string();
+    for (scene, args, says) in [
+        (&scene, vec!["--seed", "4", "--passes", "4"], vec!["seed (checkpoint: 3, now: 4)"]),
+        (&scene, vec!["--photons", "1000", "--passes", "4"], vec!["photons (checkpoint: 20000, now: 1000)"]),
+        (&other_k, vec!["--passes", "4"], vec!["[integrator] k (checkpoint: 50, now: 40)"]),
+        (&scene, vec![], vec!["--resume", "--passes N"]),
+        (&scene, vec!["--passes", "1"], vec!["--passes 1", "already holds 2 passes"]),
+    ] {
+        let o = morgana().args(["render", scene, "--quiet", "--resume", &outs]).args(&args).output().expect("run");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        for s in says {
+            assert!(stderr.contains(s), "{args:?}: no \"{s}\" in {stderr}");
+        }
+    }
+    let o = morgana().args(["render", &scene, "--quiet", "--passes", "3", "--resume", &empty]).output().expect("run");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read the checkpoint"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_deadline_keeps_the_passes_finished_before_it() {
+    // --max-seconds cuts a pass short: the passes before it are the output, byte for byte
+    // what a run of that many passes writes, and the run can be resumed from them.
+    let (dir, scene) = scratch_with_sensor("deadline");
+    let cut = dir.join("cut");
+    let r = render_report(&scene, &cut, &["--threads", "2", "--passes", "100000", "--max-seconds", "3"]);
+    let p = &r["progressive"];
+    assert_eq!(p["stopped"]["rule"], "max_seconds", "{p}");
+    assert!(r["run_warnings"].to_string().contains("--max-seconds"), "the cut is reported: {}", r["run_warnings"]);
+    let n = p["passes"].as_u64().expect("passes");
+    assert!(n >= 1, "{p}");
+    let whole = dir.join("whole");
+    render_report(&scene, &whole, &["--threads", "2", "--passes", &n.to_string()]);
+    for ((name, a), (_, b)) in output_bytes(&whole).iter().zip(output_bytes(&cut)) {
+        assert!(*a == b, "{name}: the {n} passes kept differ from a run of {n} passes");
+    }
+    let more = (n + 2).to_string();
+    render_report(&scene, &cut, &["--threads", "2", "--resume", &cut.display().to_string(), "--passes", &more]);
+    render_report(&scene, &whole, &["--threads", "2", "--passes", &more]);
+    assert_eq!(std::fs::read(cut.join("furnace.exr")).ok(), std::fs::read(whole.join("furnace.exr")).ok());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_convergence_plot_is_a_png_and_its_slope_is_the_least_squares_fit_of_the_history() {
+    let (dir, scene) = scratch("convergence");
+    let out = dir.join("out");
+    let png = dir.join("plots").join("conv.png");
+    let r = render_report(&scene, &out, &["--passes", "8", "--convergence", &png.display().to_string()]);
+    let bytes = std::fs::read(&png).expect("the convergence plot");
+    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes)).read_info().expect("a PNG header");
+    let mut pixels = vec![0; reader.output_buffer_size().expect("a buffer size")];
+    let info = reader.next_frame(&mut pixels).expect("PNG image data");
+    assert_eq!((info.width, info.height), (640, 440));
+    let red = pixels.chunks_exact(3).filter(|p| *p == [200, 30, 30]).count();
+    assert!(red > 500, "{red} pixels of the fitted line and its slope");
+    assert!(r["outputs"].to_string().contains("conv.png"), "{}", r["outputs"]);
+    // The slope by the normal equations, (nΣxy − ΣxΣy)/(nΣx² − (Σx)²), x = ln t, y = ln e.
+    let history = r["progressive"]["history"].as_array().expect("history");
+    let pts: Vec<(f64, f64)> =
+        history.iter().filter_map(|h| Some((h["elapsed_s"].as_f64()?.ln(), h["rel_error"].as_f64()?.ln()))).collect();
+    assert_eq!(pts.len(), 7, "every pass from the second has an error estimate");
+    let n = pts.len() as f64;
+    let (sx, sy) = (pts.iter().map(|p| p.0).sum::<f64>(), pts.iter().map(|p| p.1).sum::<f64>());
+    let sxy: f64 = pts.iter().map(|p| p.0 * p.1).sum();
+    let sxx: f64 = pts.iter().map(|p| p.0 * p.0).sum();
+    let slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    let fit = &r["progressive"]["convergence_fit"];
+    let reported = fit["slope"].as_f64().expect("a fitted slope");
+    assert!((reported - slope).abs() < 1e-9 * slope.abs().max(1.0), "reported {reported}, fitted {slope}");
+    assert_eq!(fit["points"], 7);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Mobley et al. (1993) problem 1 (examples/) with 20 000 photons a pass and `passes` passes.
+fn mobley(passes: u32) -> morgana::scene::Scene {
+    let text = std::fs::read_to_string("examples/mobley1993_problem1.toml").expect("the example");
+    scene(&text.replace("photons = 1000000", &format!("photons = 20000\npasses = {passes}")))
+}
+
+#[test]
+fn ocean_profile_standard_errors_are_the_spread_of_the_passes() {
+    // Pass k's own values, recovered from the means of runs of k and k − 1 passes (pass k is
+    // the same pass in every run): x_k = k m_k − (k − 1) m_{k−1}. Their mean and standard error
+    // s/√4 by the two-pass formula must be the 4-pass run's values and `_se` columns.
+    use morgana::sensor::ProfileRow;
+    let runs: Vec<_> = (1..=4).map(|n| render_with(&mobley(n), 2).profiles.remove(0)).collect();
+    assert!(runs[0].std_error.is_none(), "one pass has no standard error");
+    let four = &runs[3];
+    let se = four.std_error.as_ref().expect("standard errors after 4 passes");
+    let pass_value = |k: usize, get: &dyn Fn(&morgana::sensor::ProfileReading) -> f64| {
+        if k == 0 { get(&runs[0]) } else { (k + 1) as f64 * get(&runs[k]) - k as f64 * get(&runs[k - 1]) }
+    };
+    let check = |what: String, get: &dyn Fn(&morgana::sensor::ProfileReading) -> f64, reported_se: f64| {
+        let xs: Vec<f64> = (0..4).map(|k| pass_value(k, get)).collect();
+        let (mean, sem) = mean_and_sem(&xs);
+        let scale = mean.abs().max(f64::MIN_POSITIVE);
+        assert!((mean - get(four)).abs() <= 1e-9 * scale, "{what}: mean {} against {mean}", get(four));
+        assert!((sem - reported_se).abs() <= 1e-9 * scale + 1e-6 * sem, "{what}: se {reported_se} against {sem}");
+    };
+    type Field = fn(&ProfileRow) -> f64;
+    let fields: [(&str, Field); 5] =
+        [("Ed", |r| r.ed), ("Eu", |r| r.eu), ("Eod", |r| r.eod), ("Eou", |r| r.eou), ("Lu", |r| r.lu)];
+    for i in 0..four.rows.len() {
+        for (j, (name, f)) in fields.iter().enumerate() {
+            check(format!("{name} row {i}"), &|p| f(&p.rows[i]), se.rows[i][j]);
+        }
+    }
+    for b in 0..four.surface.len() {
+        for j in 0..4 {
+            check(format!("surface band {b} value {j}"), &|p| p.surface[b][j + 1], se.surface[b][j]);
+        }
+    }
+    assert!(se.rows[0][0] > 0.0 && se.rows[0][4] > 0.0, "Ed and Lu at 1 m vary from pass to pass");
+    // The CSVs carry them: a column per quantity, the values as computed.
+    let dir = std::env::temp_dir().join(format!("morgana-progressive-ocean-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch directory");
+    four.write_csv(&dir.join("p.csv")).expect("profile CSV");
+    four.write_derived_csv(&dir.join("d.csv")).expect("derived CSV");
+    let csv = std::fs::read_to_string(dir.join("p.csv")).expect("profile CSV");
+    let header: Vec<&str> = csv.lines().next().unwrap_or_default().split(',').collect();
+    assert_eq!(header[8..], ["Ed_se", "Eu_se", "Eod_se", "Eou_se", "Lu_se"], "{header:?}");
+    let first: Vec<f64> =
+        csv.lines().nth(1).unwrap_or_default().split(',').skip(8).filter_map(|v| v.parse().ok()).collect();
+    assert_eq!(first, se.rows[0].to_vec());
+    let derived = std::fs::read_to_string(dir.join("d.csv")).expect("derived CSV");
+    assert!(derived.lines().next().unwrap_or_default().ends_with(",Ed_0plus_se,Lu_0minus_se,Lw_se,Rrs_per_sr_se"));
     let _ = std::fs::remove_dir_all(&dir);
 }

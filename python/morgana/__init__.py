@@ -303,7 +303,8 @@ def render(
       progress: True draws each phase (photon passes, eye pass) as a tqdm bar when tqdm is
         installed, else as lines on stderr; False is silent; a callable gets
         ``(phase, done, total)`` about ten times a second.
-      max_seconds: stop with RuntimeError after this much wall time (``--max-seconds``).
+      max_seconds: stop after this much wall time (``--max-seconds``): a scene with
+        progressive passes keeps the passes it finished; with none finished, RuntimeError.
       max_memory: the memory the run may use, e.g. "8G" (``--max-memory``; default: what the
         machine has available).
 

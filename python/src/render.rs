@@ -69,6 +69,7 @@ pub fn render(
         cancel: Some(cancel.clone()),
         observer: observer.clone(),
         started: Some(start),
+        checkpoint: None,
     };
     let shared = scene.scene.clone();
     let (tx, rx) = mpsc::channel::<Outcome>();

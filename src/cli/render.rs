@@ -12,9 +12,9 @@ use std::time::Instant;
 pub struct RenderArgs {
     /// Scene file (TOML).
     pub scene: Option<PathBuf>,
-    /// Output directory.
-    #[arg(long, default_value = "out")]
-    pub out: PathBuf,
+    /// Output directory (default: out, or the directory given to --resume).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
     /// Photons to emit for each photon map (overrides the scene's integrator photons and
     /// caustic_photons).
     #[arg(long)]
@@ -37,8 +37,9 @@ pub struct RenderArgs {
     /// is refused with the numbers.
     #[arg(long, value_parser = crate::memory::parse_bytes)]
     pub max_memory: Option<u64>,
-    /// Stop the run after this many seconds of wall time (exit code 1, nothing written, a
-    /// message saying how far it got).
+    /// Stop the run after this many seconds of wall time: a progressive run keeps the passes
+    /// it finished (its outputs are theirs); a run with none finished ends with exit code 1,
+    /// nothing written, and a message saying how far it got.
     #[arg(long)]
     pub max_seconds: Option<f64>,
     /// How rank 0 hands out eye-pass rows under MPI: "dynamic" (guided self-scheduling) or
@@ -68,6 +69,14 @@ pub struct StopArgs {
     /// region x0,y0,x1,y1 (x1, y1 exclusive).
     #[arg(long)]
     pub target: Option<String>,
+    /// Continue the progressive run whose output directory (with its checkpoint) is DIR, with
+    /// the same scene and options; --passes counts the passes already done.
+    #[arg(long, value_name = "DIR")]
+    pub resume: Option<PathBuf>,
+    /// Plot the relative standard error after each pass against elapsed time here (PNG,
+    /// log-log, with the least-squares slope); needs a progressive run.
+    #[arg(long, value_name = "PNG")]
+    pub convergence: Option<PathBuf>,
 }
 
 impl StopArgs {
@@ -133,9 +142,15 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
     let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
     let mut scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
     scene.apply_stopping_rules(&args.stop.flags())?;
+    let out = args.out.clone().or_else(|| args.stop.resume.clone()).unwrap_or_else(|| PathBuf::from("out"));
     // Rank 0 writes the outputs: it checks where, before any work, and every rank learns.
-    let destination = if comm.is_root() { crate::output::check_destination(&scene, &args.out, true) } else { Ok(()) };
+    let destination = if comm.is_root() { crate::output::check_destination(&scene, &out, true) } else { Ok(()) };
     distributed::fault::agree(comm, destination)?;
+    let checkpoint = checkpoint_plan(comm, &scene, args, &out)?;
+    if let Some(png) = &args.stop.convergence {
+        let checked = if comm.is_root() { check_convergence(&scene, png) } else { Ok(()) };
+        distributed::fault::agree(comm, checked)?;
+    }
     if comm.is_root() {
         super::print_warnings(&scene);
         if comm.size() > 1 && !args.quiet {
@@ -149,6 +164,7 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
         cancel: None,
         observer: None,
         started: Some(start),
+        checkpoint,
     };
     let rendered = pool.install(|| render_on(comm, &scene, &opts, dist))?;
     let Some(rendered) = rendered else { return Ok(String::new()) };
@@ -156,8 +172,88 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
         eprintln!("morgana: note: {w}");
     }
     let threads = pool.current_num_threads();
-    let outputs = crate::output::write_outputs(&scene, &rendered, &args.out, threads, start.elapsed().as_secs_f64())?;
+    let seconds = start.elapsed().as_secs_f64();
+    let convergence = args.stop.convergence.as_deref();
+    let outputs = crate::output::write_outputs_with(&scene, &rendered, &out, (threads, seconds), convergence)?;
     Ok(outputs.iter().map(|p| format!("wrote {}\n", p.display())).collect())
+}
+
+/// Where a progressive run (one with a stopping rule) writes its checkpoints — its output
+/// directory `out` — and, with `--resume DIR`, the checkpoint read from DIR on rank 0 and
+/// checked against this run's scene and options. `None` for a run without stopping rules.
+/// Collective: a checkpoint that cannot be read or does not match ends every rank.
+fn checkpoint_plan(
+    comm: &Comm,
+    scene: &crate::scene::Scene,
+    args: &RenderArgs,
+    out: &std::path::Path,
+) -> Result<Option<crate::render::checkpoint::Plan>> {
+    use crate::render::checkpoint::{Checkpoint, Fingerprint, Plan};
+    let progressive = scene.integrator.progressive.has_rules();
+    let resume = args.stop.resume.as_deref();
+    if let Some(dir) = resume.filter(|_| !progressive) {
+        return Err(Error::input(
+            None,
+            format!(
+                "--resume {}: give a stopping rule for the resumed run: --passes N (counting the passes already done), --time or --target-rel-error",
+                dir.display()
+            ),
+        ));
+    }
+    if !progressive {
+        return Ok(None);
+    }
+    let mut plan = Plan { dir: out.to_path_buf(), fingerprint: Fingerprint::default(), resume: None };
+    if comm.is_root() {
+        let read = fingerprint(scene).and_then(|f| {
+            plan.fingerprint = f;
+            resume.map(|dir| Checkpoint::read(dir, &plan.fingerprint)).transpose()
+        });
+        let read = read.and_then(|c| match (c, scene.integrator.progressive.passes) {
+            (Some(c), Some(n)) if n < c.passes => Err(Error::input(
+                None,
+                format!(
+                    "--passes {n}: the checkpoint in {} already holds {} passes; ask for at least as many",
+                    resume.map_or(String::new(), |d| d.display().to_string()),
+                    c.passes
+                ),
+            )),
+            (c, _) => Ok(c),
+        });
+        plan.resume = distributed::fault::agree(comm, read)?;
+    } else {
+        distributed::fault::agree(comm, Ok(()))?;
+    }
+    Ok(Some(plan))
+}
+
+/// Checks, before any work, that `--convergence PNG` can be written and has passes to plot.
+fn check_convergence(scene: &crate::scene::Scene, png: &std::path::Path) -> Result<()> {
+    super::check_output_file("--convergence", png)?;
+    if scene.integrator.progressive.has_rules() {
+        return Ok(());
+    }
+    Err(Error::input(
+        None,
+        format!(
+            "--convergence {}: one pass has no error estimate to plot; give --passes N (3 or more for a slope), --time or --target-rel-error",
+            png.display()
+        ),
+    ))
+}
+
+/// The fingerprint of the scene as rank 0 loaded it: its file's text (or the embedded default
+/// scene's), the files it names, and the effective settings.
+fn fingerprint(scene: &crate::scene::Scene) -> Result<crate::render::checkpoint::Fingerprint> {
+    use crate::render::checkpoint::Fingerprint;
+    match &scene.file {
+        None => Ok(Fingerprint::of(scene, crate::scene::DEFAULT_SCENE, None)),
+        Some(file) => {
+            let text = crate::error::read_utf8(file, "scene file")?;
+            let dir = file.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+            Ok(Fingerprint::of(scene, &text, Some(dir)))
+        }
+    }
 }
 
 fn parse_schedule(s: &str) -> std::result::Result<Schedule, String> {

@@ -1,5 +1,6 @@
 //! Outputs: spectral EXR, PNG preview, JSON report; all written atomically.
 
+pub mod convergence;
 pub mod report;
 
 use crate::atomic::Staged;
@@ -71,6 +72,18 @@ pub fn write_outputs(
     threads: usize,
     total_seconds: f64,
 ) -> Result<Vec<PathBuf>> {
+    write_outputs_with(scene, r, dir, (threads, total_seconds), None)
+}
+
+/// [`write_outputs`], and the convergence plot ([`convergence`]) at `convergence` when given,
+/// staged and committed with the other outputs (all or nothing).
+pub fn write_outputs_with(
+    scene: &Scene,
+    r: &Rendered,
+    dir: &Path,
+    (threads, total_seconds): (usize, f64),
+    convergence: Option<&Path>,
+) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)
         .map_err(|e| Error::internal(format!("cannot create output directory {}: {e}", dir.display())))?;
     let o = &scene.output;
@@ -112,7 +125,11 @@ pub fn write_outputs(
             }
         }
     }
-    let outputs: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    if let Some(path) = convergence {
+        stage(&mut staged, path.to_path_buf(), &|p| convergence::figure(&r.stats.progressive).write_png(p))?;
+    }
+    let mut outputs: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    outputs.extend(convergence.map(Path::to_path_buf));
     let listed = outputs.iter().map(|p| p.display().to_string()).collect();
     let report = report::Report::new(scene, &r.stats, threads, total_seconds, listed);
     let json = serde_json::to_string_pretty(&report).map_err(|e| Error::internal(format!("report.json: {e}")))?;

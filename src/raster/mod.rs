@@ -5,6 +5,7 @@
 
 pub mod false_colour;
 pub mod font;
+pub mod log_axes;
 pub mod png;
 pub mod spectrum_plot;
 
@@ -20,6 +21,8 @@ pub const WHITE: Rgb = [255, 255, 255];
 pub const BLACK: Rgb = [0, 0, 0];
 /// Light grey (grid lines).
 pub const GREY: Rgb = [190, 190, 190];
+/// Lighter grey (the decade grid of log-log plots).
+pub const LIGHT_GREY: Rgb = [225, 225, 225];
 
 /// An RGB image, row-major from the top left.
 #[derive(Clone, Debug, PartialEq)]

@@ -5,6 +5,7 @@
 //! of threads — and of ranks: [`render_on`] runs the same passes split across the processes of
 //! a [`Comm`] ([`crate::distributed`]); [`render`] is that with one process.
 
+pub mod checkpoint;
 mod direct;
 pub mod eye;
 mod lanes;
@@ -50,6 +51,9 @@ pub struct RenderOptions {
     /// When the run started, for the `time` budget of progressive passes (default: when
     /// [`render_on`] is called).
     pub started: Option<std::time::Instant>,
+    /// Where rank 0 writes a checkpoint after each pass, and the checkpoint to resume from
+    /// (`None`: no checkpoints; on ranks other than 0 only its presence matters).
+    pub checkpoint: Option<checkpoint::Plan>,
 }
 
 impl RenderOptions {
@@ -102,46 +106,47 @@ pub fn render_on(
     let mut est = memory::estimate(scene, &settings, comm.size());
     distributed::fault::agree(comm, memory::check(&mut est, opts.max_memory))?;
     let p = &scene.integrator.progressive;
-    let mut outputs = progressive::Outputs::default();
-    let mut target = progressive::Scalar::default();
-    let mut report = progressive::ProgressiveReport {
-        alpha: p.alpha,
-        target: progressive::target_label(&p.target),
-        ..Default::default()
-    };
+    let mut run = Run::start(p, opts.checkpoint.as_ref().and_then(|c| c.resume.clone()));
+    // Rank 0 alone holds the checkpoint: it tells the others which pass comes first.
+    let done = (run.report.history.len() as u32).to_le_bytes().to_vec();
+    let first = u32::from_le_bytes(comm.broadcast(done).try_into().unwrap_or([0; 4]));
+    let mut stop = progressive::decide(p, first, 0.0, 0.0, run.target.rel_error()).filter(|_| first > 0);
     let mut ranks = Vec::new();
-    for pass in 0.. {
+    let mut pass = first;
+    while comm.broadcast(vec![u8::from(stop.is_none())]).first() == Some(&1) {
         let s = scene.integrator.for_pass(pass);
         let t = std::time::Instant::now();
-        let (pass_stats, out, pass_ranks) = one_pass(&mut rank, scene, &s, opts)?;
+        let (pass_stats, out, pass_ranks) = match one_pass(&mut rank, scene, &s, opts)? {
+            Pass::Done(stats, out, ranks) => (*stats, out, ranks),
+            Pass::Cut(progress) => {
+                stop = Some(cut(opts, pass, progress)?);
+                break;
+            }
+        };
         rank.budget.release_all();
         stats.merge(pass_stats);
         ranks = pass_ranks;
-        let mut stop = None;
         if let Some(out) = out {
-            let v = progressive::target_value(
-                &p.target,
-                (&out.data, scene.camera.width, scene.bands.count),
-                &out.sensors,
-                &out.profiles,
-            );
-            target.add(v);
-            outputs.add(out.data, out.sensors, out.profiles);
-            let (elapsed, seconds) = (started.elapsed().as_secs_f64(), t.elapsed().as_secs_f64());
-            report.history.push(progressive::record(pass, &s, (elapsed, seconds), &target));
-            stop = progressive::decide(p, pass + 1, elapsed, seconds, target.rel_error());
+            let seconds = t.elapsed().as_secs_f64();
+            stop = run.add(scene, (pass, &s), out, (started.elapsed().as_secs_f64(), seconds));
         }
-        let go_on = comm.broadcast(vec![u8::from(stop.is_none())]);
-        if go_on.first() != Some(&1) {
-            report.passes = pass + 1;
-            report.stopped = stop;
-            break;
+        if let Some(plan) = &opts.checkpoint {
+            distributed::fault::agree(comm, run.write_checkpoint(plan, pass + 1))?;
         }
-        if let Some(r) = report.history.last().filter(|_| !quiet) {
+        if let Some(r) = run.report.history.last().filter(|_| !quiet && stop.is_none()) {
             let e = r.rel_error.map_or(String::new(), |e| format!(", relative standard error {e:.2e}"));
             eprintln!("morgana: pass {} done at {:.1} s{e}", r.pass, r.elapsed_s);
         }
+        pass += 1;
     }
+    if let Some(cut) = stop.as_ref().filter(|s| s.rule == progressive::Rule::MaxSeconds) {
+        stats.warnings.push(cut.why.clone());
+    }
+    let mut report = run.report;
+    report.passes = report.history.len() as u32;
+    report.stopped = stop;
+    report.checkpoint = opts.checkpoint.as_ref().map(|_| checkpoint::FILE_NAME.to_string());
+    let (outputs, target) = (run.outputs, run.target);
     stats.memory = est;
     stats.memory.measured_peak_bytes = crate::memory::peak_rss_bytes();
     if !comm.is_root() {
@@ -149,6 +154,7 @@ pub fn render_on(
     }
     stats.distributed = Some(DistributedReport::new(comm.kind(), dist.schedule, ranks));
     report.rel_error = target.rel_error();
+    report.convergence_fit = progressive::fit(&report.history);
     let done = outputs.finish();
     report.image_mean_rel_error = done.image_se.as_ref().and_then(|se| progressive::mean_rel_error(&done.image, se));
     stats.progressive = report;
@@ -156,6 +162,86 @@ pub fn render_on(
     let image = to_image(scene, done.image);
     stats.phases.add("colour conversion", t);
     Ok(Some(Rendered { image, std_error: done.image_se, stats, sensors: done.sensors, profiles: done.profiles }))
+}
+
+/// A progressive run's state on rank 0: every output's running sums, the target's, the
+/// report with the history, and the elapsed time of the passes taken from a checkpoint.
+struct Run<'a> {
+    p: &'a crate::scene::progressive::Progressive,
+    outputs: progressive::Outputs,
+    target: progressive::Scalar,
+    report: progressive::ProgressiveReport,
+    resumed_s: f64,
+}
+
+impl<'a> Run<'a> {
+    /// A fresh run, or the run a checkpoint holds.
+    fn start(p: &'a crate::scene::progressive::Progressive, resume: Option<checkpoint::Checkpoint>) -> Run<'a> {
+        let mut report = progressive::ProgressiveReport {
+            alpha: p.alpha,
+            target: progressive::target_label(&p.target),
+            ..Default::default()
+        };
+        let Some(c) = resume else {
+            return Run { p, outputs: Default::default(), target: Default::default(), report, resumed_s: 0.0 };
+        };
+        report.resumed_after_pass = Some(c.passes);
+        let resumed_s = c.history.last().map_or(0.0, |r| r.elapsed_s);
+        report.history = c.history;
+        Run { p, outputs: c.outputs, target: c.target, report, resumed_s }
+    }
+
+    /// Adds pass `pass`'s outputs, run with settings `s`, at `elapsed` s into this run after
+    /// `seconds` of work; says whether the run stops (`elapsed` counts this run for the
+    /// `time` budget, and the checkpoint's time too in the history).
+    fn add(
+        &mut self,
+        scene: &Scene,
+        (pass, s): (u32, &crate::scene::IntegratorSettings),
+        out: PassOutput,
+        (elapsed, seconds): (f64, f64),
+    ) -> Option<progressive::Stop> {
+        let image = (&out.data[..], scene.camera.width, scene.bands.count);
+        let v = progressive::target_value(&self.p.target, image, &out.sensors, &out.profiles);
+        self.target.add(v);
+        self.outputs.add(out.data, out.sensors, out.profiles);
+        let total = self.resumed_s + elapsed;
+        self.report.history.push(progressive::record(pass, s, (total, seconds), &self.target));
+        progressive::decide(self.p, pass + 1, elapsed, seconds, self.target.rel_error())
+    }
+
+    /// Writes the checkpoint of the `passes` done into the plan's directory (rank 0; the
+    /// other ranks hold no outputs and write nothing).
+    fn write_checkpoint(&self, plan: &checkpoint::Plan, passes: u32) -> Result<()> {
+        if self.outputs.passes() != passes {
+            return Ok(());
+        }
+        let state = (passes, &self.target, &self.report.history[..]);
+        checkpoint::write(&plan.dir, &checkpoint::encode(&plan.fingerprint, state, &self.outputs))
+    }
+}
+
+/// The stop of a run whose deadline (`--max-seconds`) cut pass `pass` (0-based) short, saying
+/// how far it got: the passes before it are kept. With no pass finished, or when the run was
+/// cancelled, the error of [`out_of_time`].
+fn cut(opts: &RenderOptions, pass: u32, progress: String) -> Result<progressive::Stop> {
+    if pass == 0 || opts.stop().cancelled() {
+        return Err(out_of_time(opts, progress));
+    }
+    Ok(progressive::Stop {
+        rule: progressive::Rule::MaxSeconds,
+        why: format!(
+            "the time budget (--max-seconds) ran out in pass {} {progress}; the {pass} passes finished before it are kept",
+            pass + 1
+        ),
+    })
+}
+
+/// What one pass produced: its statistics, its outputs on rank 0 and every rank's report, or,
+/// when the deadline or a cancel cut it short, how far it got.
+enum Pass {
+    Done(Box<RenderStats>, Option<PassOutput>, Vec<distributed::RankReport>),
+    Cut(String),
 }
 
 /// What one pass produced on rank 0: the image's band values and the readings.
@@ -173,7 +259,7 @@ fn one_pass(
     scene: &Scene,
     s: &crate::scene::IntegratorSettings,
     opts: &RenderOptions,
-) -> Result<(RenderStats, Option<PassOutput>, Vec<distributed::RankReport>)> {
+) -> Result<Pass> {
     let quiet = opts.quiet || !rank.comm.is_root();
     let (bars, stop) = (progress::Bars { quiet, observer: opts.observer.as_deref() }, opts.stop());
     let mut stats = RenderStats::default();
@@ -182,14 +268,11 @@ fn one_pass(
     let stopped: u64 = stats.maps.iter().map(|m| m.stats.stopped_batches).sum();
     if stopped > 0 {
         let left: Vec<String> = stats.maps.iter().map(|m| format!("{} map {} photons", m.map, m.emitted)).collect();
-        return Err(out_of_time(
-            opts,
-            format!(
-                "during the photon pass ({stopped} batches of {} photons not shot; passes: {})",
-                crate::photon::BATCH,
-                left.join(", ")
-            ),
-        ));
+        return Ok(Pass::Cut(format!(
+            "during the photon pass ({stopped} batches of {} photons not shot; passes: {})",
+            crate::photon::BATCH,
+            left.join(", ")
+        )));
     }
     for m in stats.maps.iter().filter(|m| m.emitted > 0 && m.stored == 0) {
         stats.warnings.push(format!(
@@ -210,15 +293,12 @@ fn one_pass(
     let stopped_rows: u64 = ranks.iter().map(|r| r.eye.rays.stopped_rows).sum();
     if stopped_rows > 0 {
         let h = scene.camera.height;
-        return Err(out_of_time(
-            opts,
-            format!(
-                "during the eye pass ({} of {h} rows rendered; the photon maps were complete)",
-                h as u64 - stopped_rows.min(h as u64)
-            ),
-        ));
+        return Ok(Pass::Cut(format!(
+            "during the eye pass ({} of {h} rows rendered; the photon maps were complete)",
+            h as u64 - stopped_rows.min(h as u64)
+        )));
     }
-    let Some(data) = data else { return Ok((stats, None, ranks)) };
+    let Some(data) = data else { return Ok(Pass::Done(Box::new(stats), None, ranks)) };
     for r in &ranks {
         stats.rays.add(&r.eye.rays);
         stats.eye_curved.add(&r.eye_curved);
@@ -229,7 +309,7 @@ fn one_pass(
     if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
-    Ok((stats, Some(PassOutput { data, sensors, profiles }), ranks))
+    Ok(Pass::Done(Box::new(stats), Some(PassOutput { data, sensors, profiles }), ranks))
 }
 
 /// The error of a run whose time budget ran out or that was cancelled: exit code 1, nothing

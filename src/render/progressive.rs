@@ -20,6 +20,7 @@
 //! - B. P. Welford (1962), "Note on a method for calculating corrected sums of squares and
 //!   products", Technometrics 4(3), 419–420.
 
+use super::checkpoint::codec::{Reader, Result as ReadResult, Writer};
 use crate::scene::IntegratorSettings;
 pub use crate::scene::progressive::label as target_label;
 use crate::scene::progressive::{Progressive, Target};
@@ -91,6 +92,21 @@ impl<T: Value> Welford<T> {
         if self.n <= 1 { self.first } else { self.mean.iter().map(|m| T::from_f64(*m)).collect() }
     }
 
+    /// Appends the state to a checkpoint, every value bit for bit.
+    pub fn save(&self, w: &mut Writer) {
+        w.u32(self.n);
+        w.f64s(&self.first.iter().map(|v| (*v).into()).collect::<Vec<f64>>());
+        w.f64s(&self.mean);
+        w.f64s(&self.m2);
+    }
+
+    /// The state [`Welford::save`] wrote (`T` → f64 → `T` is exact for f32 and f64).
+    pub fn load(r: &mut Reader) -> ReadResult<Welford<T>> {
+        let n = r.u32()?;
+        let first = r.f64s()?.into_iter().map(T::from_f64).collect();
+        Ok(Welford { n, first, mean: r.f64s()?, m2: r.f64s()? })
+    }
+
     /// The standard error of the mean, √(M/(n(n − 1))), per value; `None` before two passes.
     pub fn std_error(&self) -> Option<Vec<T>> {
         (self.n >= 2).then(|| {
@@ -122,6 +138,18 @@ impl Scalar {
         self.mean
     }
 
+    /// Appends the state to a checkpoint.
+    pub fn save(&self, w: &mut Writer) {
+        w.u32(self.n);
+        w.f64(self.mean);
+        w.f64(self.m2);
+    }
+
+    /// The state [`Scalar::save`] wrote.
+    pub fn load(r: &mut Reader) -> ReadResult<Scalar> {
+        Ok(Scalar { n: r.u32()?, mean: r.f64()?, m2: r.f64()? })
+    }
+
     /// The relative standard error of the mean, SE/|mean|; `None` before two passes or for a
     /// zero mean.
     pub fn rel_error(&self) -> Option<f64> {
@@ -143,6 +171,9 @@ pub enum Rule {
     Time,
     /// The relative standard error fell below the target.
     TargetRelError,
+    /// The run's deadline (`--max-seconds`) cut a pass short: the passes finished before it
+    /// are kept.
+    MaxSeconds,
 }
 
 /// Why a run stopped, for the report.
@@ -173,6 +204,32 @@ pub struct PassRecord {
     pub rel_error: Option<f64>,
 }
 
+impl PassRecord {
+    /// Appends the record to a checkpoint.
+    pub fn save(&self, w: &mut Writer) {
+        w.u32(self.pass);
+        w.f64(self.elapsed_s);
+        w.f64(self.seconds);
+        w.usize(self.k);
+        w.f64(self.max_radius_m);
+        w.f64(self.target_mean);
+        w.opt_f64(self.rel_error);
+    }
+
+    /// The record [`PassRecord::save`] wrote.
+    pub fn load(r: &mut Reader) -> ReadResult<PassRecord> {
+        Ok(PassRecord {
+            pass: r.u32()?,
+            elapsed_s: r.f64()?,
+            seconds: r.f64()?,
+            k: usize::try_from(r.u64()?).map_err(|_| "k is out of range".to_string())?,
+            max_radius_m: r.f64()?,
+            target_mean: r.f64()?,
+            rel_error: r.opt_f64()?,
+        })
+    }
+}
+
 /// The progressive run as `report.json` records it.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct ProgressiveReport {
@@ -184,6 +241,13 @@ pub struct ProgressiveReport {
     pub target: String,
     /// The rule that ended the run and why.
     pub stopped: Option<Stop>,
+    /// The passes taken from a checkpoint (`--resume`): the history holds them, the other
+    /// counts of `report.json` (rays, photons, phase times) only the passes this run made.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resumed_after_pass: Option<u32>,
+    /// The checkpoint file this run keeps in its output directory (progressive runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub checkpoint: Option<String>,
     /// The relative standard error of the target's mean at the end (from two passes).
     pub rel_error: Option<f64>,
     /// The mean, over every pixel and band with a positive value, of its relative standard
@@ -191,10 +255,46 @@ pub struct ProgressiveReport {
     pub image_mean_rel_error: Option<f64>,
     /// The error estimate after each pass against elapsed time.
     pub history: Vec<PassRecord>,
+    /// The least-squares line through the history on log-log axes (from two passes with an
+    /// error estimate, i.e. three passes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub convergence_fit: Option<Fit>,
+}
+
+/// The least-squares line ln e = intercept + slope · ln t through the passes' relative
+/// standard errors e against the elapsed time t: the error falls as t^slope.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Fit {
+    /// d ln e / d ln t.
+    pub slope: f64,
+    /// ln e at t = 1 s.
+    pub intercept: f64,
+    /// Passes fitted (those with a positive error estimate and elapsed time).
+    pub points: usize,
+}
+
+/// The ordinary least-squares fit of ln e on ln t over the passes of `history` with a positive
+/// relative standard error and elapsed time: slope = Σ(x − x̄)(y − ȳ) / Σ(x − x̄)²,
+/// intercept = ȳ − slope x̄. `None` with fewer than two such passes or a single time.
+pub fn fit(history: &[PassRecord]) -> Option<Fit> {
+    let pts: Vec<(f64, f64)> = history
+        .iter()
+        .filter_map(|r| r.rel_error.map(|e| (r.elapsed_s, e)))
+        .filter(|(t, e)| *t > 0.0 && *e > 0.0 && t.is_finite() && e.is_finite())
+        .map(|(t, e)| (t.ln(), e.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (pts.len() >= 2 && sxx > 0.0).then(|| {
+        let slope = sxy / sxx;
+        Fit { slope, intercept: my - slope * mx, points: pts.len() }
+    })
 }
 
 /// Every output of a run, accumulated over its passes.
-#[derive(Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Outputs {
     image: Welford<f32>,
     sensors: Vec<Welford<f64>>,
@@ -211,11 +311,11 @@ impl Outputs {
         sensors: Vec<crate::sensor::Reading>,
         profiles: Vec<crate::sensor::ProfileReading>,
     ) {
-        self.image.add(data);
-        if self.sensors.is_empty() {
+        if self.image.passes() == 0 {
             self.sensors = sensors.iter().map(|_| Welford::default()).collect();
             self.profiles = profiles.iter().map(|_| Welford::default()).collect();
         }
+        self.image.add(data);
         for (w, r) in self.sensors.iter_mut().zip(&sensors) {
             w.add(r.columns.iter().flat_map(|c| c.1.iter().copied()).collect());
         }
@@ -226,13 +326,49 @@ impl Outputs {
         self.profile_shapes = profiles;
     }
 
+    /// Passes added.
+    pub fn passes(&self) -> u32 {
+        self.image.passes()
+    }
+
+    /// Appends the state to a checkpoint: the image's, each sensor's and each profile's
+    /// running sums, and the readings' shapes (names, points, depths) of the last pass.
+    pub fn save(&self, w: &mut Writer) {
+        self.image.save(w);
+        w.usize(self.sensors.len());
+        for (s, r) in self.sensors.iter().zip(&self.sensor_shapes) {
+            s.save(w);
+            save_reading(w, r);
+        }
+        w.usize(self.profiles.len());
+        for (s, p) in self.profiles.iter().zip(&self.profile_shapes) {
+            s.save(w);
+            save_profile(w, p);
+        }
+    }
+
+    /// The state [`Outputs::save`] wrote.
+    pub fn load(r: &mut Reader) -> ReadResult<Outputs> {
+        let mut o = Outputs { image: Welford::load(r)?, ..Outputs::default() };
+        for _ in 0..r.len(8)? {
+            o.sensors.push(Welford::load(r)?);
+            o.sensor_shapes.push(load_reading(r)?);
+        }
+        for _ in 0..r.len(8)? {
+            o.profiles.push(Welford::load(r)?);
+            o.profile_shapes.push(load_profile(r)?);
+        }
+        Ok(o)
+    }
+
     /// The image's band values so far (the mean of the passes) and their standard errors.
     pub fn image_error(&self) -> Option<Vec<f32>> {
         self.image.std_error()
     }
 
     /// The means: image band values, their standard errors (from two passes), the sensor
-    /// readings (with a `<column>_se` column per column from two passes) and the profiles.
+    /// readings (with a `<column>_se` column per column from two passes) and the profiles
+    /// (with their standard errors from two passes).
     pub fn finish(self) -> Finished {
         let image_se = self.image.std_error();
         let image = self.image.mean();
@@ -258,7 +394,9 @@ impl Outputs {
             .into_iter()
             .zip(self.profile_shapes)
             .map(|(w, mut p)| {
+                let se = w.std_error();
                 set_profile_values(&mut p, &w.mean());
+                p.std_error = se.map(|se| profile_error(&p, &se));
                 p
             })
             .collect();
@@ -278,6 +416,59 @@ pub struct Finished {
     pub profiles: Vec<crate::sensor::ProfileReading>,
 }
 
+fn save_reading(w: &mut Writer, r: &crate::sensor::Reading) {
+    w.str(&r.name);
+    w.str(&r.quantity);
+    w.str(&r.unit);
+    w.usize(r.nx);
+    w.usize(r.ny);
+    w.f64s(&r.points.iter().flat_map(|p| p.to_array()).collect::<Vec<f64>>());
+    w.usize(r.columns.len());
+    for (name, v) in &r.columns {
+        w.str(name);
+        w.f64s(v);
+    }
+}
+
+fn load_reading(r: &mut Reader) -> ReadResult<crate::sensor::Reading> {
+    let (name, quantity, unit) = (r.str()?, r.str()?, r.str()?);
+    let size = |x: u64| usize::try_from(x).map_err(|_| "a grid size is out of range".to_string());
+    let (nx, ny) = (size(r.u64()?)?, size(r.u64()?)?);
+    let points = r.f64s()?.chunks_exact(3).map(|c| glam::DVec3::new(c[0], c[1], c[2])).collect();
+    let mut columns = Vec::new();
+    for _ in 0..r.len(16)? {
+        columns.push((r.str()?, r.f64s()?));
+    }
+    Ok(crate::sensor::Reading { name, quantity, unit, nx, ny, points, columns })
+}
+
+fn save_profile(w: &mut Writer, p: &crate::sensor::ProfileReading) {
+    w.str(&p.name);
+    w.f64s(
+        &p.rows.iter().flat_map(|r| [r.depth_m, r.wavelength_nm, r.ed, r.eu, r.eod, r.eou, r.lu]).collect::<Vec<_>>(),
+    );
+    w.f64s(&p.surface.iter().flatten().copied().collect::<Vec<_>>());
+}
+
+fn load_profile(r: &mut Reader) -> ReadResult<crate::sensor::ProfileReading> {
+    let name = r.str()?;
+    let rows = r.f64s()?;
+    let rows = rows
+        .chunks_exact(7)
+        .map(|c| crate::sensor::ProfileRow {
+            depth_m: c[0],
+            wavelength_nm: c[1],
+            ed: c[2],
+            eu: c[3],
+            eod: c[4],
+            eou: c[5],
+            lu: c[6],
+        })
+        .collect();
+    let surface = r.f64s()?.chunks_exact(5).map(|c| [c[0], c[1], c[2], c[3], c[4]]).collect();
+    Ok(crate::sensor::ProfileReading { name, rows, surface, std_error: None })
+}
+
 /// Puts `values` (columns one after the other) back into `r`'s columns.
 fn refill(r: &mut crate::sensor::Reading, values: &[f64]) {
     let mut it = values.iter();
@@ -291,6 +482,15 @@ fn refill(r: &mut crate::sensor::Reading, values: &[f64]) {
 fn profile_values(p: &crate::sensor::ProfileReading) -> Vec<f64> {
     let rows = p.rows.iter().flat_map(|r| [r.ed, r.eu, r.eod, r.eou, r.lu]);
     rows.chain(p.surface.iter().flat_map(|s| s[1..].to_vec())).collect()
+}
+
+/// The standard errors `se`, in the order of [`profile_values`], as `p`'s error.
+fn profile_error(p: &crate::sensor::ProfileReading, se: &[f64]) -> crate::sensor::ProfileError {
+    let (rows, surface) = se.split_at((5 * p.rows.len()).min(se.len()));
+    crate::sensor::ProfileError {
+        rows: rows.chunks_exact(5).map(|c| [c[0], c[1], c[2], c[3], c[4]]).collect(),
+        surface: surface.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
+    }
 }
 
 /// Writes values in the order of [`profile_values`] back into `p`.
@@ -417,6 +617,29 @@ mod tests {
         w.add(x.clone());
         assert!(w.std_error().is_none());
         assert_eq!(w.mean(), x);
+    }
+
+    #[test]
+    fn the_fit_recovers_a_power_law() {
+        // e = 0.3 t^(−1/3) exactly: the fit returns the exponent and ln 0.3.
+        let history: Vec<PassRecord> = (1..=6)
+            .map(|i| {
+                let t = f64::from(i) * 1.7;
+                PassRecord {
+                    pass: i,
+                    elapsed_s: t,
+                    seconds: 1.7,
+                    k: 1,
+                    max_radius_m: 1.0,
+                    target_mean: 1.0,
+                    rel_error: (i > 1).then(|| 0.3 * t.powf(-1.0 / 3.0)),
+                }
+            })
+            .collect();
+        let f = fit(&history).expect("five points");
+        assert_eq!(f.points, 5);
+        assert!((f.slope + 1.0 / 3.0).abs() < 1e-12 && (f.intercept - 0.3f64.ln()).abs() < 1e-12, "{f:?}");
+        assert!(fit(&history[..2]).is_none());
     }
 
     #[test]

@@ -67,6 +67,12 @@ impl Progressive {
         }
     }
 
+    /// Whether any stopping rule is given (a progressive run, which keeps checkpoints), rather
+    /// than the one pass of a run without rules.
+    pub fn has_rules(&self) -> bool {
+        self.passes.is_some() || self.time_s.is_some() || self.target_rel_error.is_some()
+    }
+
     /// Applies a front end's rules over the scene's (each one given replaces its key); errors
     /// name the flag or keyword as `flags.style` spells it.
     pub fn apply(&mut self, flags: &Flags) -> crate::error::Result<()> {

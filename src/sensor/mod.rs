@@ -13,7 +13,7 @@ mod illuminance_plane;
 pub mod ocean_profile;
 
 pub use illuminance_plane::IlluminancePlane;
-pub use ocean_profile::{OceanProfile, ProfileReading, ProfileRow};
+pub use ocean_profile::{OceanProfile, ProfileError, ProfileReading, ProfileRow};
 
 use glam::DVec3;
 use std::io::{self, Write};
@@ -43,9 +43,9 @@ pub struct Reading {
     /// The sensor's name.
     pub name: String,
     /// E.g. "illuminance".
-    pub quantity: &'static str,
+    pub quantity: String,
     /// E.g. "lx".
-    pub unit: &'static str,
+    pub unit: String,
     /// Points along the grid's first edge.
     pub nx: usize,
     /// Points along the grid's second edge.
@@ -91,8 +91,8 @@ impl Reading {
         let look = Look {
             scale: Scale::linear_to(stats.max),
             map: ColourMap::Viridis,
-            unit: self.unit,
-            heading: Some((format!("{} {}", self.name, self.quantity), stats.line(self.unit))),
+            unit: &self.unit,
+            heading: Some((format!("{} {}", self.name, self.quantity), stats.line(&self.unit))),
             cell: (560 / self.nx.max(1)).min(440 / self.ny.max(1)).max(1),
             background: crate::raster::WHITE,
             text: crate::raster::BLACK,

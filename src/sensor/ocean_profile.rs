@@ -112,6 +112,18 @@ pub struct ProfileReading {
     pub rows: Vec<ProfileRow>,
     /// Per band: (wavelength, Ed(0+), Lu(0−), Lw, Rrs).
     pub surface: Vec<[f64; 5]>,
+    /// The standard errors of the values, from the spread of progressive passes (two or
+    /// more; `None` after one pass).
+    pub std_error: Option<ProfileError>,
+}
+
+/// The standard errors of a [`ProfileReading`]'s values, in the same units.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ProfileError {
+    /// Per row: Ed, Eu, Eod, Eou, Lu.
+    pub rows: Vec<[f64; 5]>,
+    /// Per band: Ed(0+), Lu(0−), Lw, Rrs.
+    pub surface: Vec<[f64; 4]>,
 }
 
 /// Half-angle of the cone over which L_u is averaged (a narrow-field radiometer).
@@ -141,24 +153,35 @@ impl ProfileReading {
     /// `sensor,depth_m,wavelength_nm,Ed,Eu,Eod,Eou,Lu` (W m⁻² nm⁻¹; Lu W m⁻² sr⁻¹ nm⁻¹).
     pub fn write_csv(&self, path: &Path) -> io::Result<()> {
         let mut f = io::BufWriter::new(std::fs::File::create(path)?);
-        writeln!(f, "sensor,depth_m,wavelength_nm,Ed,Eu,Eod,Eou,Lu")?;
-        for r in &self.rows {
-            writeln!(
+        let se_header = if self.std_error.is_some() { ",Ed_se,Eu_se,Eod_se,Eou_se,Lu_se" } else { "" };
+        writeln!(f, "sensor,depth_m,wavelength_nm,Ed,Eu,Eod,Eou,Lu{se_header}")?;
+        for (i, r) in self.rows.iter().enumerate() {
+            write!(
                 f,
                 "{},{},{},{:e},{:e},{:e},{:e},{:e}",
                 self.name, r.depth_m, r.wavelength_nm, r.ed, r.eu, r.eod, r.eou, r.lu
             )?;
+            if let Some(e) = self.std_error.as_ref().and_then(|e| e.rows.get(i)) {
+                write!(f, ",{:e},{:e},{:e},{:e},{:e}", e[0], e[1], e[2], e[3], e[4])?;
+            }
+            writeln!(f)?;
         }
         f.flush()
     }
 
-    /// `sensor,wavelength_nm,Ed_0plus,Lu_0minus,Lw,Rrs_per_sr`, then K_d rows in a second
-    /// table `sensor,depth_from_m,depth_to_m,wavelength_nm,Kd_per_m` after a blank line.
+    /// `sensor,wavelength_nm,Ed_0plus,Lu_0minus,Lw,Rrs_per_sr` (and `Ed_0plus_se,Lu_0minus_se,
+    /// Lw_se,Rrs_per_sr_se` after two passes or more), then K_d rows in a second table
+    /// `sensor,depth_from_m,depth_to_m,wavelength_nm,Kd_per_m` after a blank line.
     pub fn write_derived_csv(&self, path: &Path) -> io::Result<()> {
         let mut f = io::BufWriter::new(std::fs::File::create(path)?);
-        writeln!(f, "sensor,wavelength_nm,Ed_0plus,Lu_0minus,Lw,Rrs_per_sr")?;
-        for s in &self.surface {
-            writeln!(f, "{},{},{:e},{:e},{:e},{:e}", self.name, s[0], s[1], s[2], s[3], s[4])?;
+        let se_header = if self.std_error.is_some() { ",Ed_0plus_se,Lu_0minus_se,Lw_se,Rrs_per_sr_se" } else { "" };
+        writeln!(f, "sensor,wavelength_nm,Ed_0plus,Lu_0minus,Lw,Rrs_per_sr{se_header}")?;
+        for (i, s) in self.surface.iter().enumerate() {
+            write!(f, "{},{},{:e},{:e},{:e},{:e}", self.name, s[0], s[1], s[2], s[3], s[4])?;
+            if let Some(e) = self.std_error.as_ref().and_then(|e| e.surface.get(i)) {
+                write!(f, ",{:e},{:e},{:e},{:e}", e[0], e[1], e[2], e[3])?;
+            }
+            writeln!(f)?;
         }
         writeln!(f)?;
         writeln!(f, "sensor,depth_from_m,depth_to_m,wavelength_nm,Kd_per_m")?;

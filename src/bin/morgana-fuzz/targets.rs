@@ -679,7 +679,7 @@ fn execute(target: Target, ws: &Workspace, case: &Case, read: &[String], deadlin
         Target::Render => {
             let args = morgana::cli::render::RenderArgs {
                 scene: Some(c.join(&main)),
-                out: out.clone(),
+                out: Some(out.clone()),
                 photons: None,
                 seed: None,
                 threads: Some(1),

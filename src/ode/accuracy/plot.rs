@@ -4,6 +4,7 @@
 //! (a work–precision diagram, where equal-error speedups are horizontal distances).
 
 use super::Report;
+use crate::raster::log_axes::{axes, decades};
 use crate::raster::{BLACK, Canvas, GREY, Rgb, WHITE};
 
 const PANEL_W: i64 = 440;
@@ -12,7 +13,6 @@ const TOP: i64 = 28;
 const RED: Rgb = [200, 30, 30];
 const BLUE: Rgb = [30, 70, 200];
 const GREEN: Rgb = [20, 140, 40];
-const LIGHT: Rgb = [225, 225, 225];
 
 /// One curve.
 struct Series {
@@ -74,20 +74,6 @@ pub fn figure(report: &Report) -> Canvas {
     c
 }
 
-/// Decade range [lo, hi] (exponents) covering the positive finite values.
-fn decades(values: impl Iterator<Item = f64>) -> (i32, i32) {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for v in values.filter(|v| *v > 0.0 && v.is_finite()) {
-        lo = lo.min(v.log10());
-        hi = hi.max(v.log10());
-    }
-    if !lo.is_finite() {
-        return (0, 1);
-    }
-    let (a, b) = (lo.floor() as i32, hi.ceil() as i32);
-    if a == b { (a, a + 1) } else { (a, b) }
-}
-
 /// Draws `panel` with its top-left corner at (x0, y0).
 fn draw(c: &mut Canvas, x0: i64, y0: i64, panel: &Panel) {
     let (left, right, top, bottom) = (x0 + 62, x0 + PANEL_W - 14, y0 + 44, y0 + PANEL_H - 44);
@@ -117,35 +103,5 @@ fn draw(c: &mut Canvas, x0: i64, y0: i64, panel: &Panel) {
         let ly = top + 6 + 12 * k as i64;
         c.fill_rect(right - 110, ly + 2, 16, 3, s.colour);
         c.text(right - 88, ly, s.name, 1, BLACK);
-    }
-}
-
-/// Frame, decade grid and tick labels ("1E-3").
-fn axes(
-    c: &mut Canvas,
-    (l, r, t, b): (i64, i64, i64, i64),
-    (xa, xb): (i32, i32),
-    (ya, yb): (i32, i32),
-    map: &dyn Fn((f64, f64)) -> (f64, f64),
-) {
-    let every = |a: i32, z: i32| if z - a > 8 { 2 } else { 1 };
-    for e in xa..=xb {
-        let (x, _) = map((10f64.powi(e), 10f64.powi(ya)));
-        c.line((x, t as f64), (x, b as f64), 1, LIGHT);
-        if (e - xa) % every(xa, xb) == 0 {
-            let label = format!("1E{e}");
-            c.text(x as i64 - Canvas::text_width(&label, 1) / 2, b + 6, &label, 1, BLACK);
-        }
-    }
-    for e in ya..=yb {
-        let (_, y) = map((10f64.powi(xa), 10f64.powi(e)));
-        c.line((l as f64, y), (r as f64, y), 1, LIGHT);
-        if (e - ya) % every(ya, yb) == 0 {
-            let label = format!("1E{e}");
-            c.text(l - 6 - Canvas::text_width(&label, 1), y as i64 - 3, &label, 1, BLACK);
-        }
-    }
-    for (p, q) in [((l, t), (r, t)), ((r, t), (r, b)), ((r, b), (l, b)), ((l, b), (l, t))] {
-        c.line((p.0 as f64, p.1 as f64), (q.0 as f64, q.1 as f64), 1, BLACK);
     }
 }

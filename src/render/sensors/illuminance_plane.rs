@@ -41,8 +41,8 @@ pub fn evaluate(
     let total = direct.iter().zip(&indirect).map(|(a, b)| a + b).collect();
     Reading {
         name: name.to_string(),
-        quantity: "illuminance",
-        unit: "lx",
+        quantity: "illuminance".into(),
+        unit: "lx".into(),
         nx: plane.nx,
         ny: plane.ny,
         points,

@@ -53,7 +53,7 @@ pub fn evaluate(s: &OceanProfile, (scene, seed): (&Scene, u64), maps: &Maps, nam
             [bands.centre_nm(b), ed0[b], lu0, lw, if ed0[b] > 0.0 { lw / ed0[b] } else { 0.0 }]
         })
         .collect();
-    ProfileReading { name: name.to_string(), rows, surface }
+    ProfileReading { name: name.to_string(), rows, surface, std_error: None }
 }
 
 /// Adds one stored photon to every slab and band it belongs to, and its upward scattering
