@@ -444,3 +444,21 @@ fn sky_radiance_sensors_report_bad_input() {
     let ok = scene(&with("origin = [0.0, 1.0, 0.0]\ndirections_deg = [[10.0, 0.0]]"));
     assert_eq!(ok.sensors.len(), 1);
 }
+
+/// `refraction = true` gives the medium the same atmosphere's index field (n − 1 at sea level
+/// 2.78 × 10⁻⁴ at 550 nm: Ciddor's air at 288.15 K, 101325 Pa) and the plan curves paths;
+/// `rayleigh = false` leaves clear air, which the plan does not count as participating.
+#[test]
+fn refraction_and_rayleigh_switches_do_what_they_say() {
+    let base = black_earth(400.0, 700.0, ZENITH_BEAM);
+    let s = scene(&base);
+    assert!(air(&s).index.is_none() && air(&s).scatters() && !s.plan.curved_paths.on);
+    let s = scene(&base.replace("co2_ppm = 360", "co2_ppm = 360\nrefraction = true"));
+    let m = air(&s);
+    assert!(m.bends_light() && s.plan.curved_paths.on && s.plan.participating_media.on);
+    let (n, grad) = m.index.as_ref().unwrap().n_grad(550.0, DVec3::new(0.0, 0.0, 0.0));
+    assert!((n - 1.0 - 2.78e-4).abs() < 3e-6, "n − 1 = {}", n - 1.0);
+    assert!(grad.y < 0.0, "n falls with height");
+    let s = scene(&base.replace("rayleigh = true", "rayleigh = false"));
+    assert!(air(&s).is_clear() && !s.plan.participating_media.on);
+}
