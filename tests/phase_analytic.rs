@@ -23,6 +23,8 @@ fn analytic_variants() -> Vec<(&'static str, PhaseFunction)> {
     vec![
         ("isotropic", PhaseFunction::isotropic()),
         ("rayleigh", PhaseFunction::rayleigh()),
+        ("rayleigh, air's ρ = 0.0283", PhaseFunction::rayleigh_depolarised(0.0283).unwrap()),
+        ("rayleigh, ρ = 0.5", PhaseFunction::rayleigh_depolarised(0.5).unwrap()),
         ("pure water", PhaseFunction::pure_water()),
         ("raman", PhaseFunction::raman()),
         ("hg 0", hg(0.0)),
@@ -71,6 +73,29 @@ fn rayleigh_and_raman_match_their_published_formulas() {
     let raman = PhaseFunction::raman();
     assert!((raman.eval(NM, 0.0) - 0.067).abs() < 0.0005, "Raman K = {}", raman.eval(NM, 0.0));
     assert!((raman.eval(NM, 1.0) / raman.eval(NM, 0.0) - 1.55).abs() < 1e-12);
+}
+
+/// Chandrasekhar (1950, §I.18; Hansen & Travis 1974, Eq. 2.15), written as published:
+/// P(Θ) = 3/(4(1 + 2γ)) [(1 + 3γ) + (1 − γ) cos²Θ], γ = ρ/(2 − ρ), normalised to 4π; the phase
+/// function per steradian is P/(4π). ρ = 0 is the classical Rayleigh 3/(16π)(1 + μ²).
+#[test]
+fn depolarised_rayleigh_matches_chandrasekhars_form() {
+    for rho in [0.0, 0.0279, 0.0283, 0.1, 0.6] {
+        let p = PhaseFunction::rayleigh_depolarised(rho).unwrap();
+        let gamma = rho / (2.0 - rho);
+        for mu in [-1.0f64, -0.6, 0.0, 0.35, 1.0] {
+            let want = 3.0 / (4.0 * (1.0 + 2.0 * gamma)) * ((1.0 + 3.0 * gamma) + (1.0 - gamma) * mu * mu) / (4.0 * PI);
+            assert!((p.eval(NM, mu) / want - 1.0).abs() < 1e-13, "ρ = {rho}, μ = {mu}: {} vs {want}", p.eval(NM, mu));
+        }
+    }
+    // Air (ρ ≈ 0.028): forward over sideways scattering P(0)/P(90°) = 1 + c with
+    // c = (1 − ρ)/(1 + ρ) = 0.9455, instead of the classical 2.
+    let air = PhaseFunction::rayleigh_depolarised(0.028).unwrap();
+    assert!((air.eval(NM, 1.0) / air.eval(NM, 0.0) - (1.0 + 0.972 / 1.028)).abs() < 1e-12);
+    for bad in [-0.01, 1.0, f64::NAN] {
+        let e = error_of(PhaseFunction::rayleigh_depolarised(bad));
+        assert!(e.contains("depolarisation ratio") && e.contains("[0, 1)"), "{e}");
+    }
 }
 
 #[test]
@@ -194,6 +219,7 @@ fn samplers_invert_the_closed_form_cdfs() {
         (PhaseFunction::rayleigh(), Box::new(move |mu| cos2_cdf(1.0, mu))),
         (PhaseFunction::pure_water(), Box::new(move |mu| cos2_cdf(0.835, mu))),
         (PhaseFunction::raman(), Box::new(move |mu| cos2_cdf(0.55, mu))),
+        (PhaseFunction::rayleigh_depolarised(0.0283).unwrap(), Box::new(move |mu| cos2_cdf(0.9717 / 1.0283, mu))),
         (hg(0.924), Box::new(move |mu| hg_cdf(0.924, mu))),
         (hg(-0.3), Box::new(move |mu| hg_cdf(-0.3, mu))),
         (PhaseFunction::schlick(0.9).unwrap(), Box::new(move |mu| schlick_cdf(0.9, mu))),

@@ -62,6 +62,7 @@ fn broad_phase_functions_sample_their_density() {
     let cases = [
         ("isotropic", PhaseFunction::isotropic()),
         ("rayleigh", PhaseFunction::rayleigh()),
+        ("rayleigh of air, ρ = 0.0283", PhaseFunction::rayleigh_depolarised(0.0283).unwrap()),
         ("pure water", PhaseFunction::pure_water()),
         ("raman", PhaseFunction::raman()),
         ("hg 0.3", hg(0.3)),

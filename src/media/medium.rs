@@ -32,6 +32,13 @@ pub enum Coefficients {
         /// Absorption coefficient σ_a(λ), m⁻¹.
         sigma_a: Spectrum,
     },
+    /// Rayleigh scattering by dry air at the standard density N_s
+    /// ([`super::rayleigh_air::N_STANDARD_PER_M3`]): σ_s(λ) = σ(λ) N_s (Bodhaine et al. 1999),
+    /// σ_a = 0; the density field carries N/N_s.
+    RayleighAir {
+        /// CO₂ volume fraction, ppm.
+        co2_ppm: f64,
+    },
 }
 
 /// A participating medium (see the module docs): coefficients at density 1, phase function,
@@ -67,6 +74,7 @@ impl Medium {
             }
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => sigma_t.eval(wavelength_nm),
             Coefficients::AbsorptionMixture { sigma_a } => sigma_a.eval(wavelength_nm) + self.sigma_s(wavelength_nm),
+            Coefficients::RayleighAir { .. } => self.sigma_s(wavelength_nm),
         }
     }
 
@@ -81,6 +89,9 @@ impl Medium {
                 PhaseFunction::Mixture(m) => m.total_sigma_s(wavelength_nm),
                 _ => 0.0,
             },
+            Coefficients::RayleighAir { co2_ppm } => {
+                super::rayleigh_air::cross_section_m2(wavelength_nm, *co2_ppm) * super::rayleigh_air::N_STANDARD_PER_M3
+            }
         }
     }
 
@@ -90,7 +101,8 @@ impl Medium {
             Coefficients::ExtinctionAlbedo { albedo, .. } if self.inelastic.is_empty() => albedo.eval(wavelength_nm),
             Coefficients::ExtinctionAlbedo { .. }
             | Coefficients::AbsorptionScattering { .. }
-            | Coefficients::AbsorptionMixture { .. } => {
+            | Coefficients::AbsorptionMixture { .. }
+            | Coefficients::RayleighAir { .. } => {
                 let t = self.sigma_t(wavelength_nm);
                 if t > 0.0 { self.sigma_s(wavelength_nm) / t } else { 0.0 }
             }
@@ -111,7 +123,7 @@ impl Medium {
         match &self.coefficients {
             Coefficients::AbsorptionScattering { sigma_a, sigma_s } => zero(sigma_a) && zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => zero(sigma_t),
-            Coefficients::AbsorptionMixture { .. } => false,
+            Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir { .. } => false,
         }
     }
 
@@ -124,7 +136,7 @@ impl Medium {
         match &self.coefficients {
             Coefficients::AbsorptionScattering { sigma_s, .. } => !zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, albedo } => !zero(sigma_t) && !zero(albedo),
-            Coefficients::AbsorptionMixture { .. } => true,
+            Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir { .. } => true,
         }
     }
 

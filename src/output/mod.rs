@@ -118,6 +118,10 @@ pub fn write_outputs_with(
                 stage(&mut staged, next(), &|p| reading.write_csv(p))?;
                 stage(&mut staged, next(), &|p| reading.write_png(p))?;
             }
+            crate::sensor::Sensor::SkyRadiance(_) => {
+                let Some(reading) = readings.next() else { continue };
+                stage(&mut staged, next(), &|p| reading.write_csv(p))?;
+            }
             crate::sensor::Sensor::OceanProfile(_) => {
                 let Some(profile) = profiles.next() else { continue };
                 stage(&mut staged, next(), &|p| profile.write_csv(p))?;

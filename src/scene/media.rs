@@ -49,9 +49,13 @@ pub fn medium(
     let what = format!("medium \"{name}\"");
     let range = (bands.min_nm, bands.max_nm);
     let mut medium = match &m.kind {
-        Some(kind) => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
+        Some(kind) => match ctx.choice(kind, &format!("{what}: type"), &["ocean", "atmosphere"])? {
+            "ocean" => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
+            _ => super::atmosphere_medium::atmosphere_medium(ctx, m, kind, &name, bands, earth)?,
+        },
         None => {
             super::inelastic::reject_ocean_fields(ctx, m, &what)?;
+            super::atmosphere_medium::reject_atmosphere_fields(ctx, m, &what)?;
             elastic(ctx, lib, m, &span, name, &what, range, &earth.0)?
         }
     };

@@ -3,6 +3,7 @@
 //! Loading goes parse, then validate and transform, then build (as Mitsuba 3 does). Every
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
+mod atmosphere_medium;
 mod inelastic;
 mod lights;
 mod luminaires;
@@ -135,6 +136,7 @@ impl Scene {
                     add(true, format!("{stem}.csv"));
                     add(true, format!("{stem}.png"));
                 }
+                crate::sensor::Sensor::SkyRadiance(_) => add(true, format!("{stem}.csv")),
                 crate::sensor::Sensor::OceanProfile(_) => {
                     add(true, format!("{stem}.csv"));
                     add(true, format!("{stem}_derived.csv"));

@@ -58,8 +58,8 @@ pub struct RawWorld {
     pub earth_radius_m: S<f64>,
 }
 
-/// `[[medium]]`: a participating medium; plain coefficients, `type = "ocean"`, or both with
-/// `inelastic`.
+/// `[[medium]]`: a participating medium; plain coefficients, `type = "ocean"`,
+/// `type = "atmosphere"`, or coefficients with `inelastic`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawMedium {
@@ -82,7 +82,8 @@ pub struct RawMedium {
     /// `[[medium]] index`: refractive-index field light curves along, a number or a table with
     /// `type`.
     pub index: S<toml::Value>,
-    /// `type = "ocean"` builds sea water from the fields below (src/scene/inelastic.rs).
+    /// `type = "ocean"` builds sea water from the fields below (src/scene/inelastic.rs);
+    /// `type = "atmosphere"` scattering air (src/scene/atmosphere_medium.rs).
     #[serde(rename = "type")]
     pub kind: S<String>,
     /// `[[medium]] chl_mg_m3` (ocean): chlorophyll-a concentration, mg m⁻³.
@@ -106,6 +107,14 @@ pub struct RawMedium {
     pub data_dir: S<String>,
     /// Inelastic components of any medium: an array of tables.
     pub inelastic: S<toml::Value>,
+    /// `[[medium]] atmosphere` (atmosphere): the air's profile, a built-in name or `{ file }`.
+    pub atmosphere: S<toml::Value>,
+    /// `[[medium]] rayleigh` (atmosphere): whether the air scatters (Rayleigh, Bodhaine et al. 1999).
+    pub rayleigh: S<bool>,
+    /// `[[medium]] co2_ppm` (atmosphere): CO₂ of the air's Rayleigh cross-section, ppm by volume.
+    pub co2_ppm: S<f64>,
+    /// `[[medium]] refraction` (atmosphere): whether light curves along the air's refractive index.
+    pub refraction: S<bool>,
 }
 
 /// `[camera]`: a pinhole camera.
@@ -425,6 +434,8 @@ pub struct RawSensor {
     pub gather_rays: S<i64>,
     /// `type = "ocean_profile"` only.
     pub depths_m: S<Vec<f64>>,
+    /// `type = "sky_radiance"` only: [view zenith, view azimuth] pairs, degrees.
+    pub directions_deg: S<Vec<[f64; 2]>>,
     /// `[[sensor]] slab_m`: thickness of each measuring slab of an ocean profile, m.
     pub slab_m: S<f64>,
     /// `[[sensor]] ior`: water's refractive index used for the water-leaving radiance Lw.

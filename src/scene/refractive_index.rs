@@ -98,31 +98,8 @@ pub fn field(
         "temperature_grid" => temperature_grid(ctx, v, &iwhat, earth, &keys)?,
         "atmosphere" => {
             let t = Table::new(ctx, v, iwhat.clone(), &keys(&["file", "name"]))?;
-            let a = match (t.t.get("file").and_then(Value::as_str), t.t.get("name").and_then(Value::as_str)) {
-                (Some(f), None) => {
-                    // A file that cannot be read is this field's error; an error inside a file that
-                    // can is located in that file.
-                    let path = ctx.dir.join(f);
-                    if let Err(e) = std::fs::metadata(&path) {
-                        return Err(
-                            ctx.err(&span, format!("{iwhat}: cannot read the atmosphere file {}: {e}", path.display()))
-                        );
-                    }
-                    crate::atmosphere::load(&path)?
-                }
-                (None, Some(n)) => {
-                    crate::atmosphere::Atmosphere::builtin(n).map_err(|e| ctx.err(&span, format!("{iwhat}: {e}")))?
-                }
-                _ => {
-                    return Err(ctx.err(
-                        &span,
-                        format!(
-                            "{iwhat}: give file (an atmosphere TOML) or name (built-in: {})",
-                            crate::atmosphere::BUILTIN_NAMES.join(", ")
-                        ),
-                    ));
-                }
-            };
+            let (file, name) = (t.t.get("file").and_then(Value::as_str), t.t.get("name").and_then(Value::as_str));
+            let a = atmosphere(ctx, &span, file, name, &iwhat)?;
             let a = if explicit_earth { a.with_earth(*earth) } else { a };
             IndexField::Atmosphere(Box::new(a))
         }
@@ -130,6 +107,36 @@ pub fn field(
     };
     let field = with_bumps(ctx, v, &iwhat, base)?;
     check(ctx, &span, &iwhat, field, allow_below_one(ctx, v, &iwhat)?, range_nm, None)
+}
+
+/// The atmosphere a `file` (an atmosphere TOML, relative to the scene) or a built-in `name`
+/// gives; exactly one of them.
+pub(super) fn atmosphere(
+    ctx: &Ctx,
+    span: &std::ops::Range<usize>,
+    file: Option<&str>,
+    name: Option<&str>,
+    what: &str,
+) -> R<crate::atmosphere::Atmosphere> {
+    match (file, name) {
+        (Some(f), None) => {
+            // A file that cannot be read is this field's error; an error inside a file that can is
+            // located in that file.
+            let path = ctx.dir.join(f);
+            if let Err(e) = std::fs::metadata(&path) {
+                return Err(ctx.err(span, format!("{what}: cannot read the atmosphere file {}: {e}", path.display())));
+            }
+            crate::atmosphere::load(&path)
+        }
+        (None, Some(n)) => crate::atmosphere::Atmosphere::builtin(n).map_err(|e| ctx.err(span, format!("{what}: {e}"))),
+        _ => Err(ctx.err(
+            span,
+            format!(
+                "{what}: give file (an atmosphere TOML) or name (built-in: {})",
+                crate::atmosphere::BUILTIN_NAMES.join(", ")
+            ),
+        )),
+    }
 }
 
 /// The `allow_below_one` flag of an `index` table (false when absent).

@@ -23,16 +23,23 @@
 //! slab_m = 0.2                  # optional: thickness of each measuring slab (default 0.1)
 //! ior = 1.34                    # optional: water's refractive index for Lw (default 1.34)
 //! samples = 64                  # optional: shadow rays per band for Ed(0+)
+//!
+//! [[sensor]]
+//! name = "sky"                  # writes <output name>_sky.csv: radiance per band and direction
+//! type = "sky_radiance"         # src/sensor/sky_radiance.rs
+//! origin = [0.0, 1.0, 0.0]      # where the radiance is measured, m
+//! directions_deg = [[0, 0], [60, 90], [120, 180]]   # [view zenith, azimuth] (0 toward −z, 90 +x)
+//! samples = 64                  # optional: estimates per direction and band (default 64)
 //! ```
 
 use super::raw::RawSensor;
 use super::settings::{DirectLighting, IntegratorSettings};
-use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor};
+use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor, SkyRadiance};
 use crate::validate::present_fields;
 use crate::validate::{Ctx, R};
 use toml::Spanned;
 
-const KINDS: &[&str] = &["illuminance_plane", "ocean_profile"];
+const KINDS: &[&str] = &["illuminance_plane", "ocean_profile", "sky_radiance"];
 const MAX_POINTS: i64 = 4096;
 
 pub fn sensors(ctx: &Ctx, raw: &[Spanned<RawSensor>], integrator: &IntegratorSettings) -> R<Vec<NamedSensor>> {
@@ -56,7 +63,10 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
     if kind == "ocean_profile" {
         return profile(ctx, rec, name, &what, integrator);
     }
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior);
+    if kind == "sky_radiance" {
+        return sky_radiance(ctx, rec, name, &what);
+    }
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg);
     ctx.only(&present, &["origin", "u", "v", "normal", "resolution", "samples", "gather_rays"], &what)?;
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, &what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
@@ -102,7 +112,7 @@ fn profile(
 ) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior);
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg);
     ctx.only(&present, &["origin", "u", "v", "normal", "samples", "depths_m", "slab_m", "ior"], what)?;
     if integrator.photons == 0 {
         return Err(ctx.err(
@@ -136,4 +146,32 @@ fn profile(
     let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
     let p = OceanProfile { origin, u, v, up, depths_m, slab_m, ior, samples };
     Ok(NamedSensor { name, sensor: Sensor::OceanProfile(p) })
+}
+
+/// `type = "sky_radiance"`: a position and [view zenith, view azimuth] pairs in degrees (zenith 0
+/// to 180, azimuth −360 to 360).
+fn sky_radiance(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str) -> R<NamedSensor> {
+    let span = rec.span();
+    let s = rec.get_ref();
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg);
+    ctx.only(&present, &["origin", "directions_deg", "samples"], what)?;
+    let position = ctx.vec3(ctx.require(&s.origin, "origin", &span, what)?, "origin")?;
+    let d = ctx.require(&s.directions_deg, "directions_deg", &span, what)?;
+    let directions_deg = d.get_ref().clone();
+    if directions_deg.is_empty() || directions_deg.len() > MAX_POINTS as usize {
+        return Err(
+            ctx.err(&d.span(), format!("{what}: directions_deg must list 1 to {MAX_POINTS} [zenith, azimuth] pairs"))
+        );
+    }
+    if let Some([z, a]) = directions_deg
+        .iter()
+        .find(|[z, a]| !(z.is_finite() && (0.0..=180.0).contains(z) && a.is_finite() && (-360.0..=360.0).contains(a)))
+    {
+        return Err(ctx.err(
+            &d.span(),
+            format!("{what}: direction [{z}, {a}] is out of range: view zenith 0 to 180°, azimuth −360 to 360°"),
+        ));
+    }
+    let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
+    Ok(NamedSensor { name, sensor: Sensor::SkyRadiance(SkyRadiance { position, directions_deg, samples }) })
 }

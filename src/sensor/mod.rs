@@ -11,9 +11,11 @@
 
 mod illuminance_plane;
 pub mod ocean_profile;
+pub mod sky_radiance;
 
 pub use illuminance_plane::IlluminancePlane;
 pub use ocean_profile::{OceanProfile, ProfileError, ProfileReading, ProfileRow};
+pub use sky_radiance::SkyRadiance;
 
 use glam::DVec3;
 use std::io::{self, Write};
@@ -26,6 +28,8 @@ pub enum Sensor {
     IlluminancePlane(IlluminancePlane),
     /// Ocean irradiances and radiance at depths (written as a profile, see [`ProfileReading`]).
     OceanProfile(OceanProfile),
+    /// Radiance per band from listed directions at a point (one reading point per direction).
+    SkyRadiance(SkyRadiance),
 }
 
 /// A sensor as the scene names it.

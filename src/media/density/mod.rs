@@ -5,11 +5,13 @@
 //! intervals, each with an upper bound of d on it ("a majorant per region"), see
 //! [`Density::majorant_intervals`].
 
+mod air_profile;
 mod exponential;
 mod fbm;
 mod grid;
 mod spherical_exponential;
 
+pub use air_profile::AirProfile;
 pub use exponential::ExponentialHeight;
 pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
@@ -49,6 +51,8 @@ pub enum Density {
     SphericalExponential(SphericalExponential),
     /// Trilinear lattice read from an `.mgrid` file.
     Grid(Grid3D),
+    /// The molecular number density of an atmosphere, tabulated in height.
+    AirProfile(AirProfile),
     /// Procedural fBm turbulence.
     Fbm(Box<Fbm>),
 }
@@ -61,18 +65,21 @@ impl Density {
             Density::ExponentialHeight(e) => e.at(p),
             Density::SphericalExponential(e) => e.at(p),
             Density::Grid(g) => g.at(p),
+            Density::AirProfile(a) => a.at(p),
             Density::Fbm(f) => f.at(p),
         }
     }
 
     /// ∫₀ᵗ d(o + s·dir) ds in closed form, where one exists (uniform, exponential), or by a
-    /// quadrature accurate to 10⁻¹² (exponential above a sphere).
+    /// quadrature accurate to 10⁻¹² (exponential above a sphere) or to the table's interpolation
+    /// (an atmosphere's air, 10⁻⁷).
     pub fn integral_exact(&self, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
         match self {
             Density::Uniform => Some(t),
             Density::ExponentialHeight(e) => Some(e.integral(o, dir, t)),
             Density::SphericalExponential(e) => Some(e.integral(o, dir, t)),
-            _ => None,
+            Density::AirProfile(a) => Some(a.integral(o, dir, t)),
+            Density::Grid(_) | Density::Fbm(_) => None,
         }
     }
 
@@ -86,6 +93,7 @@ impl Density {
             Density::ExponentialHeight(e) => e.majorant_intervals(o, dir, t_max, visit),
             Density::SphericalExponential(e) => e.majorant_intervals(o, dir, t_max, visit),
             Density::Grid(g) => g.majorant_intervals(o, dir, t_max, visit),
+            Density::AirProfile(a) => a.majorant_intervals(o, dir, t_max, visit),
             Density::Fbm(f) => {
                 visit(0.0, t_max, f.bound());
             }

@@ -2,6 +2,9 @@
 //!
 //! Normalisation: 2π ∫₋₁¹ K (1 + c μ²) dμ = 4π K (1 + c/3) = 1, so K = 1 / (4π (1 + c/3)).
 //! - Rayleigh (unpolarised light): c = 1, K = 3/(16π).
+//! - Rayleigh with depolarisation ratio ρ (anisotropic molecules, e.g. air with ρ ≈ 0.028):
+//!   Chandrasekhar's p = 3/(4(1 + 2γ)) [(1 + 3γ) + (1 − γ) μ²]/(4π), γ = ρ/(2 − ρ), is this form
+//!   with c = (1 − γ)/(1 + 3γ) = (1 − ρ)/(1 + ρ) (Chandrasekhar 1950, §I.18).
 //! - Pure water and sea water (Morel 1974): c = 0.835 = (1 − δ)/(1 + δ) for the depolarisation
 //!   ratio δ = 0.09, K = 0.062251 (published rounded as 0.06225).
 //! - Raman scattering by water (Mobley 1994): c = 0.55, K = 0.067249 (published rounded as 0.067).
@@ -25,6 +28,7 @@
 //!   (eds.), *Optical Aspects of Oceanography* (1974), 1–24.
 //! - Mobley, *Light and Water: Radiative Transfer in Natural Waters* (1994): the pure-water phase
 //!   function 0.06225 (1 + 0.835 cos²ψ) and the Raman phase function 0.067 (1 + 0.55 cos²ψ).
+//! - Chandrasekhar, *Radiative Transfer* (1950), §I.18 (Rayleigh scattering with depolarisation).
 //! - Frisvad, "Importance sampling the Rayleigh phase function", JOSA A 28(12) (2011), 2436–2441.
 //! - Press et al., *Numerical Recipes*, 3rd ed. (2007), §5.6 (roots of cubics).
 
@@ -58,6 +62,15 @@ impl CosSquared {
                 "cos² coefficient c = {c} is out of range: it must be finite and ≥ 0 \
                  (1 for Rayleigh, 0.835 for pure water, 0.55 for Raman)"
             ))
+        }
+    }
+
+    /// Rayleigh scattering with depolarisation ratio ρ in [0, 1): c = (1 − ρ)/(1 + ρ).
+    pub fn rayleigh_depolarised(rho: f64) -> Result<CosSquared, String> {
+        if rho.is_finite() && (0.0..1.0).contains(&rho) {
+            Ok(CosSquared::with_c((1.0 - rho) / (1.0 + rho)))
+        } else {
+            Err(format!("depolarisation ratio ρ = {rho} is out of range: it must lie in [0, 1) (air: about 0.028)"))
         }
     }
 

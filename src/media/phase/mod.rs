@@ -22,6 +22,7 @@
 //! |---|---|---|
 //! | [`PhaseFunction::isotropic`] | 1/(4π) | `isotropic.rs` |
 //! | [`PhaseFunction::rayleigh`] | 3/(16π) (1 + μ²) | `cos_squared.rs` |
+//! | [`PhaseFunction::rayleigh_depolarised`] | K (1 + (1 − ρ)/(1 + ρ) μ²) (Chandrasekhar 1950) | `cos_squared.rs` |
 //! | [`PhaseFunction::pure_water`] | 0.06225 (1 + 0.835 μ²) (Morel 1974) | `cos_squared.rs` |
 //! | [`PhaseFunction::raman`] | 0.067 (1 + 0.55 μ²) (Raman scattering by water) | `cos_squared.rs` |
 //! | [`PhaseFunction::henyey_greenstein`] | (1 − g²) / (4π (1 + g² − 2gμ)^{3/2}) | `henyey_greenstein.rs` |
@@ -87,6 +88,13 @@ impl PhaseFunction {
     /// p = 3/(16π) (1 + cos²θ).
     pub fn rayleigh() -> Self {
         PhaseFunction::CosSquared(CosSquared::RAYLEIGH)
+    }
+
+    /// Rayleigh scattering by anisotropic molecules of depolarisation ratio `rho` in [0, 1)
+    /// (Chandrasekhar 1950, §I.18): p = K (1 + c μ²) with c = (1 − ρ)/(1 + ρ); see
+    /// [`CosSquared::rayleigh_depolarised`]. ρ ≈ 0.028 for air ([`crate::media::rayleigh_air`]).
+    pub fn rayleigh_depolarised(rho: f64) -> Result<Self, String> {
+        CosSquared::rayleigh_depolarised(rho).map(PhaseFunction::CosSquared)
     }
 
     /// Scattering by pure water (and sea water), p = 0.06225 (1 + 0.835 cos²θ) (Morel 1974).

@@ -3,6 +3,7 @@
 
 mod illuminance_plane;
 mod ocean_profile;
+mod sky_radiance;
 
 use super::eye::EyeTracer;
 use super::photon_pass::Maps;
@@ -22,6 +23,7 @@ pub fn evaluate_all(scene: &Scene, s: &IntegratorSettings, maps: &Maps) -> Vec<R
             Sensor::IlluminancePlane(p) => {
                 Some(illuminance_plane::evaluate(p, (scene, seed), &tracer, &s.name, i as u64))
             }
+            Sensor::SkyRadiance(r) => Some(sky_radiance::evaluate(r, (scene, seed), &tracer, &s.name, i as u64)),
             Sensor::OceanProfile(_) => None,
         })
         .collect()
@@ -36,7 +38,7 @@ pub fn evaluate_profiles(scene: &Scene, seed: u64, maps: &Maps) -> Vec<ProfileRe
         .enumerate()
         .filter_map(|(i, s)| match &s.sensor {
             Sensor::OceanProfile(p) => Some(ocean_profile::evaluate(p, (scene, seed), maps, &s.name, i as u64)),
-            Sensor::IlluminancePlane(_) => None,
+            Sensor::IlluminancePlane(_) | Sensor::SkyRadiance(_) => None,
         })
         .collect()
 }

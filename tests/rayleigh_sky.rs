@@ -1,0 +1,464 @@
+//! The scattering atmosphere (`[[medium]] type = "atmosphere"`): transmittance against
+//! Beer–Lambert on the USA76 profile, the Rayleigh optical depth against Bodhaine et al. (1999),
+//! energy conservation of the photon pass over a black Earth, and its scene errors.
+
+mod common;
+
+use common::{scene, scene_error};
+use glam::DVec3;
+use morgana::media::Medium;
+use morgana::media::rayleigh_air::cross_section_m2;
+use morgana::media::tracking::transmittance;
+use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::photon_map::PhotonPath;
+use morgana::rng::{Rng, Stream};
+
+const R_EARTH_M: f64 = 6_371_000.0;
+const TOP_M: f64 = 86_000.0;
+
+/// A collimated beam from the zenith (scenes need a light to load).
+const ZENITH_BEAM: &str =
+    "[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 1.0\n";
+
+/// A black Earth (a sphere of radius 6371 km centred at (0, −R, 0)) in a USA76 Rayleigh
+/// atmosphere over `min_nm`–`max_nm`, with `light` (TOML) added.
+fn black_earth(min_nm: f64, max_nm: f64, light: &str) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 1.0, 0.0]
+look_at = [0.0, 2.0, 0.001]
+fov_deg = 40.0
+width = 4
+height = 4
+
+[output]
+bands = 4
+min_nm = {min_nm:?}
+max_nm = {max_nm:?}
+
+[world]
+medium = "air"
+earth = "spherical"
+
+[[medium]]
+name = "air"
+type = "atmosphere"
+atmosphere = "usa76"
+rayleigh = true
+co2_ppm = 360
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "sphere"
+center = [0.0, -{R_EARTH_M:?}, 0.0]
+radius = {R_EARTH_M:?}
+material = "black"
+{light}
+"#
+    )
+}
+
+fn air(s: &morgana::scene::Scene) -> &Medium {
+    s.world.media.iter().find(|m| m.name == "air").expect("the air medium")
+}
+
+/// USA76 number density N = P N_A/(R* T) at geometric height `h` (the standard's constants,
+/// Table 2: N_A = 6.022169e23 mol⁻¹, R* = 8.31432 J mol⁻¹ K⁻¹), m⁻³.
+fn usa76_n(h: f64) -> f64 {
+    let s = morgana::atmosphere::usa76::at_geometric(h);
+    s.pressure_pa * 6.022_169e23 / (8.314_32 * s.temperature_k)
+}
+
+/// ∫ N ds along the chord from the ground at the origin toward zenith angle `zenith_deg`, up to
+/// the 86 km top: composite Simpson's rule with 1 m steps on the exact standard, heights
+/// h(s) = √(R² + s² + 2Rs cos z) − R above the sphere.
+fn column_per_m2(zenith_deg: f64) -> f64 {
+    let mu = zenith_deg.to_radians().cos();
+    let r = R_EARTH_M;
+    let length = -r * mu + (r * r * mu * mu + (r + TOP_M).powi(2) - r * r).sqrt();
+    let height = |s: f64| (r * r + s * s + 2.0 * r * s * mu).sqrt() - r;
+    let n = (length.ceil() as usize).div_ceil(2) * 2;
+    let ds = length / n as f64;
+    let f = |i: usize| usa76_n(height(i as f64 * ds).min(TOP_M));
+    let inner: f64 = (1..n).map(|i| if i % 2 == 1 { 4.0 * f(i) } else { 2.0 * f(i) }).sum();
+    (f(0) + inner + f(n)) * ds / 3.0
+}
+
+fn direction_at_zenith(zenith_deg: f64) -> DVec3 {
+    let z = zenith_deg.to_radians();
+    DVec3::new(z.sin(), z.cos(), 0.0)
+}
+
+/// The whole atmosphere's transmittance, vertical and at 60°, 300–800 nm, equals
+/// exp(−σ(λ) ∫N ds) on the USA76 profile to 10⁻⁶ relative.
+#[test]
+fn transmittance_of_the_whole_atmosphere_is_beer_lambert_on_the_profile() {
+    let s = scene(&black_earth(300.0, 800.0, ZENITH_BEAM));
+    let m = air(&s);
+    let mut rng = Rng::for_task(1, Stream::Test, 0);
+    for zenith in [0.0, 60.0] {
+        let column = column_per_m2(zenith);
+        let dir = direction_at_zenith(zenith);
+        for k in 0..=10 {
+            let nm = 300.0 + 50.0 * k as f64;
+            let got = transmittance(m, nm, DVec3::ZERO, dir, 1e7, &mut rng);
+            let want = (-cross_section_m2(nm, 360.0) * column).exp();
+            assert!((got / want - 1.0).abs() < 1e-6, "zenith {zenith}°, {nm} nm: T = {got}, Beer–Lambert {want}");
+        }
+    }
+}
+
+/// Bodhaine et al. (1999) Eq. 30: τ_R(λ) = 0.0021520 (1.0455996 − 341.29061 λ⁻² − 0.90230850 λ²)
+/// / (1 + 0.0027059889 λ⁻² − 85.968563 λ²) (λ in µm) for 1013.25 hPa at sea level, 45° latitude,
+/// 360 ppm CO₂: 0.09707 at 550 nm. The USA76 column differs from Bodhaine's P₀N_A/(m_a g) by its
+/// gravity (g₀(r₀/(r₀ + z))² weighted by mass, against Bodhaine's g at 5.5 km over 45°) and molar
+/// mass (28.9644 against 28.9649 g/mol): a few 10⁻⁴; asserted to 10⁻³.
+#[test]
+fn vertical_rayleigh_optical_depth_matches_bodhaine() {
+    let s = scene(&black_earth(300.0, 800.0, ZENITH_BEAM));
+    let m = air(&s);
+    for um in [0.3, 0.4, 0.55, 0.7, 0.8] {
+        let (x, l2) = (1.0 / (um * um), um * um);
+        let bodhaine = 0.002_152_0 * (1.045_599_6 - 341.290_61 * x - 0.902_308_50 * l2)
+            / (1.0 + 0.002_705_988_9 * x - 85.968_563 * l2);
+        let nm = um * 1e3;
+        let tau = m.sigma_t(nm) * m.density.integral_exact(DVec3::ZERO, DVec3::Y, 1e7).unwrap();
+        println!("{nm} nm: τ = {tau:.6}, Bodhaine Eq. 30 {bodhaine:.6}");
+        assert!((tau / bodhaine - 1.0).abs() < 1e-3, "{nm} nm: τ = {tau}, Bodhaine {bodhaine}");
+        if um == 0.55 {
+            assert!((bodhaine - 0.09707).abs() < 5e-6);
+        }
+    }
+}
+
+/// A non-absorbing Rayleigh atmosphere over a black Earth, lit by a collimated beam at 60° from
+/// the zenith aimed at a 2 km square: every emitted watt is absorbed by the ground or leaves to
+/// space (reflected + transmitted = incident), none is absorbed by the air; and the photons
+/// reaching the ground unscattered carry exp(−τ_slant) of the power, τ_slant = σ ∫N ds along the
+/// 60° chord (Beer–Lambert through the free-flight sampling), within 4 standard errors.
+#[test]
+fn a_rayleigh_atmosphere_over_a_black_earth_conserves_energy() {
+    let light = r#"
+[[light]]
+type = "directional"
+direction = [-0.8660254037844386, -0.5, 0.0]
+spectrum = 1.0
+irradiance_w_m2 = 1.0
+target_min = [-1000.0, 0.0, -1000.0]
+target_max = [1000.0, 1.0, 1000.0]
+"#;
+    let s = scene(&black_earth(545.0, 555.0, light));
+    let n = 100_000u64;
+    let (sink, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 11, &|_| {});
+    let emitted = n as f64 * st.power_per_photon_w;
+    assert_eq!(st.absorbed_medium_w, 0.0, "the air absorbs nothing");
+    assert_eq!(st.truncated_w, 0.0);
+    let out = st.absorbed_surface_w + st.escaped_w;
+    assert!(
+        (out / emitted - 1.0).abs() < 1e-9,
+        "ground {} + space {} of {emitted} W",
+        st.absorbed_surface_w,
+        st.escaped_w
+    );
+    // Direct transmission, averaged over the band's wavelengths (the spectrum is flat).
+    let column = column_per_m2(60.0);
+    let want =
+        (0..=100).map(|i| (-cross_section_m2(545.0 + 0.1 * i as f64, 360.0) * column).exp()).sum::<f64>() / 101.0;
+    let direct: f64 = sink.surface.iter().filter(|p| p.path == PhotonPath::Direct).map(|p| p.power_w).sum();
+    let got = direct / emitted;
+    let se = (want * (1.0 - want) / n as f64).sqrt();
+    println!("direct transmittance {got:.5} vs {want:.5} (s.e. {se:.5}); reflected {:.5}", st.escaped_w / emitted);
+    assert!((got - want).abs() < 4.0 * se, "direct {got} vs exp(−τ) {want}");
+}
+
+#[test]
+fn atmosphere_media_report_bad_input() {
+    let e = scene_error(&black_earth(200.0, 800.0, ZENITH_BEAM));
+    assert!(e.contains("230") && e.contains("1690") && e.contains("min_nm"), "{e}");
+    let e = scene_error(&black_earth(400.0, 700.0, ZENITH_BEAM).replace("co2_ppm = 360", "co2_ppm = -5.0"));
+    assert!(e.contains("co2_ppm") && e.contains("out of range"), "{e}");
+    let e = scene_error(&black_earth(400.0, 700.0, ZENITH_BEAM).replace("co2_ppm = 360", "sigma_s = 0.1"));
+    assert!(e.contains("sigma_s") && e.contains("not used here"), "{e}");
+    let e =
+        scene_error(&black_earth(400.0, 700.0, ZENITH_BEAM).replace("atmosphere = \"usa76\"", "atmosphere = \"mars\""));
+    assert!(e.contains("atmosphere") && e.contains("mars"), "{e}");
+    let e = scene_error(&black_earth(400.0, 700.0, ZENITH_BEAM).replace("type = \"atmosphere\"", "type = \"fog\""));
+    assert!(e.contains("\"fog\" is not known") && e.contains("atmosphere"), "{e}");
+    let plain = black_earth(400.0, 700.0, ZENITH_BEAM)
+        .replace("type = \"atmosphere\"\natmosphere = \"usa76\"\n", "sigma_a = 0\nsigma_s = 0.1\n");
+    let e = scene_error(&plain);
+    assert!(e.contains("rayleigh") && e.contains("only with type = \"atmosphere\""), "{e}");
+}
+
+/// A flat-Earth USA76 Rayleigh atmosphere over black ground, lit by a collimated beam of
+/// spectral irradiance E = 1 W m⁻² nm⁻¹ at solar zenith θ₀, seen from 100 km (above the 86 km
+/// top) looking down at view zenith θ: `photons = 0` leaves only single scattering (ray marching
+/// with shadow rays), whose radiance leaving the top of a plane-parallel layer of vertical
+/// optical depth τ over a black surface is, for any vertical profile of σ_s (the layer is
+/// homogeneous in τ),
+///
+/// L(μ, Θ) = E ω p(Θ) μ₀/(μ₀ + μ) [1 − exp(−τ (1/μ₀ + 1/μ))],
+///
+/// μ₀ = cos θ₀, μ = cos θ, p per steradian: the source ω p E e^{−t/μ₀} at optical depth t, seen
+/// through e^{−t/μ}, integrated as ∫₀^τ ω p E e^{−t/μ₀} e^{−t/μ} dt/μ (Liou, *An Introduction to
+/// Atmospheric Radiation*, 2nd ed. 2002, ch. 6, the single-scattering approximation).
+/// Here ω = 1, p is Rayleigh's with Bodhaine's depolarisation at 550 nm, and τ(λ) = σ(λ) ∫N dh
+/// with the column by Simpson's rule on the standard; averaged over the 545–555 nm band.
+fn single_scattering_case(sun_zenith_deg: f64, view_zenith_deg: f64, azimuth_deg: f64) {
+    let (t0, tv, phi) = (sun_zenith_deg.to_radians(), view_zenith_deg.to_radians(), azimuth_deg.to_radians());
+    // The sun's rays travel down toward −x; the camera looks down with its view rotated by φ
+    // about the vertical from the sun's side.
+    let sun = DVec3::new(-t0.sin(), -t0.cos(), 0.0);
+    let view = DVec3::new(tv.sin() * phi.cos(), -tv.cos(), tv.sin() * phi.sin());
+    let camera = DVec3::new(0.0, 100_000.0, 0.0);
+    let look = camera + view;
+    let toml = format!(
+        r#"
+[camera]
+position = [{cx:?}, {cy:?}, {cz:?}]
+look_at = [{lx:?}, {ly:?}, {lz:?}]
+up = [0.0, 0.0, 1.0]
+fov_deg = 0.01
+width = 1
+height = 1
+
+[output]
+bands = 1
+min_nm = 545.0
+max_nm = 555.0
+
+[integrator]
+photons = 0
+march_step = 200.0
+spp = 256
+
+[world]
+medium = "air"
+earth = "flat"
+
+[[medium]]
+name = "air"
+type = "atmosphere"
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [-2000000.0, 0.0, -2000000.0]
+u = [0.0, 0.0, 4000000.0]
+v = [4000000.0, 0.0, 0.0]
+material = "black"
+
+[[light]]
+type = "directional"
+direction = [{sx:?}, {sy:?}, {sz:?}]
+spectrum = 1.0
+scale = 1.0
+"#,
+        cx = camera.x,
+        cy = camera.y,
+        cz = camera.z,
+        lx = look.x,
+        ly = look.y,
+        lz = look.z,
+        sx = sun.x,
+        sy = sun.y,
+        sz = sun.z,
+    );
+    let s = scene(&toml);
+    assert!(s.plan.participating_media.on && !s.plan.volume_map.on);
+    let rendered = common::render_with(&s, 2).image.data[0] as f64;
+    // Expected: band average of the closed form.
+    let column = column_per_m2(0.0);
+    let (mu0, mu) = (t0.cos(), tv.cos());
+    let cos_theta = sun.dot(-view);
+    let rho = morgana::media::rayleigh_air::depolarisation(550.0, 360.0);
+    let gamma = rho / (2.0 - rho);
+    let p = 3.0 / (4.0 * (1.0 + 2.0 * gamma)) * ((1.0 + 3.0 * gamma) + (1.0 - gamma) * cos_theta * cos_theta)
+        / (4.0 * std::f64::consts::PI);
+    let l = |nm: f64| {
+        let tau = cross_section_m2(nm, 360.0) * column;
+        p * mu0 / (mu0 + mu) * (1.0 - (-tau * (1.0 / mu0 + 1.0 / mu)).exp())
+    };
+    let want = (0..=100).map(|i| l(545.0 + 0.1 * i as f64)).sum::<f64>() / 101.0;
+    println!(
+        "θ₀ {sun_zenith_deg}°, θ {view_zenith_deg}°, φ {azimuth_deg}°: rendered {rendered:.6e}, closed form {want:.6e}"
+    );
+    assert!((rendered / want - 1.0).abs() < 1e-3, "rendered {rendered}, closed form {want}");
+}
+
+#[test]
+fn single_scattering_leaving_a_plane_parallel_rayleigh_atmosphere_matches_the_closed_form() {
+    single_scattering_case(30.0, 40.0, 60.0);
+    single_scattering_case(60.0, 0.0, 0.0);
+}
+
+/// Rayleigh's phase function with Bodhaine's depolarisation at 550 nm, Chandrasekhar's form.
+fn air_phase(cos_theta: f64) -> f64 {
+    let rho = morgana::media::rayleigh_air::depolarisation(550.0, 360.0);
+    let gamma = rho / (2.0 - rho);
+    3.0 / (4.0 * (1.0 + 2.0 * gamma)) * ((1.0 + 3.0 * gamma) + (1.0 - gamma) * cos_theta * cos_theta)
+        / (4.0 * std::f64::consts::PI)
+}
+
+/// A `sky_radiance` sensor on the ground of the flat Rayleigh atmosphere (sun at 30° from the
+/// zenith toward azimuth 90°, E = 1 W m⁻² nm⁻¹, `photons = 0`: single scattering) reads, looking
+/// up at view zenith θ (μ = cos θ), the single-scattered radiance reaching the bottom of a
+/// plane-parallel layer, ∫₀^τ ω p E e^{−t/μ₀} e^{−(τ − t)/μ} dt/μ =
+/// E ω p(Θ) μ₀/(μ₀ − μ) [e^{−τ/μ₀} − e^{−τ/μ}] (Liou 2002, ch. 6); and a second sensor above the
+/// top, looking down, the radiance leaving the top (as the camera test). Band average over
+/// 545–555 nm. Eight runs with different seeds: the mean within 4 standard errors of the closed
+/// form, and the standard error below 5e-4 of it (so the test can see a 0.2 % error).
+#[test]
+fn a_sky_radiance_sensor_reads_the_single_scattered_sky() {
+    let sun_zenith: f64 = 30.0;
+    let up = [[0.0, 0.0], [45.0, 90.0], [60.0, 200.0], [80.0, 270.0]];
+    let down = [[140.0, 30.0], [180.0, 0.0]];
+    let list = |d: &[[f64; 2]]| d.iter().map(|[z, a]| format!("[{z:?}, {a:?}]")).collect::<Vec<_>>().join(", ");
+    let toml = format!(
+        r#"
+[camera]
+position = [0.0, 1.0, 0.0]
+look_at = [0.0, 2.0, 0.001]
+fov_deg = 1.0
+width = 1
+height = 1
+
+[output]
+bands = 1
+min_nm = 545.0
+max_nm = 555.0
+
+[integrator]
+photons = 0
+march_step = 200.0
+spp = 1
+
+[world]
+medium = "air"
+earth = "flat"
+
+[[medium]]
+name = "air"
+type = "atmosphere"
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [-2000000.0, 0.0, -2000000.0]
+u = [0.0, 0.0, 4000000.0]
+v = [4000000.0, 0.0, 0.0]
+material = "black"
+
+[[light]]
+type = "sun"
+elevation_deg = {elev:?}
+azimuth_deg = 90.0
+angular_diameter_deg = 0.0
+spectrum = 1.0
+scale = 1.0
+
+[[sensor]]
+name = "ground"
+type = "sky_radiance"
+origin = [0.0, 1.0, 0.0]
+directions_deg = [{up}]
+samples = 32
+
+[[sensor]]
+name = "space"
+type = "sky_radiance"
+origin = [0.0, 100000.0, 0.0]
+directions_deg = [{down}]
+samples = 32
+"#,
+        elev = 90.0 - sun_zenith,
+        up = list(&up),
+        down = list(&down),
+    );
+    let mut s = scene(&toml);
+    let runs: Vec<Vec<morgana::sensor::Reading>> = (1..=8)
+        .map(|seed| {
+            s.apply_overrides(None, Some(seed));
+            common::render_with(&s, 2).sensors
+        })
+        .collect();
+    let sun = -morgana::sensor::sky_radiance::view_direction(sun_zenith, 90.0);
+    let column = column_per_m2(0.0);
+    let mu0 = sun_zenith.to_radians().cos();
+    let band = |f: &dyn Fn(f64) -> f64| {
+        (0..=100).map(|i| f(cross_section_m2(545.0 + 0.1 * i as f64, 360.0) * column)).sum::<f64>() / 101.0
+    };
+    for (r, dirs) in [&up[..], &down[..]].into_iter().enumerate() {
+        let name = &runs[0][r].name;
+        assert!(runs[0][r].columns[3].0.starts_with("L_545"), "{:?}", runs[0][r].columns[3].0);
+        for (k, [z, a]) in dirs.iter().enumerate() {
+            let d = morgana::sensor::sky_radiance::view_direction(*z, *a);
+            let p = air_phase(sun.dot(-d));
+            let mu = d.y.abs();
+            let want = if d.y > 0.0 {
+                band(&|tau| p * mu0 / (mu0 - mu) * ((-tau / mu0).exp() - (-tau / mu).exp()))
+            } else {
+                band(&|tau| p * mu0 / (mu0 + mu) * (1.0 - (-tau * (1.0 / mu0 + 1.0 / mu)).exp()))
+            };
+            let values: Vec<f64> = runs.iter().map(|run| run[r].columns[3].1[k]).collect();
+            let (mean, se) = common::mean_and_sem(&values);
+            println!(
+                "{name} [{z}, {a}]: sensor {mean:.6e} ± {se:.1e}, closed form {want:.6e}, ratio − 1 = {:.1e}",
+                mean / want - 1.0
+            );
+            assert!((mean - want).abs() < 4.0 * se, "{name} [{z}, {a}]: {mean} ± {se} vs {want}");
+            assert!(se < 5e-4 * want, "{name} [{z}, {a}]: standard error {se} is too large to test");
+        }
+    }
+}
+
+#[test]
+fn sky_radiance_sensors_report_bad_input() {
+    let with = |sensor: &str| {
+        format!(
+            "{}\n[[sensor]]\nname = \"sky\"\ntype = \"sky_radiance\"\n{sensor}\n",
+            black_earth(400.0, 700.0, ZENITH_BEAM)
+        )
+    };
+    let e = scene_error(&with("origin = [0.0, 1.0, 0.0]\ndirections_deg = [[0.0, 0.0], [190.0, 0.0]]"));
+    assert!(e.contains("[190, 0]") && e.contains("zenith 0 to 180"), "{e}");
+    let e = scene_error(&with("origin = [0.0, 1.0, 0.0]\ndirections_deg = []"));
+    assert!(e.contains("directions_deg must list 1 to 4096"), "{e}");
+    let e = scene_error(&with("origin = [0.0, 1.0, 0.0]"));
+    assert!(e.contains("missing field `directions_deg`"), "{e}");
+    let e = scene_error(&with("origin = [0.0, 1.0, 0.0]\ndirections_deg = [[10.0, 0.0]]\nresolution = [2, 2]"));
+    assert!(e.contains("resolution") && e.contains("not used here"), "{e}");
+    let ok = scene(&with("origin = [0.0, 1.0, 0.0]\ndirections_deg = [[10.0, 0.0]]"));
+    assert_eq!(ok.sensors.len(), 1);
+}
+
+/// `refraction = true` gives the medium the same atmosphere's index field (n − 1 at sea level
+/// 2.78 × 10⁻⁴ at 550 nm: Ciddor's air at 288.15 K, 101325 Pa) and the plan curves paths;
+/// `rayleigh = false` leaves clear air, which the plan does not count as participating.
+#[test]
+fn refraction_and_rayleigh_switches_do_what_they_say() {
+    let base = black_earth(400.0, 700.0, ZENITH_BEAM);
+    let s = scene(&base);
+    assert!(air(&s).index.is_none() && air(&s).scatters() && !s.plan.curved_paths.on);
+    let s = scene(&base.replace("co2_ppm = 360", "co2_ppm = 360\nrefraction = true"));
+    let m = air(&s);
+    assert!(m.bends_light() && s.plan.curved_paths.on && s.plan.participating_media.on);
+    let (n, grad) = m.index.as_ref().unwrap().n_grad(550.0, DVec3::new(0.0, 0.0, 0.0));
+    assert!((n - 1.0 - 2.78e-4).abs() < 3e-6, "n − 1 = {}", n - 1.0);
+    assert!(grad.y < 0.0, "n falls with height");
+    let s = scene(&base.replace("rayleigh = true", "rayleigh = false"));
+    assert!(air(&s).is_clear() && !s.plan.participating_media.on);
+}
