@@ -2,6 +2,7 @@
 //! closed form and the path tracer, and the Mobley et al. (1993) canonical problems.
 
 mod common;
+mod ocean_reference;
 
 use common::{mean_and_sem, render_with, scene};
 use morgana::sensor::ProfileReading;
@@ -322,6 +323,176 @@ fn mobley1993_problems_1_and_2_at_tau_1() {
             );
         }
     }
+}
+
+/// The independent discrete-ordinates reference (tests/ocean_reference) for a problem: Petzold's
+/// table read from the built-in CSV by the reference's own reader, or Rayleigh's 1 + cos²θ
+/// tabulated every 0.5°.
+fn reference(problem: u32, albedo: f64) -> ocean_reference::Solution {
+    let phase = if problem == 1 {
+        let rows: Vec<(f64, f64)> = (0..=360)
+            .map(|i| if i == 0 { 0.05 } else { 0.5 * i as f64 })
+            .map(|t: f64| (t, 1.0 + t.to_radians().cos().powi(2)))
+            .collect();
+        ocean_reference::Phase::from_rows(&rows)
+    } else {
+        petzold_reference()
+    };
+    ocean_reference::solve(&ocean_reference::Problem::mobley1993(albedo), &phase)
+}
+
+fn petzold_reference() -> ocean_reference::Phase {
+    ocean_reference::Phase::from_csv(&ocean_data().join("petzold_average_particle_phase_function.csv"))
+}
+
+/// The reference solver against the published values at τ = 1 (each within 2 %: their three
+/// digits and the spread among the published models, as for morgana above) and against Gershun's
+/// law, d(Ed − Eu)/dτ = −(1 − ω₀) Eo (Mobley 1994, *Light and Water*; Simpson's rule over the nodes from
+/// τ = 1 to 10, relative 1e-3), which its bookkeeping of the scattering matrix, the sun's beam and
+/// the surface must keep. Excluded from the 2 %: problem 2's Lu at ω₀ = 0.9, which the reference
+/// puts 2.8 % below the published 0.00699, as morgana does (−3.0 % over 20 seeds) — issue 15,
+/// see docs/book/src/media.md. About 15 s (four solutions on two threads).
+#[test]
+fn the_discrete_ordinates_reference_reproduces_the_published_values() {
+    // The reference's own reading of Petzold's table has the published moments (Mobley 1994:
+    // mean cosine 0.924, backscatter fraction 0.0183).
+    let (g, bb) = petzold_reference().moments();
+    assert!((g - 0.924).abs() < 1e-3 && (bb - 0.0183).abs() < 3e-4, "mean cosine {g}, backscatter {bb}");
+    let solutions: Vec<ocean_reference::Solution> = std::thread::scope(|scope| {
+        let handles: Vec<_> = PUBLISHED.iter().map(|c| scope.spawn(move || reference(c.1, c.2))).collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for ((_, problem, albedo, lu_ref, eou_ref), s) in PUBLISHED.into_iter().zip(&solutions) {
+        let r = s.at(1.0);
+        eprintln!(
+            "problem {problem} ω₀ = {albedo}: reference Lu(1) {:.6} ({:+.1} %), Eou(1) {:.6} ({:+.1} %), {} sweeps",
+            r.lu,
+            100.0 * (r.lu / lu_ref - 1.0),
+            r.eou,
+            100.0 * (r.eou / eou_ref - 1.0),
+            s.sweeps
+        );
+        assert!((r.eou / eou_ref - 1.0).abs() < 0.02, "problem {problem} ω₀ {albedo}: Eou {} vs {eou_ref}", r.eou);
+        if !(problem == 2 && albedo == 0.9) {
+            assert!((r.lu / lu_ref - 1.0).abs() < 0.02, "problem {problem} ω₀ {albedo}: Lu {} vs {lu_ref}", r.lu);
+        }
+        let net = |tau: f64| s.at(tau).ed - s.at(tau).eu;
+        let eo = |tau: f64| s.at(tau).eod + s.at(tau).eou;
+        let h = 0.1;
+        let simpson: f64 = (0..45)
+            .map(|k| 1.0 + 2.0 * h * k as f64)
+            .map(|t| h / 3.0 * (eo(t) + 4.0 * eo(t + h) + eo(t + 2.0 * h)))
+            .sum();
+        let (lost, absorbed) = (net(1.0) - net(10.0), (1.0 - albedo) * simpson);
+        assert!((lost / absorbed - 1.0).abs() < 1e-3, "Gershun: net flux lost {lost}, absorbed {absorbed}");
+    }
+}
+
+/// The reference's discretisation, and what moves its Lu/Eou at depth (issue 15). Problem 2,
+/// ω₀ = 0.9, at τ = 1, 5, 10: doubling the direction bins, halving Δτ or doubling the points per
+/// input bin changes Ed, Eou and Lu by less than 0.5 % (the allowance in the comparison with
+/// morgana below). Then two changes of the problem that are choices of a model rather than
+/// physics: no internal reflection at the surface, and no scattering below Petzold's first angle
+/// (the 5 % of the table's mass that morgana and the reference extrapolate below 0.1°, dropped
+/// and the rest renormalised); neither brings Lu/Eou at τ = 5 to the 0.070 that issue 15 quotes
+/// for the published models. About 2 minutes:
+/// `cargo test --release --test ocean -- --ignored --nocapture reference_convergence`.
+#[test]
+#[ignore]
+fn discrete_ordinates_reference_convergence_and_sensitivity() {
+    use ocean_reference::{Phase, Problem, Solution, solve};
+    let rows = Phase::csv_rows(&ocean_data().join("petzold_average_particle_phase_function.csv"));
+    let petzold = Phase::from_rows(&rows);
+    let base = Problem::mobley1993(0.9);
+    let show = |what: &str, s: &Solution| {
+        let r: Vec<String> = [1.0, 5.0, 10.0, 20.0]
+            .iter()
+            .map(|&t| {
+                let r = s.at(t);
+                format!("τ {t}: Ed {:.5} Eou {:.6} Lu {:.7} Lu/Eou {:.4}", r.ed, r.eou, r.lu, r.lu / r.eou)
+            })
+            .collect();
+        eprintln!("{what}:\n  {}", r.join("\n  "));
+    };
+    let used = solve(&base, &petzold);
+    show("as used (90 bins, Δτ 0.05, 8 points per bin)", &used);
+    let finer = [
+        ("180 bins", Problem { bins: 180, ..base }),
+        ("Δτ 0.025", Problem { dtau: 0.025, ..base }),
+        ("16 points per bin", Problem { mu_points: 16, ..base }),
+    ];
+    for (what, pb) in finer {
+        let s = solve(&pb, &petzold);
+        show(what, &s);
+        for t in [1.0, 5.0, 10.0] {
+            let (a, b) = (used.at(t), s.at(t));
+            for (name, x, y) in [("Ed", a.ed, b.ed), ("Eou", a.eou, b.eou), ("Lu", a.lu, b.lu)] {
+                assert!((x / y - 1.0).abs() < 0.005, "{what}: {name}({t}) {y} against {x} as used");
+            }
+        }
+    }
+    let variants = [
+        ("no surface reflection", solve(&Problem { surface_reflection: false, ..base }, &petzold)),
+        ("nothing below 0.1°", solve(&base, &Phase::with_forward(&rows, false))),
+    ];
+    for (what, s) in &variants {
+        show(what, s);
+        let r = s.at(5.0);
+        assert!(r.lu / r.eou < 0.070, "{what}: Lu/Eou(5) = {}", r.lu / r.eou);
+    }
+}
+
+/// morgana's profile against the independent discrete-ordinates reference at τ = 1, 5 and 10
+/// (issue 15: Lu/Eou at depth under Petzold's phase function): problem 1 (Rayleigh, ω₀ = 0.9) and
+/// problem 2 (Petzold, ω₀ = 0.9) with their refracting surfaces and sun, Ed, Eou and Lu each within
+/// 3 standard errors of the mean over seeds + 1 % (the reference's discretisation is below 0.3 %,
+/// the profile's 0.2 m slab and the 5° and 2° cones about the nadir below 0.3 %); problem 2 at
+/// ω₀ = 0.2 at τ = 1 (upwelling light is 10⁻³ of the downwelling there, deeper it is noise).
+/// The profile's Lu under Petzold's forward peak is skewed over seeds (media.md), hence 20 seeds
+/// for problem 2, and 12 for the others (a standard error from 4 seeds is itself uncertain by
+/// 40 %). Slow (about 25 minutes on the loaded 2-core machine):
+/// `cargo test --release --test ocean -- --ignored --nocapture profile_matches_the_discrete`.
+#[test]
+#[ignore]
+fn profile_matches_the_discrete_ordinates_reference() {
+    // (problem, file, albedo, depths, seeds, photons per seed)
+    type Case<'a> = (u32, &'a str, f64, &'a [f64], u64, u64);
+    type Quantity = (&'static str, fn(&morgana::sensor::ProfileRow) -> f64, f64);
+    let cases: [Case; 3] = [
+        (1, "mobley1993_problem1.toml", 0.9, &[1.0, 5.0, 10.0], 12, 1_500_000),
+        (2, "mobley1993_problem2.toml", 0.9, &[1.0, 5.0, 10.0], 20, 2_000_000),
+        (2, "mobley1993_problem2.toml", 0.2, &[1.0], 12, 2_000_000),
+    ];
+    let mut failures = Vec::new();
+    for (problem, file, albedo, depths, seeds, photons) in cases {
+        let reference = reference(problem, albedo);
+        let runs: Vec<ProfileReading> = (1..=seeds).map(|seed| profile(file, albedo, photons, seed)).collect();
+        for &z in depths {
+            let want = reference.at(z);
+            let rows: Vec<morgana::sensor::ProfileRow> =
+                runs.iter().map(|r| *r.rows.iter().find(|x| x.depth_m == z).unwrap()).collect();
+            let quantities: [Quantity; 3] =
+                [("Ed", |r| r.ed, want.ed), ("Eou", |r| r.eou, want.eou), ("Lu", |r| r.lu, want.lu)];
+            let ratio = mean_and_sem(&rows.iter().map(|r| r.lu / r.eou).collect::<Vec<_>>());
+            eprintln!(
+                "problem {problem} ω₀ = {albedo}, τ = {z}: Lu/Eou {:.4} ± {:.4}, reference {:.4}",
+                ratio.0,
+                ratio.1,
+                want.lu / want.eou
+            );
+            for (name, f, reference) in quantities {
+                let (mean, sem) = mean_and_sem(&rows.iter().map(f).collect::<Vec<_>>());
+                eprintln!(
+                    "  {name}: profile {mean:.6} ± {sem:.6}, reference {reference:.6} ({:+.2} %)",
+                    100.0 * (mean / reference - 1.0)
+                );
+                if (mean - reference).abs() >= 3.0 * sem + 0.01 * reference {
+                    failures.push(format!("problem {problem} ω₀ {albedo} {name}({z}): {mean} ± {sem} vs {reference}"));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
 }
 
 /// The profile's Lu (the expected value of upward scattering over the collisions below z)
