@@ -195,6 +195,38 @@ fn atmosphere_media_report_bad_input() {
     assert!(e.contains("rayleigh") && e.contains("only with type = \"atmosphere\""), "{e}");
 }
 
+/// The `[integrator]` (path tracer, `spp` samples, no photons) and the world of the
+/// single-scattering tests: Rayleigh air over a flat black ground 4000 km across.
+fn flat_black_ground(spp: u32) -> String {
+    format!(
+        r#"[integrator]
+photons = 0
+march_step = 200.0
+spp = {spp}
+
+[world]
+medium = "air"
+earth = "flat"
+
+[[medium]]
+name = "air"
+type = "atmosphere"
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "quad"
+origin = [-2000000.0, 0.0, -2000000.0]
+u = [0.0, 0.0, 4000000.0]
+v = [4000000.0, 0.0, 0.0]
+material = "black"
+"#
+    )
+}
+
 /// A flat-Earth USA76 Rayleigh atmosphere over black ground, lit by a collimated beam of
 /// spectral irradiance E = 1 W m⁻² nm⁻¹ at solar zenith θ₀, seen from 100 km (above the 86 km
 /// top) looking down at view zenith θ: `photons = 0` leaves only single scattering (ray marching
@@ -232,30 +264,7 @@ bands = 1
 min_nm = 545.0
 max_nm = 555.0
 
-[integrator]
-photons = 0
-march_step = 200.0
-spp = 256
-
-[world]
-medium = "air"
-earth = "flat"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-2000000.0, 0.0, -2000000.0]
-u = [0.0, 0.0, 4000000.0]
-v = [4000000.0, 0.0, 0.0]
-material = "black"
+{ground}
 
 [[light]]
 type = "directional"
@@ -263,6 +272,7 @@ direction = [{sx:?}, {sy:?}, {sz:?}]
 spectrum = 1.0
 scale = 1.0
 "#,
+        ground = flat_black_ground(256),
         cx = camera.x,
         cy = camera.y,
         cz = camera.z,
@@ -337,30 +347,7 @@ bands = 1
 min_nm = 545.0
 max_nm = 555.0
 
-[integrator]
-photons = 0
-march_step = 200.0
-spp = 1
-
-[world]
-medium = "air"
-earth = "flat"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-2000000.0, 0.0, -2000000.0]
-u = [0.0, 0.0, 4000000.0]
-v = [4000000.0, 0.0, 0.0]
-material = "black"
+{ground}
 
 [[light]]
 type = "sun"
@@ -384,6 +371,7 @@ origin = [0.0, 100000.0, 0.0]
 directions_deg = [{down}]
 samples = 32
 "#,
+        ground = flat_black_ground(1),
         elev = 90.0 - sun_zenith,
         up = list(&up),
         down = list(&down),
