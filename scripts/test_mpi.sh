@@ -9,7 +9,8 @@
 #      not see the same scene (another command line; another copy of a file the scene names,
 #      where `unshare -m` can bind-mount one for a single rank) end every rank with one message
 #      and no output;
-#   3. a rank killed (SIGKILL) during the photon pass or the eye pass makes mpirun fail and leaves
+#   3. progressive passes give the same bytes on any rank count, also when resumed on another;
+#   4. a rank killed (SIGKILL) during the photon pass or the eye pass makes mpirun fail and leaves
 #      the output directory empty.
 # Needs OpenMPI and libclang (scripts/setup_mpi.sh). Takes a few minutes, mostly the two builds.
 set -euo pipefail
@@ -86,6 +87,34 @@ for scene in box fog mirage; do
     check_report "$out/$run/report.json" "$n" 20000 || fail "$scene: $run report.json"
     ok "$scene: $run: EXR identical ($(stat -c %s "$got") bytes), report lists $n rank(s)"
   done
+done
+
+step "progressive passes: same bytes on 1, 2 and 3 ranks, and a resume on another rank count"
+# Three passes (fresh maps, shrinking radii, the error layer) of the box (global and caustic maps,
+# final gathering) and of the fog box (volume map); then a run stopped after two passes on 2
+# ranks and resumed to three on 3 ranks must give the uninterrupted run's bytes.
+for scene in box fog; do
+  out="$work/prog-$scene"
+  common=(render "$work/$scene.toml" --photons 10000 --seed 5 --quiet)
+  "$work/morgana-local" "${common[@]}" --passes 3 --out "$out/local" --threads 2 >/dev/null
+  ref="$(ls "$out/local"/*.exr)"
+  for n in 1 2 3; do
+    "${LIMIT[@]}" "${MPIRUN[@]}" -np "$n" "$work/morgana-mpi" "${common[@]}" --passes 3 --out "$out/np$n" \
+      --threads 1 >/dev/null
+    cmp -s "$ref" "$out/np$n/$(basename "$ref")" || fail "$scene: 3 passes on $n rank(s) differ from the non-MPI build"
+  done
+  python3 - "$out/np2/report.json" <<'PY' || fail "$scene: report.json of the 2-rank progressive run"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["progressive"]["passes"] == 3 and r["distributed"]["ranks"] == 2
+assert r["progressive"]["history"][-1]["rel_error"] > 0
+PY
+  "${LIMIT[@]}" "${MPIRUN[@]}" -np 2 "$work/morgana-mpi" "${common[@]}" --passes 2 --out "$out/resumed" \
+    --threads 1 >/dev/null
+  "${LIMIT[@]}" "${MPIRUN[@]}" -np 3 "$work/morgana-mpi" "${common[@]}" --passes 3 --resume "$out/resumed" \
+    --threads 1 >/dev/null
+  cmp -s "$ref" "$out/resumed/$(basename "$ref")" || fail "$scene: 2 passes on 2 ranks resumed to 3 on 3 ranks differ"
+  ok "$scene: 3 progressive passes identical on 1, 2 and 3 ranks and without MPI; 2 passes on 2 ranks resumed to 3 on 3 ranks identical"
 done
 
 step "the lease server answers while rank 0 renders"

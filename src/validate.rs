@@ -21,6 +21,16 @@ pub struct Ctx<'a> {
 /// The result of a validation step.
 pub type R<T> = Result<T, Error>;
 
+/// The largest magnitude of a coordinate or length of a scene's geometry (positions, edges,
+/// radii, mesh vertices), m: 10¹⁵ m, about 6,700 au — far beyond any scene (the sun at 1 au is
+/// 1.5 × 10¹¹ m away) and far below where the product of two lengths overflows (≈ 10¹⁵⁴ m), which
+/// turned a quad edge of 1.8 × 10³⁰⁸ m into NaN pixels.
+pub const MAX_LENGTH_M: f64 = 1e15;
+
+/// The smallest radius or thickness of a scene's geometry and sensors, m: 1 nm. Below it areas
+/// and volumes underflow (a slab of 5 × 10⁻³²⁴ m gave NaN readings).
+pub const MIN_LENGTH_M: f64 = 1e-9;
+
 impl<'a> Ctx<'a> {
     /// A context for `source`, read from `file`, resolving relative paths against `dir`.
     pub fn new(file: &Path, source: &'a str, dir: &Path) -> Ctx<'a> {
@@ -128,13 +138,13 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// A finite vector.
+    /// A vector of three finite numbers of magnitude at most [`MAX_LENGTH_M`].
     pub fn vec3(&self, v: &Spanned<[f64; 3]>, what: &str) -> R<DVec3> {
         let a = v.get_ref();
-        if a.iter().all(|x| x.is_finite()) {
+        if a.iter().all(|x| x.abs() <= MAX_LENGTH_M) {
             Ok(DVec3::from_array(*a))
         } else {
-            Err(self.err(&v.span(), format!("{what} = {a:?} must have three finite numbers")))
+            Err(self.err(&v.span(), format!("{what} = {a:?} must have three finite numbers within ±{MAX_LENGTH_M:e}")))
         }
     }
 

@@ -164,6 +164,19 @@ fn a_missing_atmosphere_file_names_the_scene_line_and_field() {
 }
 
 #[test]
+fn a_bad_spectrum_file_names_the_scene_line_and_its_own() {
+    // The fuzzer found a light's spectrum = { file = … } pointed at a luminaire file refused at
+    // that file's line only, without the scene's line that names it.
+    let d = scratch("spectrum-file");
+    std::fs::write(d.join("bad.csv"), "wavelength_nm,value\n400,1\n2\n").unwrap();
+    let scene = SCENE.replacen("spectrum = ", "spectrum = { file = \"bad.csv\" }\n# was: ", 1);
+    assert_ne!(scene, *SCENE, "the test scene has no spectrum key");
+    std::fs::write(d.join("s.toml"), scene).unwrap();
+    let err = refused(&d, &["check", "s.toml"], &["s.toml:", "bad.csv:3", "expected 2 numbers"]);
+    assert!(err.starts_with("morgana: s.toml:"), "{err}");
+}
+
+#[test]
 fn a_comment_with_an_equals_sign_is_never_named_as_a_field() {
     let d = scratch("comment");
     std::fs::write(d.join("s.toml"), "# radiance L_e = 2 W m-2 sr-1\n[output]\nbands = 4\n").unwrap();
@@ -209,7 +222,7 @@ fn lights_of_infinite_power_are_refused_and_maps_that_store_nothing_are_noted() 
     std::fs::write(d.join("inf.toml"), format!("{}\n{area}", *SCENE)).unwrap();
     refused(&d, &["check", "inf.toml"], &["inf.toml:", "light"]);
     // A light far beyond the scene: its photons never reach the plate, and the run says so.
-    std::fs::write(d.join("far.toml"), SCENE.replace("position = [0.0, 2.0, 0.0]", "position = [0.0, -1e300, 0.0]"))
+    std::fs::write(d.join("far.toml"), SCENE.replace("position = [0.0, 2.0, 0.0]", "position = [0.0, -1e14, 0.0]"))
         .unwrap();
     let out = morgana(&d, &["render", "far.toml", "--quiet"]);
     let err = String::from_utf8_lossy(&out.stderr);
@@ -309,4 +322,42 @@ fn every_command_writes_into_missing_directories_its_check_accepted() {
         assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     }
     assert!(d.join("a/b/g.mgrid").is_file() && d.join("c/d/p.png").is_file());
+}
+
+#[test]
+fn values_that_rendered_nan_are_refused_naming_their_line() {
+    // The fuzzer's render target (10^5 cases, 2026-12-02) found these accepted and rendered to NaN
+    // pixels or readings: a quad edge and a quad origin of 1.8e308 m (u × v overflowed), a glass
+    // of ior 9.2e18, a light of 1e308 W, and a profile sensor's slab of 5e-324 m. Coordinates,
+    // edges and radii are now within ±1e15 m (validate::MAX_LENGTH_M, which still takes the sun
+    // as a sphere at 1 au), radii and slabs at least 1e-9 m, indices at most 10 and lights at
+    // most 1e27 W (the sun's luminosity is 3.8e26 W).
+    let example = |name: &str| {
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).expect(name)
+    };
+    let fog = example("fog_box.toml");
+    let with = |text: &str, old: &str, new: &str| {
+        assert!(text.contains(old), "{old:?} not in the example");
+        text.replacen(old, new, 1)
+    };
+    let floor_v = "v = [2.0, 0.0, 0.0]\nmaterial = \"white\"";
+    let glass = "\n[[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 9223372036854775807\n";
+    let profile = example("mobley1993_problem1.toml");
+    for (scene, line, field, limit) in [
+        (with(&fog, floor_v, "v = [1.7976931348623157e308, 0.0, 0.0]\nmaterial = \"white\""), 56, "v =", "1e15"),
+        (with(&fog, "origin = [-1.0, -1.0, -1.0]", "origin = [-1.0, -1.0, 1.1e15]"), 54, "origin =", "1e15"),
+        (with(&fog, "position = [0.0, 0.0, 0.9]", "position = [0.0, -2e15, 0.9]"), 7, "camera position", "1e15"),
+        (with(&fog, "scale = 10.0", "power_w = 1e308"), 107, "ceiling light", "1e27 W"),
+        (with(&fog, "\n[[material]]", &format!("{glass}\n[[material]]")), 39, "ior", "between 1 and 10"),
+        (with(&profile, "slab_m = 0.2", "slab_m = 5e-324"), 63, "slab_m", "between 0.000000001 and"),
+    ] {
+        let e = common::scene_error(&scene);
+        assert!(e.contains(&format!("test.toml:{line}:")) && e.contains(field) && e.contains(limit), "{e}");
+    }
+    let sun = "\n[[shape]]\nname = \"sun\"\ntype = \"sphere\"\ncenter = [0.0, 1.496e11, 0.0]\nradius = RADIUS\nmaterial = \"white\"\n";
+    common::scene(&format!("{fog}{}", sun.replace("RADIUS", "6.957e8")));
+    for radius in ["1e300", "5e-324"] {
+        let e = common::scene_error(&format!("{fog}{}", sun.replace("RADIUS", radius)));
+        assert!(e.contains("test.toml:113:") && e.contains("radius = ") && e.contains("out of range"), "{e}");
+    }
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use common::scene;
-use morgana::media::inelastic::{Fa7, GaussianEmission, RamanShift};
+use morgana::media::inelastic::{Fa7, GaussianEmission, RamanShift, Redistribution};
 use morgana::photon::PassSettings;
 use morgana::photon::{MapKind, shoot};
 use morgana::quadrature::gauss_legendre;
@@ -434,4 +434,37 @@ fn an_opaque_lane_does_not_shrink_the_march_of_the_clear_ones() {
     let (clear, dark) = (steps(&small), steps(&opaque));
     assert!(clear > 0, "the eye pass marches the block");
     assert!(dark <= 2 * clear, "{dark} march steps with σ_a = 1e12 against {clear} with 25 m⁻¹");
+}
+
+/// The band-transfer table visits only the emission wavelengths where a redistribution is not
+/// exactly zero (the fuzzer found a sea over 400–70,000 nm that took hours to load: the table's
+/// work grew with the range squared). Skipping is exact only if the density is 0.0 outside the
+/// claimed support; checked on a log grid from 1 nm to 1 mm for several excitations, and the
+/// support is not needlessly wide: the density is still non-zero at 38σ inside its edges.
+#[test]
+fn redistributions_are_exactly_zero_outside_their_support() {
+    let gaussian = Redistribution::Gaussian(GaussianEmission::new(685.0, 10.6).unwrap());
+    let raman = Redistribution::Raman(RamanShift::walrafen());
+    let fa7 = Redistribution::Fa7(Box::new(
+        Fa7::from_csv(&ocean_data().join("hawes_1992_cdom_fluorescence_FA7.csv")).unwrap(),
+    ));
+    let grid: Vec<f64> = (0..=6000).map(|i| 10f64.powf(f64::from(i) / 1000.0)).collect();
+    for r in [&gaussian, &raman, &fa7] {
+        for lex in [250.0, 300.0, 488.0, 685.0, 2000.0, 2500.0, 3000.0, 70_000.0] {
+            let (lo, hi) = r.nonzero_nm(lex);
+            assert!(lo < hi, "{lex}: support [{lo}, {hi}]");
+            for &l in grid.iter().filter(|l| **l < lo || **l > hi) {
+                assert_eq!(r.density(lex, l), 0.0, "excitation {lex} nm, emission {l} nm outside [{lo}, {hi}]");
+            }
+        }
+    }
+    let (lo, hi) = gaussian.nonzero_nm(500.0);
+    let sigma = (hi - lo) / 80.0;
+    assert!(gaussian.density(500.0, lo + 2.0 * sigma) > 0.0 && gaussian.density(500.0, hi - 2.0 * sigma) > 0.0);
+    // Raman at 488 nm: 38σ inside the shortest and the longest edge (in wavenumber) still emits.
+    let (lo, hi) = raman.nonzero_nm(488.0);
+    let k = 1e7 / 488.0;
+    let inside = |edge: f64, toward: f64| 1e7 / (k - (k - 1e7 / edge) - toward);
+    assert!(raman.density(488.0, inside(lo, 2.0 * 210.0)) > 0.0, "short edge {lo}");
+    assert!(raman.density(488.0, inside(hi, -2.0 * 210.0)) > 0.0, "long edge {hi}");
 }

@@ -646,3 +646,15 @@ fn builtin_tables_are_named_spectra_and_phase_functions() {
     let e = common::scene_error(&medium("0.01", "\"petzoldd\""));
     assert!(e.contains("petzoldd") && e.contains("petzold"), "{e}");
 }
+
+/// The fuzzer found a sea over 400–70,000 nm accepted (its absorption tables silently held at
+/// their 800 nm value) and its inelastic table taking hours to build; the scene's range must now
+/// lie within the water tables' 200–800 nm, and the refusal names the medium and the limits.
+#[test]
+fn a_sea_beyond_its_tables_wavelengths_is_refused() {
+    common::scene(&ocean_scene("").replace("max_nm = 700.0", "max_nm = 800.0"));
+    for (from, to) in [("max_nm = 700.0", "max_nm = 70000.0"), ("min_nm = 400.0", "min_nm = 150.0")] {
+        let e = common::scene_error(&ocean_scene("").replace(from, to));
+        assert!(e.contains("200–800 nm") && e.contains("min_nm and max_nm") && e.contains("test.toml:"), "{e}");
+    }
+}

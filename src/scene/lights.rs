@@ -26,7 +26,7 @@ use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
 use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SkyLight, SpotLight};
 use crate::spectrum::Bands;
 use crate::validate::present_fields;
-use crate::validate::{Ctx, R};
+use crate::validate::{Ctx, MAX_LENGTH_M, MIN_LENGTH_M, R};
 use toml::Spanned;
 
 pub struct NamedLight {
@@ -43,6 +43,10 @@ const KINDS: &[&str] = &["area", "point", "spot", "directional", "sun", "sky", "
 /// The sun's mean angular diameter seen from the Earth, degrees (see
 /// [`crate::spectrum::solar::ANGULAR_DIAMETER_DEG`]).
 pub const SUN_ANGULAR_DIAMETER_DEG: f64 = crate::spectrum::solar::ANGULAR_DIAMETER_DEG;
+
+/// The largest power of one light, W: 10²⁷ W, above the sun's luminosity (3.8 × 10²⁶ W). A light
+/// of 10³⁰⁸ W was accepted before and its radiance overflowed to NaN pixels.
+pub const MAX_LIGHT_POWER_W: f64 = 1e27;
 
 pub fn light(
     ctx: &Ctx,
@@ -229,8 +233,11 @@ fn set_level(
         .ok_or_else(|| ctx.err(&v.span(), format!("{what}: level {x} gives no emission")))?;
     *emission = scaled;
     let power = light.power_w();
-    if !(power.is_finite() && power > 0.0) {
-        return Err(ctx.err(&v.span(), format!("{what}: the light's power {power} W is not a positive finite number")));
+    if !(power > 0.0 && power <= MAX_LIGHT_POWER_W) {
+        return Err(ctx.err(
+            &v.span(),
+            format!("{what}: the light's power {power} W is not a positive number of at most {MAX_LIGHT_POWER_W:e} W"),
+        ));
     }
     Ok(())
 }
@@ -259,8 +266,11 @@ fn area(ctx: &Ctx, l: &RawLight, span: &std::ops::Range<usize>, what: &str, emis
             let origin = ctx.vec3(ctx.require(&l.origin, "origin", span, what)?, "origin")?;
             let u = ctx.vec3(ctx.require(&l.u, "u", span, what)?, "u")?;
             let v = ctx.vec3(ctx.require(&l.v, "v", span, what)?, "v")?;
-            if u.cross(v).length_squared() == 0.0 {
-                return Err(ctx.err(span, format!("{what}: edges u and v are parallel or zero; the light has no area")));
+            if u.cross(v).length() < MIN_LENGTH_M * MIN_LENGTH_M {
+                return Err(ctx.err(
+                    span,
+                    format!("{what}: edges u and v are parallel or zero; the light has no area (below 1e-18 m²)"),
+                ));
             }
             Shape::Quad(Quad { origin, u, v })
         }
@@ -268,7 +278,7 @@ fn area(ctx: &Ctx, l: &RawLight, span: &std::ops::Range<usize>, what: &str, emis
             ctx.only(&fields, &["center", "radius", "normal"], &format!("{what} with shape \"disk\""))?;
             let center = ctx.vec3(ctx.require(&l.center, "center", span, what)?, "center")?;
             let radius =
-                ctx.number(ctx.require(&l.radius, "radius", span, what)?, "radius", 0.0, f64::INFINITY, true)?;
+                ctx.number(ctx.require(&l.radius, "radius", span, what)?, "radius", MIN_LENGTH_M, MAX_LENGTH_M, false)?;
             let normal = ctx.direction(ctx.require(&l.normal, "normal", span, what)?, "normal")?;
             Shape::Disk(Disk { center, normal, radius })
         }
@@ -276,7 +286,7 @@ fn area(ctx: &Ctx, l: &RawLight, span: &std::ops::Range<usize>, what: &str, emis
             ctx.only(&fields, &["center", "radius"], &format!("{what} with shape \"sphere\""))?;
             let center = ctx.vec3(ctx.require(&l.center, "center", span, what)?, "center")?;
             let radius =
-                ctx.number(ctx.require(&l.radius, "radius", span, what)?, "radius", 0.0, f64::INFINITY, true)?;
+                ctx.number(ctx.require(&l.radius, "radius", span, what)?, "radius", MIN_LENGTH_M, MAX_LENGTH_M, false)?;
             Shape::Sphere(Sphere { center, radius })
         }
     };

@@ -115,7 +115,10 @@ fn ior(
         "constant" => {
             ctx.only(present, &["ior", "ior_model"], &dwhat)?;
             let v = ctx.require(&m.ior, "ior", span, &dwhat)?;
-            constant_or_glass(ctx, v, what)?
+            let ior = constant_or_glass(ctx, v, what)?;
+            // A number is refused at its own line.
+            ior.validate(bands.min_nm, bands.max_nm).map_err(|e| ctx.err(&v.span(), format!("{what}: ior: {e}")))?;
+            ior
         }
         "cauchy" => {
             ctx.only(present, &["ior_model", "a", "b_um2", "c_um4"], &dwhat)?;

@@ -30,7 +30,7 @@ use crate::media::phase::{MixtureComponent, PhaseFunction};
 use crate::media::{Coefficients, Medium};
 use crate::spectrum::Bands;
 use crate::validate::present_fields;
-use crate::validate::{Ctx, R};
+use crate::validate::{Ctx, MAX_LENGTH_M, R};
 use glam::DVec3;
 use std::ops::Range;
 use toml::{Spanned, Value};
@@ -260,8 +260,11 @@ impl<'a> Table<'a> {
             .as_array()
             .map(|a| a.iter().filter_map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64))).collect());
         match a {
-            Some(a) if a.len() == 3 && a.iter().all(|x| x.is_finite()) => Ok(DVec3::new(a[0], a[1], a[2])),
-            _ => Err(self.ctx.err(&self.span, format!("{}: `{key}` must be three finite numbers", self.what))),
+            Some(a) if a.len() == 3 && a.iter().all(|x| x.abs() <= MAX_LENGTH_M) => Ok(DVec3::new(a[0], a[1], a[2])),
+            _ => Err(self.ctx.err(
+                &self.span,
+                format!("{}: `{key}` must be three finite numbers within ±{MAX_LENGTH_M:e}", self.what),
+            )),
         }
     }
 }

@@ -32,6 +32,7 @@ use crate::geometry::{Aabb, Bvh, Shape};
 use crate::light::Light;
 use crate::material::Material;
 use crate::media::Medium;
+use crate::media::density::Density;
 use crate::ode::CurvedSettings;
 use crate::spectrum::Bands;
 use crate::validate::Ctx;
@@ -223,6 +224,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let bounds = shapes.iter().fold(Aabb::EMPTY, |b, s| b.union(s.bounds()));
     let mut integrator = settings::integrator(ctx, raw.integrator.as_ref(), &bounds)?;
     check_index_fields(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
+    check_tracking_work(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     curved_integrator(ctx, raw, &media, &mut integrator)?;
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
     check_target(ctx, raw, &integrator, &sensors, &camera)?;
@@ -393,6 +395,41 @@ fn build_earth(ctx: &Ctx, raw: &RawScene) -> Result<(Earth, bool)> {
             Ok((earth, explicit))
         }
     }
+}
+
+/// The largest majorant optical depth a heterogeneous medium may present across the scene: the
+/// expected number of tentative collisions ratio tracking draws for one transmittance.
+pub const MAX_MAJORANT_OPTICAL_DEPTH: f64 = 1e6;
+
+/// A medium without a closed-form optical depth (fBm, grid) is tracked by sampling tentative
+/// collisions at its majorant rate, so one transmittance costs about σ̄·L samples: refuse one
+/// whose majorant σ_t,max × density bound over the longest chord (the world sphere's diameter,
+/// or the grid's diagonal) exceeds [`MAX_MAJORANT_OPTICAL_DEPTH`] — the fuzzer found σ_t = 10¹²
+/// m⁻¹ in turbulence turn a 4 × 4 render into hours.
+fn check_tracking_work(ctx: &Ctx, raw: &RawScene, media: &[Medium], bands: &Bands, bounds: &Aabb) -> Result<()> {
+    let world = 2.0 * bounds.diagonal().length().max(2e-3);
+    for (rec, m) in raw.medium.iter().zip(media) {
+        let (bound, chord) = match &m.density {
+            Density::Fbm(f) => (f.bound(), world),
+            Density::Grid(g) => (g.max_value(), (g.max - g.min).length().min(world)),
+            _ => continue,
+        };
+        let steps = ((bands.max_nm - bands.min_nm).ceil() as usize).max(1);
+        let sigma_max = (0..=steps)
+            .map(|i| m.sigma_t(bands.min_nm + (bands.max_nm - bands.min_nm) * i as f64 / steps as f64))
+            .fold(0.0f64, f64::max);
+        let depth = sigma_max * bound * chord;
+        if depth.is_nan() || depth > MAX_MAJORANT_OPTICAL_DEPTH {
+            return Err(ctx.err(
+                &rec.span(),
+                format!(
+                    "medium \"{}\": σ_t up to {sigma_max:e} m⁻¹ × density bound {bound:e} over {chord:.3e} m is a majorant optical depth of {depth:e}, above {MAX_MAJORANT_OPTICAL_DEPTH:e}: one transmittance would take about that many samples. Lower sigma_t or the density, or make the medium homogeneous (its transmittance is exact)",
+                    m.name
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Every index field must keep n positive (and ≥ 1 unless allowed) over the box the scene's

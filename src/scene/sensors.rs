@@ -36,7 +36,7 @@ use super::raw::RawSensor;
 use super::settings::{DirectLighting, IntegratorSettings};
 use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor, SkyRadiance};
 use crate::validate::present_fields;
-use crate::validate::{Ctx, R};
+use crate::validate::{Ctx, MAX_LENGTH_M, MIN_LENGTH_M, R};
 use toml::Spanned;
 
 const KINDS: &[&str] = &["illuminance_plane", "ocean_profile", "sky_radiance"];
@@ -72,8 +72,10 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
     let v = ctx.vec3(ctx.require(&s.v, "v", &span, &what)?, "v")?;
     let cross = u.cross(v);
-    if cross.length_squared() == 0.0 {
-        return Err(ctx.err(&span, format!("{what}: u and v are parallel or zero; the grid has no area")));
+    if cross.length() < MIN_LENGTH_M * MIN_LENGTH_M {
+        return Err(
+            ctx.err(&span, format!("{what}: u and v are parallel or zero; the grid has no area (below 1e-18 m²)"))
+        );
     }
     let normal = match &s.normal {
         Some(n) => ctx.direction(n, "normal")?,
@@ -123,8 +125,10 @@ fn profile(
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, what)?, "u")?;
     let v = ctx.vec3(ctx.require(&s.v, "v", &span, what)?, "v")?;
-    if u.cross(v).length_squared() == 0.0 {
-        return Err(ctx.err(&span, format!("{what}: u and v are parallel or zero; the square has no area")));
+    if u.cross(v).length() < MIN_LENGTH_M * MIN_LENGTH_M {
+        return Err(
+            ctx.err(&span, format!("{what}: u and v are parallel or zero; the square has no area (below 1e-18 m²)"))
+        );
     }
     let up = match &s.normal {
         Some(n) => ctx.direction(n, "normal")?,
@@ -141,7 +145,7 @@ fn profile(
             format!("{what}: depths_m lists {} depths; at most {MAX_POINTS} (every stored photon is tallied at every depth)", depths_m.len()),
         ));
     }
-    let slab_m = s.slab_m.as_ref().map_or(Ok(0.1), |x| ctx.number(x, "slab_m", 0.0, f64::INFINITY, true))?;
+    let slab_m = s.slab_m.as_ref().map_or(Ok(0.1), |x| ctx.number(x, "slab_m", MIN_LENGTH_M, MAX_LENGTH_M, false))?;
     let ior = s.ior.as_ref().map_or(Ok(1.34), |x| ctx.number(x, "ior", 1.0, 3.0, false))?;
     let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
     let p = OceanProfile { origin, u, v, up, depths_m, slab_m, ior, samples };

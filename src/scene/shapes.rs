@@ -5,7 +5,7 @@ use super::raw::RawShape;
 use crate::geometry::mesh::load_obj;
 use crate::geometry::{Disk, Quad, Shape, Sphere, Triangle};
 use crate::validate::present_fields;
-use crate::validate::{Ctx, R};
+use crate::validate::{Ctx, MAX_LENGTH_M, MIN_LENGTH_M, R};
 use glam::{DMat3, DVec3};
 use toml::Spanned;
 
@@ -32,15 +32,25 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
         "sphere" => {
             ctx.only(&present, &["center", "radius"], &what)?;
             let center = ctx.vec3(ctx.require(&s.center, "center", &span, &what)?, "center")?;
-            let radius =
-                ctx.number(ctx.require(&s.radius, "radius", &span, &what)?, "radius", 0.0, f64::INFINITY, true)?;
+            let radius = ctx.number(
+                ctx.require(&s.radius, "radius", &span, &what)?,
+                "radius",
+                MIN_LENGTH_M,
+                MAX_LENGTH_M,
+                false,
+            )?;
             vec![Shape::Sphere(Sphere { center, radius })]
         }
         "disk" => {
             ctx.only(&present, &["center", "radius", "normal"], &what)?;
             let center = ctx.vec3(ctx.require(&s.center, "center", &span, &what)?, "center")?;
-            let radius =
-                ctx.number(ctx.require(&s.radius, "radius", &span, &what)?, "radius", 0.0, f64::INFINITY, true)?;
+            let radius = ctx.number(
+                ctx.require(&s.radius, "radius", &span, &what)?,
+                "radius",
+                MIN_LENGTH_M,
+                MAX_LENGTH_M,
+                false,
+            )?;
             let normal = ctx.direction(ctx.require(&s.normal, "normal", &span, &what)?, "normal")?;
             vec![Shape::Disk(Disk { center, normal, radius })]
         }
@@ -62,14 +72,15 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
             ctx.only(&present, &["vertices"], &what)?;
             let v = ctx.require(&s.vertices, "vertices", &span, &what)?;
             let p = v.get_ref();
-            if p.len() != 3 || p.iter().flatten().any(|x| !x.is_finite()) {
-                return Err(
-                    ctx.err(&v.span(), format!("{what}: vertices must be three points of three finite numbers"))
-                );
+            if p.len() != 3 || p.iter().flatten().any(|x| x.abs() > MAX_LENGTH_M) {
+                return Err(ctx.err(
+                    &v.span(),
+                    format!("{what}: vertices must be three points of three finite numbers within ±{MAX_LENGTH_M:e}"),
+                ));
             }
             let tri = [DVec3::from_array(p[0]), DVec3::from_array(p[1]), DVec3::from_array(p[2])];
-            if (tri[1] - tri[0]).cross(tri[2] - tri[0]).length_squared() == 0.0 {
-                return Err(ctx.err(&v.span(), format!("{what}: the triangle is degenerate (zero area)")));
+            if (tri[1] - tri[0]).cross(tri[2] - tri[0]).length() < MIN_LENGTH_M * MIN_LENGTH_M {
+                return Err(ctx.err(&v.span(), format!("{what}: the triangle is degenerate (area below 1e-18 m²)")));
             }
             vec![Shape::Triangle(Triangle { p: tri })]
         }
@@ -85,8 +96,10 @@ fn quad(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", span, what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", span, what)?, "u")?;
     let v = ctx.vec3(ctx.require(&s.v, "v", span, what)?, "v")?;
-    if u.cross(v).length_squared() == 0.0 {
-        return Err(ctx.err(span, format!("{what}: edges u and v are parallel or zero; the quad has no area")));
+    if u.cross(v).length() < MIN_LENGTH_M * MIN_LENGTH_M {
+        return Err(
+            ctx.err(span, format!("{what}: edges u and v are parallel or zero; the quad has no area (below 1e-18 m²)"))
+        );
     }
     Ok(Quad { origin, u, v })
 }
@@ -111,7 +124,17 @@ fn mesh(ctx: &Ctx, s: &RawShape, span: &std::ops::Range<usize>, what: &str) -> R
     let angle = s.rotate_y_deg.as_ref().map_or(Ok(0.0), |v| ctx.number(v, "rotate_y_deg", -360.0, 360.0, false))?;
     let rot = DMat3::from_rotation_y(angle.to_radians());
     let xf = |p: DVec3| rot * (p * scale) + translate;
-    Ok(tris.into_iter().map(|t| Shape::Triangle(Triangle { p: t.p.map(xf) })).collect())
+    let placed: Vec<[DVec3; 3]> = tris.into_iter().map(|t| t.p.map(xf)).collect();
+    if let Some(p) = placed.iter().flatten().find(|p| !p.is_finite() || p.abs().max_element() > MAX_LENGTH_M) {
+        let at = s.scale.as_ref().map_or_else(|| file.span(), |v| v.span());
+        return Err(ctx.err(
+            &at,
+            format!(
+                "{what}: scale and translate put a vertex at {p}, beyond ±{MAX_LENGTH_M:e} m (make the scale smaller)"
+            ),
+        ));
+    }
+    Ok(placed.into_iter().map(|p| Shape::Triangle(Triangle { p })).collect())
 }
 
 #[cfg(test)]

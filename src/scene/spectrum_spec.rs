@@ -191,12 +191,9 @@ fn from_csv(ctx: &Ctx, span: &Range<usize>, t: &toml::Table, what: &str) -> R<Sp
     let path = ctx.dir.join(file);
     let text = std::fs::read_to_string(&path)
         .map_err(|e| ctx.err(span, format!("{what}: cannot read spectrum file {}: {e}", path.display())))?;
-    let (nm, values) = crate::spectrum::table::parse_two_column_csv(&text).map_err(|(line, msg)| {
-        crate::error::Error::input(
-            Some(crate::error::Location { file: path.clone(), line: Some(line), column: None }),
-            format!("{what}: {msg}"),
-        )
-    })?;
+    // Located at the scene's line that names the file; the message gives the file's own line.
+    let (nm, values) = crate::spectrum::table::parse_two_column_csv(&text)
+        .map_err(|(line, msg)| ctx.err(span, format!("{what}: spectrum file {}:{line}: {msg}", path.display())))?;
     Tabulated::new(nm, values)
         .map(Spectrum::Tabulated)
         .map_err(|e| ctx.err(span, format!("{what}: spectrum file {}: {e}", path.display())))

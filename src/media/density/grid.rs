@@ -136,6 +136,11 @@ impl Grid3D {
         v
     }
 
+    /// The largest lattice value (0 for an empty grid).
+    pub fn max_value(&self) -> f64 {
+        self.macro_max.iter().fold(0.0f64, |m, v| m.max(f64::from(*v)))
+    }
+
     /// Intervals of [0, t_max] by macro-cell, each with that cell's maximum.
     pub fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
         let Some((t_in, t_out)) = self.clip(o, dir, t_max) else {

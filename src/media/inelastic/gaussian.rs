@@ -35,6 +35,12 @@ impl GaussianEmission {
         Ok(GaussianEmission { peak_nm, sigma_nm })
     }
 
+    /// The emission wavelengths outside which [`GaussianEmission::density`] is exactly zero in
+    /// f64, nm: beyond ±40σ the factor exp(−800) underflows to 0 (exp underflows below −745).
+    pub fn nonzero_nm(&self) -> (f64, f64) {
+        (self.peak_nm - 40.0 * self.sigma_nm, self.peak_nm + 40.0 * self.sigma_nm)
+    }
+
     /// h(λ) per nm.
     pub fn density(&self, emission_nm: f64) -> f64 {
         let z = (emission_nm - self.peak_nm) / self.sigma_nm;

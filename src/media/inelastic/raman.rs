@@ -103,6 +103,19 @@ impl RamanShift {
         (k > 0.0).then(|| NM_CM / k)
     }
 
+    /// The emission wavelengths outside which [`RamanShift::density`] is exactly zero in f64,
+    /// nm: shifts beyond ±40σ of every line, whose Gaussian factor exp(−800) underflows to 0
+    /// (exp underflows below −745). The upper end is infinite when the largest such shift
+    /// exceeds the excitation's wavenumber.
+    pub fn nonzero_nm(&self, excitation_nm: f64) -> (f64, f64) {
+        let lo = self.lines.iter().map(|l| l.1 - 40.0 * l.2).fold(f64::INFINITY, f64::min);
+        let hi = self.lines.iter().map(|l| l.1 + 40.0 * l.2).fold(f64::NEG_INFINITY, f64::max);
+        let k = NM_CM / excitation_nm;
+        let shortest = if k - lo > 0.0 { NM_CM / (k - lo) } else { f64::INFINITY };
+        let longest = if k - hi > 0.0 { NM_CM / (k - hi) } else { f64::INFINITY };
+        (shortest, longest)
+    }
+
     /// The range of shifts holding all but 10⁻¹⁴ of the band (±8σ of each line), cm⁻¹.
     pub fn shift_range_cm(&self) -> (f64, f64) {
         let lo = self.lines.iter().map(|l| l.1 - 8.0 * l.2).fold(f64::INFINITY, f64::min);

@@ -32,6 +32,16 @@ impl Redistribution {
         }
     }
 
+    /// The emission wavelengths (nm) outside which f̂(λ' → λ) is exactly zero in f64, so that
+    /// band integrals need not visit them.
+    pub fn nonzero_nm(&self, excitation_nm: f64) -> (f64, f64) {
+        match self {
+            Redistribution::Gaussian(g) => g.nonzero_nm(),
+            Redistribution::Fa7(_) => super::fa7::EMISSION_RANGE_NM,
+            Redistribution::Raman(r) => r.nonzero_nm(excitation_nm),
+        }
+    }
+
     /// An emission wavelength drawn from f̂(λ' → ·), if the model emits at this excitation.
     pub fn sample(&self, excitation_nm: f64, rng: &mut Rng) -> Option<f64> {
         match self {

@@ -98,6 +98,13 @@ pub fn raman_coefficient(wavelength_nm: f64) -> f64 {
 /// The sea-water medium over wavelengths `range` (nm).
 pub fn sea_water(name: &str, p: &OceanParams, range: (f64, f64)) -> Result<Medium, String> {
     let water = water::WaterAbsorption::read(&p.data)?;
+    let (lo, hi) = water.domain_nm();
+    if range.0 < lo || range.1 > hi {
+        return Err(format!(
+            "the scene simulates {}–{} nm but sea water's absorption tables (Pope & Fry 1997, Smith & Baker 1981) cover {lo}–{hi} nm; set [output] min_nm and max_nm within it",
+            range.0, range.1
+        ));
+    }
     let bricaud = phytoplankton::Bricaud::read(&p.data)?;
     let chl = p.chl_mg_m3;
     let grid = |f: &dyn Fn(f64) -> f64| tabulate(range, f);

@@ -33,6 +33,13 @@ impl WaterAbsorption {
         })
     }
 
+    /// The wavelengths the tables cover together, nm (Smith & Baker's 200–800 nm).
+    pub fn domain_nm(&self) -> (f64, f64) {
+        let (a, b) = self.pope_fry.domain_nm();
+        let (c, d) = self.smith_baker.domain_nm();
+        (a.min(c), b.max(d))
+    }
+
     /// a_w(λ), m⁻¹.
     pub fn at(&self, wavelength_nm: f64) -> f64 {
         let (lo, hi) = self.pope_fry.domain_nm();
