@@ -105,8 +105,11 @@ fn the_reference_reduces_to_single_scattering_in_a_thin_layer() {
     }
 }
 
-/// Chandrasekhar (1950), *Radiative Transfer*, the table of the H-function of conservative
-/// isotropic scattering (ϖ₀ = 1) at μ = 0.1, 0.2, …, 1.0 (five decimals there; four here).
+/// The H-function of conservative isotropic scattering (ϖ₀ = 1) at μ = 0.1, 0.2, …, 1.0 as
+/// Chandrasekhar (1950), *Radiative Transfer*, tabulates it, to four decimals. These values were
+/// written down from the literature without a scanned copy at hand to check them against; the
+/// binding checks of [`h_function`] are the closed-form moment identities below, which do not
+/// depend on them (and a wrong digit here would fail the comparison, not pass it).
 const H_CONSERVATIVE: [(f64, f64); 10] = [
     (0.1, 1.2474),
     (0.2, 1.4504),
