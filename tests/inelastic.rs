@@ -277,6 +277,18 @@ fn volume_map_sees_fluorescence_as_the_closed_form() {
     assert!((g / w - 1.0).abs() < 0.05, "volume map {g}, closed form {w}");
 }
 
+/// The same closed form read by the beam estimate (one query per chord; issue 17 item 6): the
+/// re-emitted light counts every photon, as the point estimate's does, within the same 5 %.
+#[test]
+fn beam_estimate_sees_fluorescence_as_the_closed_form() {
+    let (got, want) = sphere_seen_from_inside(
+        "photons = 400000\nvolume_k = 100\nvolume_max_radius = 0.2\nvolume_estimate = \"beam\"\nspp = 16\nseed = 2",
+    );
+    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
+    eprintln!("beam estimate: {g} vs closed form {w} (ratio {})", g / w);
+    assert!((g / w - 1.0).abs() < 0.05, "beam estimate {g}, closed form {w}");
+}
+
 #[test]
 fn path_tracer_sees_fluorescence_as_the_closed_form() {
     let (got, want) = sphere_seen_from_inside("method = \"path\"\nspp = 200000\nseed = 3");

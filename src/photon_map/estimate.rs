@@ -51,7 +51,8 @@ pub enum Paths {
 }
 
 impl Paths {
-    fn accepts(self, p: PhotonPath) -> bool {
+    /// Whether a photon that arrived by path `p` counts.
+    pub fn accepts(self, p: PhotonPath) -> bool {
         match self {
             Paths::All => true,
             Paths::NotDirect => p != PhotonPath::Direct,

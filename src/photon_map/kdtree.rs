@@ -172,6 +172,12 @@ impl<T: KdPoint> KdTree<T> {
     pub fn depth(&self) -> u32 {
         self.depth
     }
+    /// The items leaf `j` owns (indices into [`KdTree::items`]), for `j < 2^depth`; the leaves
+    /// own consecutive runs, in order.
+    pub fn leaf_range(&self, j: usize) -> std::ops::Range<usize> {
+        let shape = Shape { n: self.items.len(), depth: self.depth };
+        shape.leaf_start(j)..shape.leaf_start(j + 1)
+    }
     /// Bytes held by the tree (items and nodes, by capacity, plus the struct itself).
     pub fn memory_bytes(&self) -> usize {
         size_of::<Self>() + self.items.capacity() * size_of::<T>() + self.nodes.capacity() * size_of::<Split>()

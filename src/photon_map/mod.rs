@@ -14,6 +14,7 @@
 //! - Jensen 2000, "A Practical Guide to Global Illumination using Photon Maps", SIGGRAPH course
 //!   notes (`shared/papers/jensen-2000-photon-map-course-notes.txt`).
 
+pub mod beam;
 pub mod estimate;
 mod filter;
 mod irradiance;
@@ -22,6 +23,7 @@ mod photon;
 pub mod progressive;
 
 pub use crate::spectrum::BandValues;
+pub use beam::{BeamEstimator, BeamHit, BeamMap};
 pub use estimate::{Estimator, Paths};
 pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;

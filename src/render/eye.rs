@@ -27,7 +27,7 @@ use crate::geometry::Hit;
 use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Medium, tracking};
-use crate::photon_map::{BandValues, Estimator, Neighbours, Paths};
+use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::{IntegratorSettings, Scene};
@@ -63,6 +63,7 @@ const ROULETTE_TRANSMITTANCE: f64 = 1e-3;
 #[derive(Default)]
 pub struct Scratch {
     nb: Neighbours,
+    hits: Vec<BeamHit>,
     /// Rays this thread traced, by kind.
     pub rays: RayCounts,
 }
@@ -101,6 +102,8 @@ pub struct EyeTracer<'a> {
     volume: Option<Estimator<'a>>,
     /// Volume map with every photon, for gather rays.
     volume_all: Option<Estimator<'a>>,
+    /// The beam estimate on the volume map as camera paths read it (`volume_estimate = "beam"`).
+    beam: Option<BeamEstimator<'a>>,
 }
 
 impl<'a> EyeTracer<'a> {
@@ -113,6 +116,10 @@ impl<'a> EyeTracer<'a> {
         let shadow = scene.plan.shadow_rays.on;
         let global_paths = if shadow { Paths::DiffuseOnly } else { Paths::All };
         let volume_paths = if shadow { Paths::NotDirect } else { Paths::All };
+        let beam = |paths| -> Option<BeamEstimator<'a>> {
+            let (map, discs) = (maps.volume.as_ref()?, maps.beam.as_ref()?);
+            Some(BeamEstimator { map, discs, bands: scene.bands, paths })
+        };
         EyeTracer {
             scene,
             prop: Propagator::new(&scene.world, scene.curved()),
@@ -122,6 +129,7 @@ impl<'a> EyeTracer<'a> {
             caustic: maps.caustic.as_ref().map(|m| est(m, s.caustic_k, s.caustic_max_radius_m, Paths::All)),
             volume: maps.volume.as_ref().map(|m| est(m, s.volume_k, s.volume_max_radius_m, volume_paths)),
             volume_all: maps.volume.as_ref().map(|m| est(m, s.volume_k, s.volume_max_radius_m, Paths::All)),
+            beam: beam(volume_paths),
         }
     }
 
@@ -571,10 +579,83 @@ impl<'a> EyeTracer<'a> {
             self.attenuate(m, c, 0.0, c.length, lanes, along, rng);
             return;
         }
+        let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
+        // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
+        // dozen at each shading point, and a whole chord's tube of discs costs more than that.
+        if let (Some(b), Mode::Camera) = (&self.beam, at.mode) {
+            let tr = self.beam_chord(b, c, m, lanes, along, rng, sc);
+            if shadow {
+                // Single scattering by shadow rays keeps its own jittered steps along the chord.
+                self.march_steps(c, (id, m), at, None, along, rng, sc);
+            } else {
+                along.tr.iter_mut().zip(&tr).take(lanes.len).for_each(|(a, t)| *a *= t);
+            }
+            return;
+        }
         let est = match at.mode {
             Mode::Camera => self.volume.as_ref(),
             Mode::Gather => self.volume_all.as_ref(),
         };
+        self.march_steps(c, (id, m), at, est, along, rng, sc);
+    }
+
+    /// The beam estimate along chord `c` (see [`crate::photon_map::beam`]): adds
+    /// Σ_p T(0→t_p) L_p to `along.l` (weighted by the transmittance carried so far) and returns
+    /// the chord's transmittance per lane. Each lane's transmittance is carried from photon to
+    /// photon in order of their projections, so a heterogeneous medium is tracked once per lane.
+    #[allow(clippy::too_many_arguments)]
+    fn beam_chord(
+        &self,
+        b: &BeamEstimator,
+        c: &Chord,
+        m: &Medium,
+        lanes: &Lanes,
+        along: &mut Along,
+        rng: &mut Rng,
+        sc: &mut Scratch,
+    ) -> BandValues {
+        let n = lanes.len;
+        let (mut t_at, mut tr) = ([0.0f64; MAX_BANDS], [1.0f64; MAX_BANDS]);
+        let mut advance = |i: usize, t: f64, rng: &mut Rng| {
+            if t > t_at[i] {
+                tr[i] *= tracking::transmittance(m, lanes.nm[i], c.origin + t_at[i] * c.dir, c.dir, t - t_at[i], rng);
+                t_at[i] = t;
+            }
+            tr[i]
+        };
+        let mut hits = std::mem::take(&mut sc.hits);
+        b.gather(c.origin, c.dir, c.length, &mut hits);
+        sc.rays.medium_steps += 1;
+        let mut tmp = [0.0; MAX_BANDS];
+        let wo = -c.dir;
+        for h in &hits {
+            b.photon(h, wo, m, &mut tmp, &mut |band, l| {
+                for i in (0..n).filter(|i| lanes.band[*i] as usize == band) {
+                    along.l[i] += along.tr[i] * advance(i, h.t, rng) * l;
+                }
+            });
+        }
+        sc.hits = hits;
+        for i in 0..n {
+            advance(i, c.length, rng);
+        }
+        tr
+    }
+
+    /// The ray march of [`EyeTracer::march`] over chord `c` in medium `(id, m)`, reading the
+    /// point estimate `est` (if any) and shadow rays (if the plan has them) at every step.
+    #[allow(clippy::too_many_arguments)]
+    fn march_steps(
+        &self,
+        c: &Chord,
+        (id, m): (u32, &Medium),
+        at: At,
+        est: Option<&Estimator>,
+        along: &mut Along,
+        rng: &mut Rng,
+        sc: &mut Scratch,
+    ) {
+        let lanes = at.lanes;
         let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
         let wo = -c.dir;
         let mut sigma_t = [0.0; MAX_BANDS];

@@ -6,7 +6,8 @@ use super::stats::{MapReport, Phases};
 use crate::distributed::{self, Rank, assemble, photons::Shot};
 use crate::error::Result;
 use crate::photon::MapKind;
-use crate::photon_map::{Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
+use crate::photon_map::{BeamMap, Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
+use crate::scene::VolumeEstimate;
 use crate::scene::{IntegratorSettings, Scene};
 use crate::timing::Span;
 
@@ -22,6 +23,8 @@ pub struct Maps {
     pub caustic: Option<PhotonMap>,
     /// Photons at interactions in participating media.
     pub volume: Option<PhotonMap>,
+    /// The volume photons' gather discs, for the beam estimate (`volume_estimate = "beam"`).
+    pub beam: Option<BeamMap>,
     /// Irradiance precomputed at global-map photons, for final gathering.
     pub irradiance: Option<IrradianceCache>,
 }
@@ -51,6 +54,11 @@ pub fn build(
         if plan.volume_map.on {
             let (map, report) = build_map(rank, &shot.sink.volume, "volume", s.photons, &shot, phases)?;
             reports.push(report);
+            if s.volume_estimate == VolumeEstimate::Beam {
+                let t = Span::start();
+                maps.beam = Some(BeamMap::build(&map, s.beam.k, s.beam.max_radius_m, s.beam.scale));
+                phases.add("volume beam radii", t);
+            }
             maps.volume = Some(map);
         }
     }

@@ -22,7 +22,7 @@ mod tone;
 pub use plan::{Decision, EffectPlan};
 pub use settings::{
     DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, MAX_PHOTONS, MIN_MARCH_STEP_M, Method, OutputSettings,
-    WavelengthSampling, check_photons_override,
+    VolumeEstimate, WavelengthSampling, check_photons_override,
 };
 
 use crate::atmosphere::Earth;

@@ -2,7 +2,7 @@
 //! why. Integrators read it instead of re-deriving it; `morgana check` prints it and
 //! `report.json` records it. "Simulate only what the scene calls for" starts here.
 
-use super::settings::{DirectLighting, IntegratorSettings, Method, WavelengthSampling};
+use super::settings::{DirectLighting, IntegratorSettings, Method, VolumeEstimate, WavelengthSampling};
 use crate::material::Material;
 use crate::media::Medium;
 use serde::Serialize;
@@ -294,6 +294,22 @@ fn inelastic_decision(media: &[&Medium]) -> Decision {
 }
 
 fn volume_map_decision(media: &[&Medium], photon_sensors: bool, s: &IntegratorSettings) -> Decision {
+    let mut d = volume_map_storage(media, photon_sensors, s);
+    if d.on {
+        d.why.push_str(match s.volume_estimate {
+            VolumeEstimate::Point => {
+                "; eye rays read it by the point estimate (the k nearest photons at every march step; volume_estimate = \"point\")"
+            }
+            VolumeEstimate::Beam => {
+                "; eye rays read it by the beam estimate (every photon whose disc a chord crosses, one query per chord; volume_estimate = \"beam\")"
+            }
+        });
+    }
+    d
+}
+
+/// Whether photons are stored in media, and why.
+fn volume_map_storage(media: &[&Medium], photon_sensors: bool, s: &IntegratorSettings) -> Decision {
     if let Some(m) = media.iter().find(|m| !m.is_clear() && !m.scatters())
         && !media.iter().any(|m| m.scatters())
         && !photon_sensors

@@ -38,6 +38,29 @@ pub enum DirectLighting {
     PhotonMap,
 }
 
+/// How the volume photon map's light scattered toward the eye is estimated along a medium chord.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VolumeEstimate {
+    /// A k-nearest sphere at every ray-march step (Jensen & Christensen 1998).
+    Point,
+    /// One query per chord for every photon whose disc the chord crosses (Jarosz, Zwicker &
+    /// Jensen 2008): no march steps.
+    Beam,
+}
+
+/// The gather discs of the beam estimate: each photon's radius is that of the sphere holding its
+/// `k` nearest photons (at most `max_radius_m`), times `scale` (√sᵢ in progressive pass i).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct BeamRadii {
+    /// Nearest photons of the pilot query that sets a photon's radius (the first pass's `volume_k`).
+    pub k: usize,
+    /// Largest pilot radius, m (the first pass's `volume_max_radius`).
+    pub max_radius_m: f64,
+    /// Factor on every radius in this pass: 1 in the first, √sᵢ later (2-D kernel shrinkage).
+    pub scale: f64,
+}
+
 /// The light-transport algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -99,6 +122,10 @@ pub struct IntegratorSettings {
     /// Largest ray-marching step in media, m (steps shrink where photons are dense); at least
     /// [`MIN_MARCH_STEP_M`].
     pub march_step_m: f64,
+    /// The volume map's estimate along eye rays.
+    pub volume_estimate: VolumeEstimate,
+    /// The beam estimate's gather discs.
+    pub beam: BeamRadii,
     /// Where direct light on diffuse surfaces comes from.
     pub direct: DirectLighting,
     /// Gather indirect light with rays into the global map at the first diffuse hit.
@@ -124,7 +151,7 @@ impl IntegratorSettings {
     /// parameters shrunk by Knaus & Zwicker's schedule (see [`crate::photon_map::progressive`]);
     /// pass 0 is these settings unchanged.
     pub fn for_pass(&self, pass: u32) -> IntegratorSettings {
-        use crate::photon_map::progressive::{k, surface_radius, volume_radius};
+        use crate::photon_map::progressive::{k, measure_ratio, surface_radius, volume_radius};
         let a = self.progressive.alpha;
         IntegratorSettings {
             seed: crate::rng::pass_seed(self.seed, pass),
@@ -134,6 +161,7 @@ impl IntegratorSettings {
             caustic_max_radius_m: surface_radius(self.caustic_max_radius_m, pass, a),
             volume_k: k(self.volume_k, pass, a),
             volume_max_radius_m: volume_radius(self.volume_max_radius_m, pass, a),
+            beam: BeamRadii { scale: self.beam.scale * measure_ratio(pass, a).sqrt(), ..self.beam },
             ..self.clone()
         }
     }
@@ -274,6 +302,8 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         volume_k: 100,
         volume_max_radius_m: 0.05 * diag,
         march_step_m: 0.01 * diag,
+        volume_estimate: VolumeEstimate::Point,
+        beam: BeamRadii { k: 100, max_radius_m: 0.05 * diag, scale: 1.0 },
         direct: DirectLighting::ShadowRays,
         final_gather: true,
         gather_rays: 64,
@@ -307,6 +337,13 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
     if let Some(v) = &r.march_step {
         s.march_step_m = ctx.number(v, "march_step", MIN_MARCH_STEP_M, f64::INFINITY, false)?;
     }
+    if let Some(v) = &r.volume_estimate {
+        s.volume_estimate = match ctx.choice(v, "volume_estimate", &["point", "beam"])? {
+            "beam" => VolumeEstimate::Beam,
+            _ => VolumeEstimate::Point,
+        };
+    }
+    s.beam = BeamRadii { k: s.volume_k, max_radius_m: s.volume_max_radius_m, scale: 1.0 };
     s.gather_rays = int(&r.gather_rays, "gather_rays", 1, 1 << 20, s.gather_rays as i64)? as usize;
     s.spp = int(&r.spp, "spp", 1, 1 << 20, s.spp as i64)? as usize;
     s.max_depth = int(&r.max_depth, "max_depth", 1, 1000, s.max_depth as i64)? as usize;

@@ -1,0 +1,240 @@
+//! The beam radiance estimate of the volume map (issue 17 item 6; Jarosz, Zwicker & Jensen 2008)
+//! against closed forms, the point estimate, and degenerate chords.
+
+mod common;
+
+use common::{mean_and_sem, render_with, scene, scene_error};
+use glam::DVec3;
+use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::photon_map::progressive::{DEFAULT_ALPHA, measure_ratio};
+use morgana::photon_map::{BeamEstimator, BeamMap, Paths, PhotonMap, PhotonPath};
+use std::f64::consts::PI;
+
+const SIGMA_S: f64 = 0.3;
+const SIGMA_T: f64 = 0.5;
+/// Spectral irradiance of the collimated beam, W m⁻² nm⁻¹.
+const E: f64 = 2.0;
+
+/// A 4 m × 4 m × 1 m slab (z from −0.5 to 0.5) of isotropic medium (σ_s = 0.3, σ_t = 0.5 m⁻¹)
+/// under a collimated beam travelling straight down with E = 2 W m⁻² nm⁻¹, limited to the slab.
+fn collimated_slab() -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 3.0]
+look_at = [0.0, 0.0, 0.0]
+fov_deg = 10.0
+width = 1
+height = 1
+
+[output]
+bands = 1
+min_nm = 500.0
+max_nm = 600.0
+
+[integrator]
+direct = "photon_map"
+volume_estimate = "beam"
+
+[[medium]]
+name = "slab"
+sigma_a = {sa}
+sigma_s = {SIGMA_S}
+phase = "isotropic"
+
+[[shape]]
+type = "box"
+min = [-2.0, -2.0, -0.5]
+max = [2.0, 2.0, 0.5]
+interior = "slab"
+exterior = "vacuum"
+
+[[light]]
+type = "directional"
+direction = [0.0, 0.0, -1.0]
+target_min = [-2.0, -2.0, -0.5]
+target_max = [2.0, 2.0, 0.5]
+spectrum = 1.0
+scale = {E}
+"#,
+        sa = SIGMA_T - SIGMA_S,
+    )
+}
+
+/// Single scattering of the collimated beam seen along the chord from (−1, 0, 0) to (1, 0, 0)
+/// (light travelling back along it, −x): at depth 0.5 m the beam's irradiance is E e^{−σ_t/2},
+/// isotropic scattering sends σ_s/(4π) of it per unit length toward the eye, and the chord
+/// attenuates it by e^{−σ_t t}:
+/// L = σ_s E e^{−σ_t/2} (1 − e^{−2σ_t}) / (4π σ_t).
+fn single_scattering_closed_form() -> f64 {
+    SIGMA_S * E * (-SIGMA_T * 0.5).exp() * (1.0 - (-2.0 * SIGMA_T).exp()) / (4.0 * PI * SIGMA_T)
+}
+
+/// The beam estimate of pass `pass` (fresh photons from seed `pass + 1`; discs of the 50 nearest,
+/// at most 0.2 m, shrunk by √sᵢ), from the photons at their first interaction only: those
+/// are the single-scattering sources (later ones carry multiple scattering, which has no
+/// closed form here).
+fn beam_pass(s: &morgana::scene::Scene, pass: u32) -> f64 {
+    let (sink, _) = shoot(&s.world, &PassSettings::of(s), MapKind::Global, 200_000, u64::from(pass) + 1, &|_| {});
+    let first: Vec<_> = sink.volume.into_iter().filter(|p| p.path == PhotonPath::Direct).collect();
+    let map = PhotonMap::build(&first);
+    let discs = BeamMap::build(&map, 50, 0.2, measure_ratio(pass, DEFAULT_ALPHA).sqrt());
+    let est = BeamEstimator { map: &map, discs: &discs, bands: s.bands, paths: Paths::All };
+    let medium = &s.world.media[0];
+    let (mut hits, mut tmp) = (Vec::new(), [0.0; morgana::spectrum::MAX_BANDS]);
+    est.gather(DVec3::new(-1.0, 0.0, 0.0), DVec3::X, 2.0, &mut hits);
+    let mut l = 0.0;
+    for h in &hits {
+        est.photon(h, DVec3::NEG_X, medium, &mut tmp, &mut |_, v| l += (-SIGMA_T * h.t).exp() * v);
+    }
+    l
+}
+
+/// Progressive passes of the beam estimate converge to the closed form of single scattering in
+/// a collimated beam: the mean of 16 passes lies within 3 standard errors (from the passes'
+/// spread) of it, and that error is small enough to mean something (< 3 %).
+#[test]
+fn beam_estimate_of_a_collimated_beam_converges_to_the_closed_form() {
+    let s = scene(&collimated_slab());
+    let passes: Vec<f64> = (0..16).map(|i| beam_pass(&s, i)).collect();
+    let (mean, se) = mean_and_sem(&passes);
+    let want = single_scattering_closed_form();
+    eprintln!("beam: {mean} ± {se}, closed form {want}");
+    assert!(se < 0.03 * want, "standard error {se} of {want}");
+    assert!((mean - want).abs() < 3.0 * se, "beam {mean} ± {se}, closed form {want}");
+}
+
+/// A sphere of radius 1 whose wall emits L_e = 2 inward and reflects with ρ = 0.5, filled with
+/// a non-absorbing medium (σ_t = 1 m⁻¹): radiance is L_e/(1 − ρ) = 4 everywhere (as in
+/// tests/media.rs), here with every order of scattering from the beam estimate.
+fn beam_furnace(seed: u64) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 0.0]
+look_at = [0.2, 0.1, -1.0]
+fov_deg = 80.0
+width = 8
+height = 8
+
+[output]
+bands = 1
+min_nm = 500.0
+max_nm = 600.0
+
+[integrator]
+photons = 20000
+volume_k = 50
+direct = "photon_map"
+volume_estimate = "beam"
+spp = 1
+seed = {seed}
+
+[world]
+medium = "fog"
+
+[[medium]]
+name = "fog"
+sigma_t = 1.0
+albedo = 1.0
+
+[[material]]
+name = "wall"
+type = "lambertian"
+reflectance = 0.5
+
+[[light]]
+type = "area"
+shape = "sphere"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+side = "back"
+material = "wall"
+spectrum = 1.0
+scale = 2.0
+"#
+    )
+}
+
+fn image_mean(values: &[f32]) -> f64 {
+    values.iter().map(|v| f64::from(*v)).sum::<f64>() / values.len() as f64
+}
+
+/// The volumetric furnace read by the beam estimate (direct light from the maps, shadow rays
+/// off): the image means of 12 independent renders lie within 3 standard errors of 4.
+#[test]
+fn volumetric_furnace_from_the_beam_estimate() {
+    let means: Vec<f64> =
+        (1..=12).map(|seed| image_mean(&render_with(&scene(&beam_furnace(seed)), 2).image.data)).collect();
+    let (mean, se) = mean_and_sem(&means);
+    eprintln!("beam furnace: {mean} ± {se}");
+    assert!(se < 0.01 * 4.0, "standard error {se}");
+    assert!((mean - 4.0).abs() < 3.0 * se, "beam furnace {mean} ± {se}, exact 4");
+}
+
+/// The fog box (examples/fog_box.toml, small) with `volume_estimate`: the point and beam
+/// estimates read the same maps in the same scene, so their images agree within noise: the
+/// image means of 6 seeds each differ by less than 3 standard errors of the difference.
+#[test]
+fn beam_and_point_estimates_agree_on_the_fog_box() {
+    let base = std::fs::read_to_string("examples/fog_box.toml").expect("examples/fog_box.toml");
+    let small = |estimate: &str, seed: u64| {
+        base.replace("width = 128", "width = 16")
+            .replace("height = 128", "height = 16")
+            .replace("photons = 400000", &format!("photons = 100000\nvolume_estimate = \"{estimate}\"\nseed = {seed}"))
+            .replace("spp = 8", "spp = 2")
+    };
+    let means = |estimate: &str| -> Vec<f64> {
+        (1..=6).map(|seed| image_mean(&render_with(&scene(&small(estimate, seed)), 2).image.data)).collect()
+    };
+    let (point, beam) = (mean_and_sem(&means("point")), mean_and_sem(&means("beam")));
+    let se = (point.1 * point.1 + beam.1 * beam.1).sqrt();
+    eprintln!("fog box: point {point:?}, beam {beam:?}");
+    assert!(se < 0.02 * point.0, "standard error {se} of {}", point.0);
+    assert!((point.0 - beam.0).abs() < 3.0 * se, "point {point:?}, beam {beam:?}");
+}
+
+/// Chords the estimate must survive: one grazing the slab's top face (inside it, 1 µm below),
+/// one of zero length, one of NaN length: finite, non-negative radiance, nothing for the
+/// degenerate ones.
+#[test]
+fn grazing_and_empty_chords_give_finite_non_negative_light() {
+    let s = scene(&collimated_slab());
+    let (sink, _) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 50_000, 9, &|_| {});
+    let map = PhotonMap::build(&sink.volume);
+    let discs = BeamMap::build(&map, 50, 0.2, 1.0);
+    let est = BeamEstimator { map: &map, discs: &discs, bands: s.bands, paths: Paths::All };
+    let medium = &s.world.media[0];
+    let (mut hits, mut tmp) = (Vec::new(), [0.0; morgana::spectrum::MAX_BANDS]);
+    let mut total = |o: DVec3, d: DVec3, len: f64| {
+        est.gather(o, d, len, &mut hits);
+        let mut l = 0.0;
+        for h in &hits {
+            est.photon(h, -d, medium, &mut tmp, &mut |_, v| l += v);
+        }
+        l
+    };
+    let grazing = total(DVec3::new(-2.0, 0.0, 0.5 - 1e-6), DVec3::X, 4.0);
+    assert!(grazing.is_finite() && grazing > 0.0, "grazing chord: {grazing}");
+    assert_eq!(total(DVec3::ZERO, DVec3::X, 0.0), 0.0);
+    assert_eq!(total(DVec3::ZERO, DVec3::X, f64::NAN), 0.0);
+    // The same chord grazing from a camera: a render of the face seen edge-on is finite.
+    let edge = collimated_slab()
+        .replace("position = [0.0, 0.0, 3.0]", "position = [-3.0, 0.0, 0.5]")
+        .replace("look_at = [0.0, 0.0, 0.0]", "look_at = [0.0, 0.0, 0.5]")
+        .replace("width = 1\nheight = 1", "width = 8\nheight = 8");
+    let r = render_with(&scene(&edge), 2);
+    assert!(r.image.data.iter().all(|v| v.is_finite() && *v >= 0.0));
+}
+
+/// The effect plan says which estimate reads the volume map; an unknown one is refused naming
+/// the key and the choices.
+#[test]
+fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
+    let beam = scene(&collimated_slab());
+    assert!(beam.plan.volume_map.why.contains("beam estimate"), "{}", beam.plan.volume_map.why);
+    let point = scene(&collimated_slab().replace("volume_estimate = \"beam\"", "volume_estimate = \"point\""));
+    assert!(point.plan.volume_map.why.contains("point estimate"), "{}", point.plan.volume_map.why);
+    let e = scene_error(&collimated_slab().replace("volume_estimate = \"beam\"", "volume_estimate = \"beams\""));
+    assert!(e.contains("volume_estimate") && e.contains("beam") && e.contains("test.toml"), "{e}");
+}
