@@ -158,7 +158,7 @@ mod tests {
                 .abs()
                     < 1e-12
             );
-            for (px, py) in [(32, 32), (48, 20), (55, 9), (62, 32)] {
+            for (px, py) in [(32, 32), (48, 20), (52, 12), (62, 32)] {
                 let k = 24;
                 let dir = |x: f64, y: f64| c.ray(x, y).expect("inside the circle").dir;
                 let mut sr = 0.0;
