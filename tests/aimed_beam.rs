@@ -38,7 +38,7 @@ fn a_box_whose_shadow_is_a_rectangle_gets_exactly_that_rectangle() {
     assert!((l.on_target().expect("fraction") - 1.0).abs() < 1e-9);
     let mut rng = Rng::for_task(1, Stream::Test, 0);
     for _ in 0..10_000 {
-        let (o, w) = l.emit(rng.uniform2(), rng.uniform2());
+        let (o, w) = l.emit(rng.uniform2(), rng.uniform2(), 550.0);
         assert!(crosses(o, w, lo - DVec3::splat(1e-6), hi + DVec3::splat(1e-6)), "photon from {o} misses the box");
     }
 }
@@ -63,7 +63,7 @@ fn every_ray_through_the_target_starts_in_the_beam_and_every_photon_crosses_the_
         assert!(l.lights(p), "{p} in the target is not lit");
     }
     for _ in 0..100_000 {
-        let (o, w) = l.emit(rng.uniform2(), rng.uniform2());
+        let (o, w) = l.emit(rng.uniform2(), rng.uniform2(), 550.0);
         assert!(crosses(o, w, lo - DVec3::splat(1e-6), hi + DVec3::splat(1e-6)), "photon from {o} misses the box");
     }
     assert!((l.on_target().expect("fraction") - 1.0).abs() < 1e-12);

@@ -561,8 +561,12 @@ fn a_low_suns_disc_photons_reach_the_sea_in_front_of_the_camera() {
     // The example's own sun, centre 0.28° below the true horizon: the straight shadow runs
     // into the Earth, and the aiming lifts it by bisection until the bent rays pass the target.
     let below = fraction(&setting);
-    eprintln!("photons on the target: disc {disc}, point-like {point}; setting sun {below}");
+    // The same with Neckel & Labs's limb darkening: directions drawn from the law instead of
+    // uniformly, through the same projection map.
+    let darkened = fraction(&setting.replace("scale = 1.0", "scale = 1.0\nlimb_darkening = \"neckel_labs_1994\""));
+    eprintln!("photons on the target: disc {disc}, point-like {point}; setting sun {below}, limb-darkened {darkened}");
     assert!(below > 0.3, "setting sun: {below} of its photons on the target");
+    assert!(darkened > 0.3, "limb-darkened setting sun: {darkened} of its photons on the target");
     assert!(point > 0.5, "point-like sun: {point} of its photons on the target");
     assert!(disc > 0.8 * point, "disc: {disc} of its photons on the target, point-like {point}");
 }

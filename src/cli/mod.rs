@@ -13,6 +13,7 @@ pub mod grid;
 pub mod luminaire;
 pub mod refraction;
 pub mod render;
+pub mod sun_sweep;
 pub mod tonemap;
 pub mod trace;
 

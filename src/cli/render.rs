@@ -46,6 +46,11 @@ pub struct RenderArgs {
     /// "static" (interleaved blocks). The image does not depend on it.
     #[arg(long, default_value = "dynamic", value_parser = parse_schedule)]
     pub schedule: Schedule,
+    /// Render once per solar zenith angle, the scene's sun moved to each (degrees, comma
+    /// separated, e.g. 0,30,60,85,90): outputs per angle in OUT/sun_zenith_<angle>/ and every
+    /// sky_radiance sensor's reading in OUT/<name>_sun_sweep.csv. One process only.
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub sun_zenith_deg: Vec<f64>,
     /// Progressive passes and when they stop.
     #[command(flatten)]
     pub stop: StopArgs,
@@ -140,6 +145,9 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
         builder = builder.num_threads(t);
     }
     let pool = builder.build().map_err(|e| Error::internal(format!("cannot start worker threads: {e}")))?;
+    if !args.sun_zenith_deg.is_empty() {
+        return sweep(comm, args, &pool, start);
+    }
     let mut scene = distributed::scene::load(comm, args.scene.as_deref(), args.photons, args.seed)?;
     scene.apply_stopping_rules(&args.stop.flags())?;
     let out = args.out.clone().or_else(|| args.stop.resume.clone()).unwrap_or_else(|| PathBuf::from("out"));
@@ -176,6 +184,34 @@ fn render_and_write(comm: &Comm, args: &RenderArgs, dist: &distributed::Options,
     let convergence = args.stop.convergence.as_deref();
     let outputs = crate::output::write_outputs_with(&scene, &rendered, &out, (threads, seconds), convergence)?;
     Ok(outputs.iter().map(|p| format!("wrote {}\n", p.display())).collect())
+}
+
+/// `--sun-zenith-deg`: the scene once per solar zenith angle ([`super::sun_sweep`]).
+fn sweep(comm: &Comm, args: &RenderArgs, pool: &rayon::ThreadPool, start: Instant) -> Result<String> {
+    let refuse = |why: &str| Err(Error::input(None, format!("--sun-zenith-deg: {why}")));
+    if comm.size() > 1 {
+        return refuse("runs on one process; start it without mpirun");
+    }
+    if args.stop.resume.is_some() || args.stop.convergence.is_some() {
+        return refuse("cannot be combined with --resume or --convergence");
+    }
+    let Some(path) = args.scene.as_deref() else { return refuse("give a scene file with a sun") };
+    let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out"));
+    let prepare = |scene: &mut crate::scene::Scene| {
+        scene.apply_overrides(args.photons, args.seed);
+        scene.apply_stopping_rules(&args.stop.flags())
+    };
+    let opts = RenderOptions {
+        quiet: args.quiet,
+        max_memory: args.max_memory.map_or(MemoryLimit::Available, MemoryLimit::Limit),
+        deadline: args.max_seconds.map(|s| start + std::time::Duration::from_secs_f64(s)),
+        cancel: None,
+        observer: None,
+        started: None,
+        checkpoint: None,
+    };
+    let written = super::sun_sweep::run(path, &args.sun_zenith_deg, &prepare, &opts, pool, &out)?;
+    Ok(written.iter().map(|p| format!("wrote {}\n", p.display())).collect())
 }
 
 /// Where a progressive run (one with a stopping rule) writes its checkpoints — its output

@@ -17,7 +17,7 @@ mod spawn;
 
 pub use aabb::Aabb;
 pub use bvh::Bvh;
-pub use camera::Camera;
+pub use camera::{Camera, Projection};
 pub use frame::Frame;
 pub use glam::DVec3;
 pub use shape::{Disk, Quad, Shape, ShapeSample, Sphere, Triangle};

@@ -15,12 +15,17 @@
 //! of angular radius θ_m: its rays cross the beam plane with the direction density
 //! cos θ/(π sin²θ_m) about the axis ([`crate::sampling::cosine_cone`]), and an eye ray looking
 //! into the disc sees the radiance L(λ) = E(λ)/(π sin²θ_m), since E = ∫_disc L cos θ dω.
+//! With limb darkening ([`LimbDarkening`]) the disc's radiance falls toward its edge as the
+//! law's P(λ, μ), scaled so that E stays the same: L(λ, r) = E(λ) P(λ, μ(r))/(π sin²θ_m F(λ)).
+//! Photons then draw their direction from P at their own wavelength (weight 1 again), and shadow
+//! rays draw it uniformly in projected solid angle with the weight P/F per wavelength
+//! ([`DirectionalLight::disc_factor`]).
 
 use crate::geometry::Frame;
 use crate::geometry::convex_polygon::ConvexPolygon;
 use glam::DVec3;
 
-use super::{Incident, LightSpectrum};
+use super::{Incident, LightSpectrum, LimbDarkening};
 
 /// Parallel light from infinitely far away, possibly a disc of finite angular size (see the module
 /// docs).
@@ -41,6 +46,8 @@ pub struct DirectionalLight {
     pub emission: LightSpectrum,
     /// sin θ_m of the disc's angular radius; 0 for a collimated beam.
     pub sin_max: f64,
+    /// How the disc's radiance falls from its centre to its edge.
+    pub limb: LimbDarkening,
     /// The box the beam is aimed at, if the scene gave one.
     pub target: Option<crate::geometry::Aabb>,
     /// With a target (and a shadow of some area): the target box's shadow along the light in
@@ -113,6 +120,7 @@ impl DirectionalLight {
             beam,
             emission,
             sin_max: 0.0,
+            limb: LimbDarkening::Uniform,
             target,
             shadow,
             cells: None,
@@ -125,8 +133,15 @@ impl DirectionalLight {
         self
     }
 
+    /// The same disc with the limb darkening `limb`.
+    pub fn with_limb_darkening(mut self, limb: LimbDarkening) -> DirectionalLight {
+        self.limb = limb;
+        self
+    }
+
     /// A direction of travel: the axis for a collimated beam, else cosine-distributed within the
-    /// disc's cone about it.
+    /// disc's cone about it (uniform in projected solid angle), for shadow rays and for a
+    /// uniformly bright disc's photons.
     pub fn sample_dir(&self, u: [f64; 2]) -> DVec3 {
         if self.sin_max == 0.0 {
             return self.dir;
@@ -134,15 +149,40 @@ impl DirectionalLight {
         Frame::from_normal(self.dir).to_world(crate::sampling::cosine_cone(u, self.sin_max)).normalize()
     }
 
-    /// The factor L/E seen by an eye ray travelling along `view_dir`: 1/(π sin²θ_m) inside the
-    /// disc, 0 outside it and for a collimated beam (which no ray can hit).
-    pub fn radiance_factor(&self, view_dir: DVec3) -> f64 {
+    /// A photon's direction of travel at `wavelength_nm`: distributed as the disc's L cos θ, that
+    /// is, uniform in projected solid angle for a uniform disc, P(λ, μ)/F for a limb-darkened one.
+    pub fn sample_photon_dir(&self, u: [f64; 2], wavelength_nm: f64) -> DVec3 {
+        if self.sin_max == 0.0 || self.limb == LimbDarkening::Uniform {
+            return self.sample_dir(u);
+        }
+        let [x, y] = self.limb.sample_disk(wavelength_nm, u);
+        let (x, y) = (x * self.sin_max, y * self.sin_max);
+        let local = DVec3::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt());
+        Frame::from_normal(self.dir).to_world(local).normalize()
+    }
+
+    /// The factor L/E seen by an eye ray travelling along `view_dir` at `wavelength_nm`:
+    /// P/(π sin²θ_m F) inside the disc (1/(π sin²θ_m) for a uniform one), 0 outside it and for a
+    /// collimated beam (which no ray can hit).
+    pub fn radiance_factor(&self, view_dir: DVec3, wavelength_nm: f64) -> f64 {
         let cos_max = (1.0 - self.sin_max * self.sin_max).sqrt();
         if self.sin_max > 0.0 && -view_dir.dot(self.dir) >= cos_max {
-            1.0 / (std::f64::consts::PI * self.sin_max * self.sin_max)
+            self.disc_factor(-view_dir, wavelength_nm) / (std::f64::consts::PI * self.sin_max * self.sin_max)
         } else {
             0.0
         }
+    }
+
+    /// The disc's radiance toward `wi` (the direction from a receiver toward the light) over
+    /// its mean radiance, P/F at `wavelength_nm`: exactly 1 for a uniform disc and a collimated
+    /// beam. A shadow ray's sample (uniform in projected solid angle) carries this factor.
+    pub fn disc_factor(&self, wi: DVec3, wavelength_nm: f64) -> f64 {
+        if self.limb == LimbDarkening::Uniform || self.sin_max == 0.0 {
+            return 1.0;
+        }
+        // sin θ from the cross product: accurate for the sun's small angles.
+        let r = (wi.cross(-self.dir).length() / self.sin_max).min(1.0);
+        self.limb.relative_radiance(wavelength_nm, r)
     }
 
     /// Area of the beam's cross-section (of its projection map's cells, when it has one), m².
@@ -179,8 +219,8 @@ impl DirectionalLight {
     /// the plane to that depth. So every direction of the disc lights the target with E — as
     /// the sun's rays from each point of its disc all reach the target — instead of spreading
     /// by ±θ_m·L around it (±50 km from a plane 11 000 km upstream in an Earth-sized scene).
-    pub fn emit(&self, u_pos: [f64; 2], u_dir: [f64; 2]) -> (DVec3, DVec3) {
-        let dir = self.sample_dir(u_dir);
+    pub fn emit(&self, u_pos: [f64; 2], u_dir: [f64; 2], wavelength_nm: f64) -> (DVec3, DVec3) {
+        let dir = self.sample_photon_dir(u_dir, wavelength_nm);
         let [mut s, mut t] = self.emit_st(u_pos);
         if let Some([ds, dt]) = self.cells.as_ref().and_then(|c| c.disc_shift)
             && self.sin_max > 0.0
@@ -290,7 +330,7 @@ mod tests {
         let mut rng = Rng::for_task(3, Stream::Test, 0);
         let cos_max = (1.0 - light.sin_max * light.sin_max).sqrt();
         for _ in 0..10_000 {
-            let (o, w) = light.emit(rng.uniform2(), rng.uniform2());
+            let (o, w) = light.emit(rng.uniform2(), rng.uniform2(), 550.0);
             assert!(w.dot(dir) >= cos_max - 1e-15, "direction inside the disc");
             let x = (DVec3::ZERO - o).dot(dir) / w.dot(dir);
             let p = o + w * x;

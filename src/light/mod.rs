@@ -12,6 +12,7 @@
 
 mod area;
 mod directional;
+mod limb_darkening;
 mod luminaire;
 mod point;
 mod sky;
@@ -19,6 +20,7 @@ mod spot;
 
 pub use area::{AreaLight, Side};
 pub use directional::{BeamCells, DirectionalLight};
+pub use limb_darkening::{LimbDarkening, NECKEL_LABS_1994};
 pub use luminaire::LuminaireLight;
 pub use point::PointLight;
 pub use sky::SkyLight;
@@ -128,7 +130,7 @@ impl Light {
             Light::Point(l) => (l.position, l.emit_dir(rng.uniform2()), DVec3::ZERO),
             Light::Spot(l) => (l.position, l.emit_dir(rng.uniform(), rng.uniform2()), DVec3::ZERO),
             Light::Directional(l) => {
-                let (o, d) = l.emit(rng.uniform2(), rng.uniform2());
+                let (o, d) = l.emit(rng.uniform2(), rng.uniform2(), wavelength_nm);
                 (o, d, l.dir)
             }
             Light::Luminaire(l) => l.emit(rng),
@@ -170,11 +172,20 @@ impl Light {
     pub fn escape_radiance(&self, view_dir: DVec3, wavelength_nm: f64) -> f64 {
         match self {
             Light::Directional(l) => {
-                let k = l.radiance_factor(view_dir);
+                let k = l.radiance_factor(view_dir, wavelength_nm);
                 if k > 0.0 { k * l.emission.spectrum.eval(wavelength_nm) } else { 0.0 }
             }
             Light::Sky(l) if l.sees(view_dir) => l.emission.spectrum.eval(wavelength_nm),
             _ => 0.0,
+        }
+    }
+
+    /// The factor an incident sample's `spectrum(λ) · weight` takes at `wavelength_nm` beyond
+    /// its weight: the limb-darkened sun's P/F toward `inc.wi`, exactly 1 for every other light.
+    pub fn disc_factor(&self, inc: &Incident, wavelength_nm: f64) -> f64 {
+        match self {
+            Light::Directional(l) => l.disc_factor(inc.wi, wavelength_nm),
+            _ => 1.0,
         }
     }
 

@@ -117,7 +117,7 @@ impl CausticTargets {
     ) -> (Emission, f64) {
         let frame = Frame::from_normal(d.dir);
         let plane_centre = d.scene_centre - d.dir * (1.001 * d.scene_radius);
-        let dir = d.sample_dir(rng.uniform2());
+        let dir = d.sample_photon_dir(rng.uniform2(), wavelength_nm);
         let cos_a = dir.dot(d.dir);
         // The point of the emitting plane from which `dir` leads through c.
         let project = |c: DVec3| c - dir * ((c - plane_centre).dot(d.dir) / cos_a);

@@ -479,7 +479,7 @@ impl<'a> EyeTracer<'a> {
         let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {
-                e[i] += s.eval(lanes.nm[i]) * inc.weight * cos * tr[i];
+                e[i] += s.eval(lanes.nm[i]) * inc.weight * light.disc_factor(inc, lanes.nm[i]) * cos * tr[i];
             }
         };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &cos, &mut add);
@@ -516,7 +516,7 @@ impl<'a> EyeTracer<'a> {
                 let l = lanes.nm[i];
                 let f = phase(l, -inc.wi);
                 let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
-                out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * tr[i];
+                out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
             }
         };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);

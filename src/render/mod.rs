@@ -406,7 +406,7 @@ fn pixel(
     let mut acc = [0.0; crate::spectrum::MAX_BANDS];
     for _ in 0..s.spp {
         let [jx, jy] = rng.uniform2();
-        let ray = scene.camera.ray(x as f64 + jx, y as f64 + jy);
+        let Some(ray) = scene.camera.ray(x as f64 + jx, y as f64 + jy) else { continue };
         let lanes = Lanes::new(&scene.bands, scene.sampling, rng.uniform());
         let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
         let l = match tracer {

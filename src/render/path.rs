@@ -343,7 +343,12 @@ impl<'a> PathTracer<'a> {
         let p_scatter = |f: f64| if n == DVec3::ZERO { f } else { f / PI };
         let mut add = |light: &Light, inc: &Incident, factor: f64, tr: &BandValues| {
             let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, p_scatter(factor)) };
-            e += mis * light.spectrum().spectrum.eval(lambda) * inc.weight * factor * tr[0];
+            e += mis
+                * light.spectrum().spectrum.eval(lambda)
+                * inc.weight
+                * light.disc_factor(inc, lambda)
+                * factor
+                * tr[0];
         };
         let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda] };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut rays.shadow, &factor, &mut add);

@@ -23,7 +23,9 @@
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::geometry::{Aabb, Disk, Quad, Shape, Sphere};
-use crate::light::{AreaLight, DirectionalLight, Light, LightSpectrum, PointLight, Side, SkyLight, SpotLight};
+use crate::light::{
+    AreaLight, DirectionalLight, Light, LightSpectrum, LimbDarkening, PointLight, Side, SkyLight, SpotLight,
+};
 use crate::spectrum::Bands;
 use crate::validate::present_fields;
 use crate::validate::{Ctx, MAX_LENGTH_M, MIN_LENGTH_M, R};
@@ -62,7 +64,7 @@ pub fn light(
     let owner = format!("light \"{name}\"");
     let kind = ctx.choice(ctx.require(&l.kind, "type", &span, &owner)?, &format!("{owner}: type"), KINDS)?;
     let what = format!("{owner} ({kind})");
-    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, variant, elevation_deg, azimuth_deg, angular_diameter_deg, up, horizon_deg);
+    let present = present_fields!(l; power_w, scale, irradiance_w_m2, shape, side, material, center, radius, normal, origin, u, v, position, direction, look_at, cone_deg, falloff_start_deg, target_min, target_max, file, cct_k, flux_scale, c0_toward, rotation_deg, emitter, variant, elevation_deg, azimuth_deg, angular_diameter_deg, limb_darkening, up, horizon_deg);
     let allowed: &[&str] = match kind {
         "area" => &["power_w", "scale", "shape", "side", "material", "center", "radius", "normal", "origin", "u", "v"],
         "point" => &["power_w", "scale", "position"],
@@ -75,11 +77,20 @@ pub fn light(
             "elevation_deg",
             "azimuth_deg",
             "angular_diameter_deg",
+            "limb_darkening",
             "target_min",
             "target_max",
         ],
         "sky" => &["scale", "up", "horizon_deg", "target_min", "target_max"],
-        _ => &["scale", "irradiance_w_m2", "direction", "angular_diameter_deg", "target_min", "target_max"],
+        _ => &[
+            "scale",
+            "irradiance_w_m2",
+            "direction",
+            "angular_diameter_deg",
+            "limb_darkening",
+            "target_min",
+            "target_max",
+        ],
     };
     ctx.only(&present, allowed, &what)?;
     if kind == "luminaire" {
@@ -119,12 +130,43 @@ pub fn light(
                 (None, "sun") => SUN_ANGULAR_DIAMETER_DEG,
                 (None, _) => 0.0,
             };
+            let limb = limb_darkening(ctx, l, &what, diameter, bands)?;
             let beam = DirectionalLight::new(dir, bounds.centre(), scene_radius, target, emission);
-            Light::Directional(beam.with_angular_diameter(diameter))
+            Light::Directional(beam.with_angular_diameter(diameter).with_limb_darkening(limb))
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;
     Ok(NamedLight { name, light, material: l.material.clone(), notes: Vec::new() })
+}
+
+/// `limb_darkening`: the law of a disc's radiance across it (default none, a uniform disc);
+/// a law needs a disc (`angular_diameter_deg` > 0) and must cover the scene's wavelengths.
+fn limb_darkening(ctx: &Ctx, l: &RawLight, what: &str, diameter_deg: f64, bands: &Bands) -> R<LimbDarkening> {
+    let Some(given) = &l.limb_darkening else { return Ok(LimbDarkening::Uniform) };
+    let law = match ctx.choice(given, &format!("{what}: limb_darkening"), &["none", "neckel_labs_1994"])? {
+        "neckel_labs_1994" => LimbDarkening::NeckelLabs1994,
+        _ => LimbDarkening::Uniform,
+    };
+    if law != LimbDarkening::Uniform && diameter_deg <= 0.0 {
+        return Err(ctx.err(
+            &given.span(),
+            format!("{what}: limb_darkening needs a disc; set angular_diameter_deg > 0 (the sun's is 0.533)"),
+        ));
+    }
+    let (lo, hi) = law.range_nm();
+    if bands.min_nm < lo || bands.max_nm > hi {
+        return Err(ctx.err(
+            &given.span(),
+            format!(
+                "{what}: limb_darkening = \"{}\" is tabulated for {lo}–{hi} nm, but the scene simulates {}–{} nm; \
+                 narrow [output] min_nm/max_nm to that range or use limb_darkening = \"none\"",
+                law.name(),
+                bands.min_nm,
+                bands.max_nm
+            ),
+        ));
+    }
+    Ok(law)
 }
 
 /// `target_min`/`target_max`: the box a light at infinity aims its photons at, if given.

@@ -177,6 +177,47 @@ pub fn load_scene_str(source: &str, file: &Path, dir: &Path, default_name: &str)
     build(&ctx, &raw, default_name)
 }
 
+/// Validates scene text as [`load_scene_str`] does, with its sun placed at solar zenith angle
+/// `zenith_deg` (elevation 90° − zenith, its azimuth kept): the scene must have exactly one
+/// `type = "sun"` light, placed by `elevation_deg` and `azimuth_deg` (`morgana render
+/// --sun-zenith-deg`).
+pub fn load_scene_str_at_sun_zenith(
+    source: &str,
+    file: &Path,
+    dir: &Path,
+    default_name: &str,
+    zenith_deg: f64,
+) -> Result<Scene> {
+    let ctx = Ctx::new(file, source, dir);
+    let mut raw: RawScene = toml::from_str(source).map_err(|e| ctx.toml_error(&e))?;
+    let suns: Vec<usize> = (0..raw.light.len())
+        .filter(|&i| raw.light[i].get_ref().kind.as_ref().is_some_and(|k| k.get_ref() == "sun"))
+        .collect();
+    let [i] = suns[..] else {
+        return Err(Error::input(
+            None,
+            format!(
+                "{}: --sun-zenith-deg moves the scene's sun, but the scene has {} [[light]] of type \"sun\"; give it exactly one",
+                file.display(),
+                suns.len()
+            ),
+        ));
+    };
+    let span = raw.light[i].span();
+    let light = raw.light[i].get_mut();
+    let Some(elevation) = &light.elevation_deg else {
+        return Err(ctx.err(
+            &span,
+            "--sun-zenith-deg: place the sun by elevation_deg and azimuth_deg (not direction), so its azimuth is kept",
+        ));
+    };
+    if !(0.0..=180.0).contains(&zenith_deg) {
+        return Err(Error::input(None, format!("--sun-zenith-deg {zenith_deg}: a solar zenith angle is 0 to 180°")));
+    }
+    light.elevation_deg = Some(toml::Spanned::new(elevation.span(), 90.0 - zenith_deg));
+    build(&ctx, &raw, default_name)
+}
+
 fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     let camera = settings::camera(ctx, &raw.camera)?;
     let (output, bands, sampling) = settings::output(ctx, raw.output.as_ref(), default_name, &camera)?;

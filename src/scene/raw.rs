@@ -117,7 +117,7 @@ pub struct RawMedium {
     pub refraction: S<bool>,
 }
 
-/// `[camera]`: a pinhole camera.
+/// `[camera]`: a pinhole or all-sky camera.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawCamera {
@@ -133,6 +133,8 @@ pub struct RawCamera {
     pub width: S<i64>,
     /// `[camera] height`: image height, pixels.
     pub height: S<i64>,
+    /// `[camera] projection`: `"pinhole"` (default) or `"equal_area"` (an all-sky fisheye).
+    pub projection: S<String>,
 }
 
 /// `[output]`: what is written, over which wavelengths, and how the PNG is tone-mapped.
@@ -402,6 +404,9 @@ pub struct RawLight {
     /// `[[light]] angular_diameter_deg`: apparent diameter of a directional light or the sun's
     /// disk, degrees.
     pub angular_diameter_deg: S<f64>,
+    /// `[[light]] limb_darkening`: how a sun's or a directional disc's radiance falls toward its
+    /// edge, `"none"` (uniform) or `"neckel_labs_1994"`.
+    pub limb_darkening: S<String>,
     /// `[[light]] up`: zenith direction of a sky.
     pub up: S<[f64; 3]>,
     /// `[[light]] horizon_deg`: elevation of a sky's lower edge above the plane normal to `up`,

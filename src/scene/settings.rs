@@ -3,7 +3,7 @@
 use super::progressive::Progressive;
 use super::raw::{RawCamera, RawIntegrator, RawOutput};
 use crate::geometry::Aabb;
-use crate::geometry::Camera;
+use crate::geometry::{Camera, Projection};
 use crate::ode::CurvedSettings;
 use crate::photon_map::Filter;
 use crate::spectrum::{Bands, MAX_BANDS};
@@ -199,7 +199,19 @@ pub fn camera(ctx: &Ctx, c: &Spanned<RawCamera>) -> R<Camera> {
         Some(u) => ctx.direction(u, "camera up")?,
         None => glam::DVec3::Y,
     };
-    let fov = ctx.number(ctx.require(&c.fov_deg, "fov_deg", &span, what)?, "fov_deg", 0.0, 180.0, true)?;
+    let projection = match &c.projection {
+        None => Projection::Pinhole,
+        Some(p) => match ctx.choice(p, "[camera] projection", &["pinhole", "equal_area"])? {
+            "equal_area" => Projection::EqualArea,
+            _ => Projection::Pinhole,
+        },
+    };
+    // A pinhole sees less than a half-space; the equal-area image circle up to the whole sphere.
+    let fov_v = ctx.require(&c.fov_deg, "fov_deg", &span, what)?;
+    let fov = match projection {
+        Projection::Pinhole => ctx.number(fov_v, "fov_deg", 0.0, 180.0, true)?,
+        Projection::EqualArea => ctx.number_above(fov_v, "fov_deg", 0.0, 360.0)?,
+    };
     let width = ctx.integer(ctx.require(&c.width, "width", &span, what)?, "width", 1, 16384)? as usize;
     let height = ctx.integer(ctx.require(&c.height, "height", &span, what)?, "height", 1, 16384)? as usize;
     let forward = look_at - position;
@@ -207,9 +219,15 @@ pub fn camera(ctx: &Ctx, c: &Spanned<RawCamera>) -> R<Camera> {
         return Err(ctx.err(&span, "[camera]: look_at equals position; the camera needs a viewing direction"));
     }
     if forward.normalize().cross(up).length() < 1e-9 {
-        return Err(ctx.err(&span, "[camera]: up is parallel to the viewing direction; choose another up"));
+        let hint = match projection {
+            Projection::EqualArea => " (looking up, up = [0, 0, -1] puts azimuth 0°, toward −z, at the image's top)",
+            Projection::Pinhole => "",
+        };
+        return Err(
+            ctx.err(&span, format!("[camera]: up is parallel to the viewing direction; choose another up{hint}"))
+        );
     }
-    Ok(Camera::new(position, look_at, up, fov, width, height))
+    Ok(Camera::new(position, look_at, up, fov, width, height).with_projection(projection))
 }
 
 /// Output settings and the wavelength sampling.

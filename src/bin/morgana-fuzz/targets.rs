@@ -688,6 +688,7 @@ fn execute(target: Target, ws: &Workspace, case: &Case, read: &[String], deadlin
                 max_memory: None,
                 max_seconds: None,
                 schedule: morgana::distributed::Schedule::Dynamic,
+                sun_zenith_deg: Vec::new(),
                 stop: Default::default(),
             };
             let r = morgana::cli::render::run(&args);

@@ -74,7 +74,7 @@ fn at(
         let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for ((l, y), t) in nm.iter().zip(&lux).zip(tr) {
-                direct += y * s.eval(*l) * inc.weight * cos * t;
+                direct += y * s.eval(*l) * inc.weight * light.disc_factor(inc, *l) * cos * t;
             }
         };
         let cos = |_: &Light, inc: &Incident| inc.wi.dot(plane.normal);

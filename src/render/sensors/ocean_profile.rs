@@ -126,7 +126,7 @@ fn ed_above(s: &OceanProfile, (scene, seed): (&Scene, u64), index: u64) -> Vec<f
                 let l = lo + (hi - lo) * rng.uniform();
                 let at = ShadowOrigin { p, from: None, medium, wavelengths_nm: &[l] };
                 let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
-                    sum += light.spectrum().spectrum.eval(l) * inc.weight * cos * tr[0];
+                    sum += light.spectrum().spectrum.eval(l) * inc.weight * light.disc_factor(inc, l) * cos * tr[0];
                 };
                 let cos = |_: &Light, inc: &Incident| inc.wi.dot(s.up);
                 sample_lights(&prop, &scene.world.lights, &at, &mut rng, &mut 0, &cos, &mut add);

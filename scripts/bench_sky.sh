@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The issue-19 sky benchmark: a 256 × 256 all-sky image (examples/sky_noon.toml, equal-area
+# fisheye over the hemisphere, path tracer, all orders of Rayleigh scattering, 8 bands over
+# 400–700 nm) with the sun at solar zenith 60°. It renders the scene twice at SPP samples per
+# pixel with seeds 1 and 2 and measures the per-pixel relative noise of one render from their
+# difference: σ/L = rms over pixels of (a − b)/((a + b)/2)/√2 (band-mean radiance, pixels wholly
+# inside the image circle). Noise falls as 1/√spp, so the samples and time for 2 % are
+# spp·(σ/L / 0.02)² and t·(σ/L / 0.02)². Run from the repository root:
+#
+#   scripts/bench_sky.sh [SPP] [MORGANA_BINARY] [OUT_DIR]
+#
+# Defaults: 8, target/release/morgana, /tmp/bench_sky. Wall times on the shared 2-vCPU machines
+# vary by up to 2× with other work: the script prints user + sys CPU time too.
+set -euo pipefail
+SPP=${1:-8}
+BIN=${2:-target/release/morgana}
+OUT=${3:-/tmp/bench_sky}
+mkdir -p "$OUT"
+SCENE="$OUT/sky_bench.toml"
+sed -e 's/^width = 128$/width = 256/' -e 's/^height = 128$/height = 256/' \
+    -e "s/^spp = 32$/spp = $SPP/" -e 's/^elevation_deg = 60.0$/elevation_deg = 30.0/' \
+    -e 's/^\[output\]$/[output]\ncsv = true\nexr = false\npng = false/' \
+    examples/sky_noon.toml > "$SCENE"
+grep -q "^width = 256" "$SCENE" && grep -q "^spp = $SPP" "$SCENE" && grep -q "^elevation_deg = 30.0" "$SCENE" \
+  || { echo "bench_sky.sh: examples/sky_noon.toml no longer has the lines this script edits" >&2; exit 2; }
+for seed in 1 2; do
+  /usr/bin/time -f "seed $seed: %e s wall, %U s user, %S s sys" \
+    "$BIN" render "$SCENE" --seed "$seed" --out "$OUT/seed$seed" --quiet > /dev/null
+done
+python3 - "$OUT" "$SPP" <<'PY'
+import csv, glob, math, sys
+out, spp = sys.argv[1], int(sys.argv[2])
+def image(seed):
+    path = glob.glob(f"{out}/seed{seed}/*.csv")[0]
+    rows = list(csv.reader(open(path)))
+    head, body = rows[0], rows[1:]
+    bands = [i for i, h in enumerate(head) if h.startswith("L_") or h.endswith("nm")]
+    return {(int(r[0]), int(r[1])): sum(float(r[i]) for i in bands) / len(bands) for r in body}
+a, b = image(1), image(2)
+n = 256; R = n / 2
+inside = [k for k in a if math.hypot(abs(k[0] + 0.5 - R) + 0.5, abs(k[1] + 0.5 - R) + 0.5) < R - 1]
+rel = [((a[k] - b[k]) / ((a[k] + b[k]) / 2)) ** 2 / 2 for k in inside if a[k] + b[k] > 0]
+sigma = math.sqrt(sum(rel) / len(rel))
+print(f"{len(inside)} pixels inside the circle; per-pixel relative noise at {spp} spp: {sigma:.4f}")
+k = (sigma / 0.02) ** 2
+print(f"for 2 %: {spp * k:.0f} spp, {k:.2f} × the time of one render above")
+PY
