@@ -47,8 +47,8 @@ pub struct RenderArgs {
     #[arg(long, default_value = "dynamic", value_parser = parse_schedule)]
     pub schedule: Schedule,
     /// Render once per solar zenith angle, the scene's sun moved to each (degrees, comma
-    /// separated, e.g. 0,30,60,85,90): outputs per angle in OUT/sun_zenith_<angle>/ and every
-    /// sky_radiance sensor's reading in OUT/<name>_sun_sweep.csv. One process only.
+    /// separated, e.g. 0,30,60,85,90): outputs per angle in OUT/sun_zenith_ANGLE/ and every
+    /// sky_radiance sensor's reading in OUT/NAME_sun_sweep.csv. One process only.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub sun_zenith_deg: Vec<f64>,
     /// Progressive passes and when they stop.

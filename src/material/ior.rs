@@ -83,7 +83,7 @@ impl Ior {
         }
     }
 
-    /// Checks 1 ≤ n ≤ [`MAX_IOR`] over [min_nm, max_nm] (sampled every nm and at the ends);
+    /// Checks 1 ≤ n ≤ `MAX_IOR` over [min_nm, max_nm] (sampled every nm and at the ends);
     /// the error names the first offending wavelength.
     pub fn validate(&self, min_nm: f64, max_nm: f64) -> Result<(), String> {
         let steps = ((max_nm - min_nm).ceil() as usize).max(1);
