@@ -93,6 +93,16 @@ fn a_horizontal_ray_in_a_linear_field_hits_the_wall_on_the_catenary() {
 }
 
 #[test]
+fn an_arc_tolerance_below_a_micrometre_is_refused_naming_the_key() {
+    // The fuzzer's scene target found arc_tolerance_m = 1e-11 on the fog sunset past a minute
+    // of `morgana check` (the chords per path grow as 1/√tolerance).
+    let text = linear_air(0.05, "").replace("[world]", "[integrator]\narc_tolerance_m = 1e-11\n\n[world]");
+    let e = common::scene_error(&text);
+    assert!(e.contains("test.toml:") && e.contains("arc_tolerance_m") && e.contains("out of range"), "{e}");
+    scene(&linear_air(0.05, "").replace("[world]", "[integrator]\narc_tolerance_m = 1e-6\n\n[world]"));
+}
+
+#[test]
 fn the_path_is_as_accurate_as_the_arc_tolerance_asks() {
     // Tighter arc tolerance → the hit approaches the catenary; the default 0.1 mm is met.
     let a = 0.05;

@@ -395,6 +395,9 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
     Ok(s)
 }
 
+/// The smallest `arc_tolerance_m`, m.
+pub const MIN_ARC_TOLERANCE_M: f64 = 1e-6;
+
 /// `ode`, `ode_rtol`, `ode_atol`, `ode_step_m`, `ode_max_step_m`, `arc_tolerance_m`.
 fn curved(ctx: &Ctx, r: &RawIntegrator) -> R<CurvedSettings> {
     use crate::ode::Method as Ode;
@@ -417,7 +420,12 @@ fn curved(ctx: &Ctx, r: &RawIntegrator) -> R<CurvedSettings> {
         None => f64::INFINITY,
         Some(v) => ctx.number(v, "ode_max_step_m", 0.0, f64::INFINITY, true)?,
     };
-    c.arc_tolerance_m = positive(&r.arc_tolerance_m, "arc_tolerance_m", c.arc_tolerance_m)?;
+    // At least 1 µm: the chords per path grow as 1/√tolerance, and the fuzzer found
+    // arc_tolerance_m = 1e-11 on the fog sunset past a minute of `morgana check`.
+    c.arc_tolerance_m = match &r.arc_tolerance_m {
+        None => c.arc_tolerance_m,
+        Some(v) => ctx.number(v, "arc_tolerance_m", MIN_ARC_TOLERANCE_M, f64::INFINITY, false)?,
+    };
     let fixed_only = [(&r.ode_step_m, "ode_step_m")];
     let adaptive_only = [(&r.ode_rtol, "ode_rtol"), (&r.ode_atol, "ode_atol")];
     let unused: &[(&Option<Spanned<f64>>, &str)] = if c.ode == "dopri5" { &fixed_only } else { &adaptive_only };
