@@ -7,7 +7,8 @@
 #   ./scripts/identical_outputs.sh [BASE] [--photons N] [--only NAME]
 #
 # Exit 0 when all outputs are identical, 1 when any differs (the differing files are listed).
-# The base is built in a git worktree under target/identical/base (kept between runs).
+# The base is built in a git worktree under target/identical/base (kept between runs), unless
+# MORGANA_BASE_BIN names a morgana binary already built from BASE.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -37,14 +38,20 @@ base_rev=$(git rev-parse "$base")
 echo "identical_outputs: base $base ($base_rev) against the working tree"
 
 # --- the two binaries ------------------------------------------------------------------------
-if [ ! -d "$work/base" ]; then
-  git worktree add --detach "$work/base" "$base_rev" >/dev/null
+if [ -n "${MORGANA_BASE_BIN:-}" ]; then
+  # A binary already built from BASE (e.g. a copy of main's target/release/morgana): no worktree.
+  base_bin=$MORGANA_BASE_BIN
+  echo "identical_outputs: the base binary is $base_bin (MORGANA_BASE_BIN), taken to be built from $base_rev"
 else
-  git -C "$work/base" checkout --detach -q "$base_rev"
+  if [ ! -d "$work/base" ]; then
+    git worktree add --detach "$work/base" "$base_rev" >/dev/null
+  else
+    git -C "$work/base" checkout --detach -q "$base_rev"
+  fi
+  (cd "$work/base" && cargo build --release --quiet --bin morgana)
+  base_bin="$work/base/target/release/morgana"
 fi
-(cd "$work/base" && cargo build --release --quiet --bin morgana)
 cargo build --release --quiet --bin morgana
-base_bin="$work/base/target/release/morgana"
 new_bin="$root/target/release/morgana"
 
 # --- reduced copies of the examples, written beside them so relative paths still resolve ------

@@ -12,31 +12,27 @@ use std::f64::consts::PI;
 
 /// Composite 16-point Gauss–Legendre rule over `panels` equal panels of [a, b].
 pub fn gauss_legendre(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
-    let (nodes, weights) = gauss_legendre_16();
-    let h = (b - a) / panels as f64;
-    let mut sum = 0.0;
-    for p in 0..panels {
-        let mid = a + (p as f64 + 0.5) * h;
-        for (x, w) in nodes.iter().zip(weights.iter()) {
-            sum += w * f(mid + 0.5 * h * x);
-        }
-    }
-    sum * 0.5 * h
+    panel_sum(f, a, (b - a) / panels as f64, 0..panels)
 }
 
 /// [`gauss_legendre`] of an `f` that is exactly zero outside `support`: the same panels and
 /// the same sum, but only the panels that reach into the support are visited (the others add
 /// exact zeros), so the work follows the support's width, not that of [a, b].
 pub fn gauss_legendre_on_support(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize, support: (f64, f64)) -> f64 {
-    let (nodes, weights) = gauss_legendre_16();
     let h = (b - a) / panels as f64;
     // One panel of margin on either side against rounding of the panel edges.
     let first = ((support.0 - a) / h).floor() - 1.0;
     let last = ((support.1 - a) / h).ceil() + 1.0;
     let first = if first.is_nan() { 0 } else { first.clamp(0.0, panels as f64) as usize };
     let last = if last.is_nan() { panels } else { last.clamp(0.0, panels as f64) as usize };
+    panel_sum(f, a, h, first..last)
+}
+
+/// The 16-point rule summed over the panels `[a + p·h, a + (p + 1)·h]`, p in `panels`.
+fn panel_sum(f: &dyn Fn(f64) -> f64, a: f64, h: f64, panels: std::ops::Range<usize>) -> f64 {
+    let (nodes, weights) = gauss_legendre_16();
     let mut sum = 0.0;
-    for p in first..last {
+    for p in panels {
         let mid = a + (p as f64 + 0.5) * h;
         for (x, w) in nodes.iter().zip(weights.iter()) {
             sum += w * f(mid + 0.5 * h * x);

@@ -361,3 +361,48 @@ fn values_that_rendered_nan_are_refused_naming_their_line() {
         assert!(e.contains("test.toml:113:") && e.contains("radius = ") && e.contains("out of range"), "{e}");
     }
 }
+
+#[test]
+fn spherical_air_that_no_ground_closes_is_refused_naming_the_medium() {
+    // The render fuzzer (seed 2, cases 349, 25461, 31526) changed the radius or centre of the
+    // ground of examples/sky_sunset.toml: the sky's air, held at its sea-level density below the
+    // ground, then filled the 6371 km between the camera and a 65 km "Earth", and a 4 × 4 render
+    // took 16 s of CPU (0.2 s with the real ground) — past the fuzzer's deadline under load.
+    let sky = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/sky_sunset.toml"))
+        .expect("examples/sky_sunset.toml");
+    let ground = "center = [0.0, -6371000.0, 0.0]\nradius = 6371000.0";
+    assert!(sky.contains(ground), "the example's ground changed");
+    let with_ground = |g: &str| sky.replacen(ground, g, 1);
+    let medium_line = sky.lines().position(|l| l == "[[medium]]").expect("a [[medium]]") + 1;
+    for bad in [
+        "center = [0.0, -6371000.0, 0.0]\nradius = 65536",
+        "center = [0.0, -6371000.0, 0.0]\nradius = 637100.0",
+        "center = [0.0, -637100000000000.0, 0.0]\nradius = 6371000.0",
+        "center = [0.0, -6371000.0, 0.0]\nradius = 6360000.0",
+    ] {
+        let e = common::scene_error(&with_ground(bad));
+        assert!(
+            e.contains(&format!("test.toml:{medium_line}:"))
+                && e.contains("medium \"air\"")
+                && e.contains("no sphere closes it from below")
+                && e.contains("6361000 m"),
+            "{bad}: {e}"
+        );
+    }
+    // Ground 430 m below sea level (the Dead Sea's shore) or above it closes the air.
+    for good in
+        ["center = [0.0, -6371000.0, 0.0]\nradius = 6370570.0", "center = [0.0, -6371000.0, 0.0]\nradius = 6371500.0"]
+    {
+        common::scene(&with_ground(good));
+    }
+    // A glass Earth with the air itself inside does not close it; with vacuum inside it does.
+    let glass = "\n[[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 1.5\n";
+    let glass_earth = with_ground(ground).replacen("material = \"ground\"", "material = \"glass\"", 1) + glass;
+    common::scene(&glass_earth);
+    let e = common::scene_error(&glass_earth.replacen(
+        "material = \"glass\"",
+        "material = \"glass\"\ninterior = \"air\"",
+        1,
+    ));
+    assert!(e.contains("no sphere closes it from below"), "{e}");
+}

@@ -4,6 +4,7 @@
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
 mod atmosphere_medium;
+mod ground;
 mod inelastic;
 mod lights;
 mod luminaires;
@@ -286,6 +287,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
         names,
     };
     world.light_media = world.lights.iter().map(|l| world.medium_at(l.representative_point())).collect();
+    ground::check_ground_closes_the_air(ctx, raw, &world)?;
     let plan = decide_plan(&world, &integrator, &sensors, sampling, &bands);
     let camera_medium = world.medium_at(camera.position);
     let mut scene = Scene {

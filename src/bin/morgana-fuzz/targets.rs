@@ -378,6 +378,11 @@ pub fn generate(target: Target, seeds: &Seeds, seed: u64, index: u64) -> Case {
         return finish(target, name, bytes, what, mode);
     }
     for _ in 0..n {
+        // morgana refuses a TOML file past its size limit unread: mutating it further only
+        // costs the worker time and memory (a 160 MB scene's slots took past the deadline).
+        if name.ends_with(".toml") && bytes.len() as u64 > morgana::error::MAX_TEXT_FILE_BYTES {
+            break;
+        }
         let (b, w) = mutate_one(&mut rng, &name, &bytes, seeds);
         bytes = b;
         what.push(w);
@@ -477,6 +482,11 @@ pub fn case_of_file(target: Target, name: &str, bytes: Vec<u8>, mode: u32) -> Ca
 /// those fields are still numbers: the render target stays fast while `scene` checks the
 /// unclamped values.
 pub fn clamp_scene(bytes: &[u8]) -> Vec<u8> {
+    // A scene past morgana's size limit is refused unread, so there is nothing to clamp; its
+    // slots (a 100 MB mutant holds tens of millions) would exhaust the worker's memory.
+    if bytes.len() as u64 > morgana::error::MAX_TEXT_FILE_BYTES {
+        return bytes.to_vec();
+    }
     let Ok(src) = std::str::from_utf8(bytes) else { return bytes.to_vec() };
     let caps: &[(&str, f64)] = &[
         ("camera.width", 4.0),
@@ -746,4 +756,24 @@ fn load_atmosphere(path: &Path) -> Result<String, Error> {
         text.push_str(&format!("{h} m: T {} K, p {} Pa, n {n}, grad n {g}\n", air.temperature_k, air.pressure_pa));
     }
     Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_scene_past_the_size_limit_is_left_unclamped() {
+        // Case 1208 of the render target (seed 2) was such a mutant, 106 MB: clamping it listed
+        // tens of millions of slots and the worker aborted for memory before morgana saw it.
+        let row = "photons = 9999999\n";
+        let n = (morgana::error::MAX_TEXT_FILE_BYTES as usize) / row.len() + 1;
+        let doc = format!("[integrator]\n{}", row.repeat(n));
+        assert!(doc.len() as u64 > morgana::error::MAX_TEXT_FILE_BYTES);
+        assert_eq!(clamp_scene(doc.as_bytes()), doc.as_bytes());
+        // Below the limit the same field is clamped.
+        let small = "[integrator]\nphotons = 9999999\n";
+        let clamped = String::from_utf8(clamp_scene(small.as_bytes())).unwrap();
+        assert!(clamped.contains("photons = 500") && !clamped.contains("9999999"), "{clamped}");
+    }
 }

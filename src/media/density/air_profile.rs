@@ -38,6 +38,11 @@ pub struct AirProfile {
 }
 
 impl AirProfile {
+    /// The Earth whose heights the profile follows.
+    pub fn earth(&self) -> &Earth {
+        &self.earth
+    }
+
     /// The number density of `atmosphere` over `earth`, relative to `reference_per_m3`. Fails when
     /// an edit of the atmosphere depends on more than height (a bubble, a grid): then N is not a
     /// function of height.
