@@ -502,12 +502,13 @@ impl<'a> EyeTracer<'a> {
         sc: &mut Scratch,
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        let d = m.density.at(x);
+        let here = m.at(x);
+        let d = here.density();
         if d <= 0.0 {
             return out;
         }
         let nm = &lanes.nm[..lanes.len];
-        let phase = |l: f64, light_travel: DVec3| m.phase.eval(l, light_travel.dot(wo));
+        let phase = |l: f64, light_travel: DVec3| here.phase_eval(l, light_travel.dot(wo));
         // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
         let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm };
         let mut add = |light: &Light, inc: &Incident, _: f64, tr: &BandValues| {
@@ -516,13 +517,13 @@ impl<'a> EyeTracer<'a> {
                 let l = lanes.nm[i];
                 let f = phase(l, -inc.wi);
                 let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
-                out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
+                out[i] += mis * d * here.sigma_s(l) * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
             }
         };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);
         if self.scene.world.lights.iter().any(|l| !l.is_delta()) {
             // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
-            let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());
+            let (wi, pdf) = here.phase_sample(lanes.nm[0], wo, rng.uniform2());
             let to_light = -wi;
             sc.rays.shadow += 1;
             match self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng) {
@@ -535,7 +536,7 @@ impl<'a> EyeTracer<'a> {
                             let le = |l: f64| light.emission.spectrum.eval(l);
                             for i in 0..lanes.len {
                                 let l = lanes.nm[i];
-                                out[i] += mis * d * m.sigma_s(l) * phase(l, wi) / pdf * le(l) * tr[i];
+                                out[i] += mis * d * here.sigma_s(l) * phase(l, wi) / pdf * le(l) * tr[i];
                             }
                         }
                     }
@@ -553,7 +554,7 @@ impl<'a> EyeTracer<'a> {
                             for i in 0..lanes.len {
                                 let l = lanes.nm[i];
                                 let le = sky.emission.spectrum.eval(l);
-                                out[i] += mis * d * m.sigma_s(l) * phase(l, wi) / pdf * le * tr[i];
+                                out[i] += mis * d * here.sigma_s(l) * phase(l, wi) / pdf * le * tr[i];
                             }
                         }
                     }
