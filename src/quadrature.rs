@@ -15,6 +15,29 @@ pub fn gauss_legendre(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> 
     panel_sum(f, a, (b - a) / panels as f64, 0..panels)
 }
 
+/// [`gauss_legendre`] of several integrands at once: `f(x, values)` writes each integrand's
+/// value at x into `values`, and `out[k]` receives the k-th integral, summed over the same panels
+/// and nodes in the same order as [`gauss_legendre`] (so each equals what it would return for
+/// that integrand alone, to the bit). `out` has at most 8 integrands.
+pub fn gauss_legendre_many(f: &mut dyn FnMut(f64, &mut [f64]), a: f64, b: f64, panels: usize, out: &mut [f64]) {
+    let (nodes, weights) = gauss_legendre_16();
+    let h = (b - a) / panels as f64;
+    let k = out.len().min(8);
+    let (mut sums, mut values) = ([0.0f64; 8], [0.0f64; 8]);
+    for p in 0..panels {
+        let mid = a + (p as f64 + 0.5) * h;
+        for (x, w) in nodes.iter().zip(weights.iter()) {
+            f(mid + 0.5 * h * x, &mut values[..k]);
+            for (s, v) in sums.iter_mut().zip(&values[..k]) {
+                *s += w * v;
+            }
+        }
+    }
+    for (o, s) in out.iter_mut().zip(&sums[..k]) {
+        *o = s * 0.5 * h;
+    }
+}
+
 /// [`gauss_legendre`] of an `f` that is exactly zero outside `support`: the same panels and
 /// the same sum, but only the panels that reach into the support are visited (the others add
 /// exact zeros), so the work follows the support's width, not that of [a, b].

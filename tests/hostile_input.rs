@@ -389,6 +389,17 @@ fn spherical_air_that_no_ground_closes_is_refused_naming_the_medium() {
             "{bad}: {e}"
         );
     }
+    // Air with ozone and aerosols (constituents, each on its own height profile) likewise.
+    let hazy = |g: &str| {
+        with_ground(g).replacen(
+            "\nrefraction = true\n",
+            "\nrefraction = true\nozone_du = 300\naerosol = { angstrom_beta = 0.05, scale_height_m = 1200, albedo = 0.95, g = 0.7 }\n",
+            1,
+        )
+    };
+    let e = common::scene_error(&hazy("center = [0.0, -6371000.0, 0.0]\nradius = 65536"));
+    assert!(e.contains("no sphere closes it from below"), "{e}");
+    common::scene(&hazy(ground));
     // Ground 430 m below sea level (the Dead Sea's shore) or above it closes the air.
     for good in
         ["center = [0.0, -6371000.0, 0.0]\nradius = 6370570.0", "center = [0.0, -6371000.0, 0.0]\nradius = 6371500.0"]

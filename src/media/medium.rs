@@ -39,6 +39,11 @@ pub enum Coefficients {
         /// CO₂ volume fraction, ppm.
         co2_ppm: f64,
     },
+    /// An atmosphere of constituents (air, ozone, aerosols), each with its own profile in height:
+    /// σ_t, σ_s, albedo and phase vary with position ([`Medium::at`]); the density field is
+    /// uniform and unused. Position-free queries give bounds: σ_t(λ) and σ_s(λ) are the sums of
+    /// each constituent's largest.
+    Constituents(super::constituents::Constituents),
 }
 
 /// A participating medium (see the module docs): coefficients at density 1, phase function,
@@ -75,6 +80,7 @@ impl Medium {
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => sigma_t.eval(wavelength_nm),
             Coefficients::AbsorptionMixture { sigma_a } => sigma_a.eval(wavelength_nm) + self.sigma_s(wavelength_nm),
             Coefficients::RayleighAir { .. } => self.sigma_s(wavelength_nm),
+            Coefficients::Constituents(c) => c.sigma_t_bound(wavelength_nm),
         }
     }
 
@@ -92,6 +98,12 @@ impl Medium {
             Coefficients::RayleighAir { co2_ppm } => {
                 super::rayleigh_air::cross_section_m2(wavelength_nm, *co2_ppm) * super::rayleigh_air::N_STANDARD_PER_M3
             }
+            Coefficients::Constituents(c) => {
+                let bound = c.list().iter().map(|k| k.albedo * k.profile.bound_from(f64::NEG_INFINITY));
+                let mut w = [0.0; super::constituents::MAX_CONSTITUENTS];
+                w.iter_mut().zip(bound).for_each(|(w, b)| *w = b);
+                super::constituents::Constituents::dot(&c.extinction(wavelength_nm), &w)
+            }
         }
     }
 
@@ -102,16 +114,17 @@ impl Medium {
             Coefficients::ExtinctionAlbedo { .. }
             | Coefficients::AbsorptionScattering { .. }
             | Coefficients::AbsorptionMixture { .. }
-            | Coefficients::RayleighAir { .. } => {
+            | Coefficients::RayleighAir { .. }
+            | Coefficients::Constituents(_) => {
                 let t = self.sigma_t(wavelength_nm);
                 if t > 0.0 { self.sigma_s(wavelength_nm) / t } else { 0.0 }
             }
         }
     }
 
-    /// True when the density is uniform (d ≡ 1), so the coefficients do not vary in space.
+    /// True when the density is uniform (d ≡ 1) and the coefficients do not vary in space.
     pub fn is_homogeneous(&self) -> bool {
-        self.density.is_uniform()
+        self.density.is_uniform() && !matches!(self.coefficients, Coefficients::Constituents(_))
     }
 
     /// True when the medium neither absorbs nor scatters at any wavelength (σ_t ≡ 0 as given,
@@ -124,6 +137,7 @@ impl Medium {
             Coefficients::AbsorptionScattering { sigma_a, sigma_s } => zero(sigma_a) && zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => zero(sigma_t),
             Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir { .. } => false,
+            Coefficients::Constituents(_) => false,
         }
     }
 
@@ -137,6 +151,7 @@ impl Medium {
             Coefficients::AbsorptionScattering { sigma_s, .. } => !zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, albedo } => !zero(sigma_t) && !zero(albedo),
             Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir { .. } => true,
+            Coefficients::Constituents(c) => c.scatterers() > 0,
         }
     }
 

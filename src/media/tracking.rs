@@ -9,9 +9,61 @@
 //!   exponential), else by ratio tracking (Cramer 1978; Novák et al. 2014), an unbiased estimator
 //!   T̂ = Π (1 − σ_t(x_i)/σ̄) over the tentative collisions.
 
-use super::medium::Medium;
+use super::constituents::{Constituents, PerConstituent};
+use super::density::Density;
+use super::medium::{Coefficients, Medium};
 use crate::rng::Rng;
 use glam::DVec3;
+
+/// σ_t(λ, x) of a medium at one wavelength: its extinction at density 1 times the density
+/// field, or the sum over an atmosphere's constituents.
+enum Extinction<'a> {
+    Scaled { sigma_t: f64, density: &'a Density },
+    Constituents { c: &'a Constituents, sigma: PerConstituent },
+}
+
+impl<'a> Extinction<'a> {
+    fn of(m: &'a Medium, wavelength_nm: f64) -> Extinction<'a> {
+        match &m.coefficients {
+            Coefficients::Constituents(c) => Extinction::Constituents { c, sigma: c.extinction(wavelength_nm) },
+            _ => Extinction::Scaled { sigma_t: m.sigma_t(wavelength_nm), density: &m.density },
+        }
+    }
+
+    /// True when σ_t(λ) vanishes everywhere.
+    fn is_zero(&self) -> bool {
+        match self {
+            Extinction::Scaled { sigma_t, .. } => *sigma_t <= 0.0,
+            Extinction::Constituents { sigma, .. } => sigma.iter().all(|s| *s <= 0.0),
+        }
+    }
+
+    /// σ_t(λ, x).
+    fn at(&self, p: DVec3) -> f64 {
+        match self {
+            Extinction::Scaled { sigma_t, density } => sigma_t * density.at(p),
+            Extinction::Constituents { c, sigma } => c.sigma_t_at(sigma, p),
+        }
+    }
+
+    /// Intervals of the ray with a majorant σ̄ ≥ σ_t on each.
+    fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
+        match self {
+            Extinction::Scaled { sigma_t, density } => {
+                density.majorant_intervals(o, dir, t_max, &mut |t0, t1, bound| visit(t0, t1, sigma_t * bound))
+            }
+            Extinction::Constituents { c, sigma } => c.majorant_intervals(sigma, o, dir, t_max, visit),
+        }
+    }
+
+    /// ∫₀ᵗ σ_t ds where it is known without sampling.
+    fn optical_depth_exact(&self, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
+        match self {
+            Extinction::Scaled { sigma_t, density } => density.integral_exact(o, dir, t).map(|d| sigma_t * d),
+            Extinction::Constituents { c, sigma } => Some(c.optical_depth(sigma, o, dir, t)),
+        }
+    }
+}
 
 /// Distance to the first real interaction along `o + t·dir` within [0, t_max], if any.
 pub fn sample_interaction(
@@ -22,32 +74,30 @@ pub fn sample_interaction(
     t_max: f64,
     rng: &mut Rng,
 ) -> Option<f64> {
-    let sigma_t = m.sigma_t(wavelength_nm);
-    if sigma_t <= 0.0 {
+    let field = Extinction::of(m, wavelength_nm);
+    if field.is_zero() {
         return None;
     }
-    if m.is_homogeneous() {
+    if let (true, Extinction::Scaled { sigma_t, .. }) = (m.is_homogeneous(), &field) {
         let t = -(-rng.uniform()).ln_1p() / sigma_t;
         return (t < t_max).then_some(t);
     }
-    delta_tracking(m, sigma_t, o, dir, t_max, rng)
+    delta_tracking_field(&field, o, dir, t_max, rng)
 }
 
 /// Tentative collisions along `o + t·dir` within [0, t_max] at the rate of each majorant
-/// interval σ̄ = σ_t × the density's bound there (exponential steps −ln(1 − ξ)/σ̄); at each one
-/// `visit(t, σ_t(x), σ̄)` is called with the real collision rate at x, and returns whether to go
-/// on. The one loop under delta and ratio tracking (Novák et al. 2018, §4).
+/// interval σ̄ (exponential steps −ln(1 − ξ)/σ̄); at each one `visit(t, σ_t(x), σ̄)` is called
+/// with the real collision rate at x, and returns whether to go on. The one loop under delta and
+/// ratio tracking (Novák et al. 2018, §4).
 fn tentative_collisions(
-    m: &Medium,
-    sigma_t: f64,
+    field: &Extinction,
     o: DVec3,
     dir: DVec3,
     t_max: f64,
     rng: &mut Rng,
     visit: &mut dyn FnMut(f64, f64, f64, &mut Rng) -> bool,
 ) {
-    m.density.majorant_intervals(o, dir, t_max, &mut |t0, t1, bound| {
-        let majorant = sigma_t * bound;
+    field.majorant_intervals(o, dir, t_max, &mut |t0, t1, majorant| {
         if majorant <= 0.0 {
             return true;
         }
@@ -57,18 +107,22 @@ fn tentative_collisions(
             if t >= t1 {
                 return true;
             }
-            if !visit(t, sigma_t * m.density.at(o + t * dir), majorant, rng) {
+            if !visit(t, field.at(o + t * dir), majorant, rng) {
                 return false;
             }
         }
     });
 }
 
-/// Delta tracking over the density's majorant intervals: a tentative collision is real with
-/// probability σ_t(x)/σ̄.
+/// Delta tracking over the density's majorant intervals of a medium with extinction `sigma_t`
+/// at density 1: a tentative collision is real with probability σ_t(x)/σ̄.
 pub fn delta_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> Option<f64> {
+    delta_tracking_field(&Extinction::Scaled { sigma_t, density: &m.density }, o, dir, t_max, rng)
+}
+
+fn delta_tracking_field(field: &Extinction, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> Option<f64> {
     let mut found = None;
-    tentative_collisions(m, sigma_t, o, dir, t_max, rng, &mut |t, rate, majorant, rng| {
+    tentative_collisions(field, o, dir, t_max, rng, &mut |t, rate, majorant, rng| {
         if rng.uniform() * majorant < rate {
             found = Some(t);
             return false;
@@ -80,21 +134,25 @@ pub fn delta_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64
 
 /// Transmittance exp(−∫₀ᵗ σ_t ds) along `o + s·dir`: exact where possible, else ratio tracking.
 pub fn transmittance(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f64, rng: &mut Rng) -> f64 {
-    let sigma_t = m.sigma_t(wavelength_nm);
-    if sigma_t <= 0.0 || t <= 0.0 {
+    let field = Extinction::of(m, wavelength_nm);
+    if field.is_zero() || t <= 0.0 {
         return 1.0;
     }
-    match m.density.integral_exact(o, dir, t) {
-        Some(depth) => (-sigma_t * depth).exp(),
-        None => ratio_tracking(m, sigma_t, o, dir, t, rng),
+    match field.optical_depth_exact(o, dir, t) {
+        Some(depth) => (-depth).exp(),
+        None => ratio_tracking_field(&field, o, dir, t, rng),
     }
 }
 
-/// Ratio tracking estimate of the transmittance: T̂ = Π (1 − σ_t(x_i)/σ̄) over the tentative
-/// collisions.
+/// Ratio tracking estimate of the transmittance of a medium with extinction `sigma_t` at
+/// density 1: T̂ = Π (1 − σ_t(x_i)/σ̄) over the tentative collisions.
 pub fn ratio_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> f64 {
+    ratio_tracking_field(&Extinction::Scaled { sigma_t, density: &m.density }, o, dir, t_max, rng)
+}
+
+fn ratio_tracking_field(field: &Extinction, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> f64 {
     let mut tr = 1.0;
-    tentative_collisions(m, sigma_t, o, dir, t_max, rng, &mut |_, rate, majorant, _| {
+    tentative_collisions(field, o, dir, t_max, rng, &mut |_, rate, majorant, _| {
         tr *= 1.0 - rate / majorant;
         tr > 0.0
     });

@@ -178,8 +178,9 @@ pub fn trace(
                     out.volume.push(f.record(position, dir, DVec3::ZERO));
                     st.stored_volume += 1;
                 }
-                let wo = if rng.uniform() < m.albedo(f.lambda) {
-                    m.phase.sample(f.lambda, dir, rng.uniform2()).0
+                let at = m.at(position);
+                let wo = if rng.uniform() < at.albedo(f.lambda) {
+                    at.choose_phase(f.lambda, rng).sample(f.lambda, dir, rng.uniform2()).0
                 } else if m.inelastic.is_empty() {
                     st.absorbed_medium_w += f.power_w;
                     return;

@@ -238,7 +238,8 @@ impl BeamEstimator<'_> {
             return;
         }
         if let Some(b) = self.bands.index_of(l) {
-            add(b, medium.albedo(l) * medium.phase.eval(l, cos) * p.power_w * kernel);
+            let at = medium.at(p.position);
+            add(b, at.albedo(l) * at.phase_eval(l, cos) * p.power_w * kernel);
         }
     }
 }

@@ -141,7 +141,8 @@ impl Estimator<'_> {
                 continue;
             }
             let Some(b) = self.bands.index_of(l) else { continue };
-            out[b] += medium.albedo(l) * medium.phase.eval(l, p.dir.dot(wo)) * p.power_w;
+            let at = medium.at(p.position);
+            out[b] += at.albedo(l) * at.phase_eval(l, p.dir.dot(wo)) * p.power_w;
         }
         let r = r2.sqrt();
         let scale = 1.0 / (4.0 / 3.0 * PI * r2 * r * self.bands.width_nm());

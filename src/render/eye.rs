@@ -56,7 +56,9 @@ const MAX_REFINE: u32 = 4;
 /// events (entering and leaving a glass object), then choose one branch by Fresnel.
 const FRESNEL_SPLIT_DEPTH: usize = 2;
 
-/// The most steps a camera ray's march takes over one chord. A step's sample point is jittered
+/// The most steps the mean-free-path rule may add to a camera ray's march over one chord: a
+/// step is shortened to a quarter of the mean free path only down to a this-many-th of the
+/// chord (never below what `march_step` itself gives). A step's sample point is jittered
 /// uniformly within it, so T(s)·h estimates ∫ T over the step without bias at any length; short
 /// steps only lower the noise. Without this bound a dye whose σ_a reaches 2 × 10⁸ m⁻¹ at one
 /// wavelength held a 4 × 4 render's rays to 5 nm steps: 65 million steps (the render fuzzer,
@@ -509,12 +511,13 @@ impl<'a> EyeTracer<'a> {
         sc: &mut Scratch,
     ) -> BandValues {
         let mut out = [0.0; MAX_BANDS];
-        let d = m.density.at(x);
+        let here = m.at(x);
+        let d = here.density();
         if d <= 0.0 {
             return out;
         }
         let nm = &lanes.nm[..lanes.len];
-        let phase = |l: f64, light_travel: DVec3| m.phase.eval(l, light_travel.dot(wo));
+        let phase = |l: f64, light_travel: DVec3| here.phase_eval(l, light_travel.dot(wo));
         // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
         let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm };
         let mut add = |light: &Light, inc: &Incident, _: f64, tr: &BandValues| {
@@ -523,13 +526,13 @@ impl<'a> EyeTracer<'a> {
                 let l = lanes.nm[i];
                 let f = phase(l, -inc.wi);
                 let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
-                out[i] += mis * d * m.sigma_s(l) * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
+                out[i] += mis * d * here.sigma_s(l) * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
             }
         };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);
         if self.scene.world.lights.iter().any(|l| !l.is_delta()) {
             // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
-            let (wi, pdf) = m.phase.sample(lanes.nm[0], wo, rng.uniform2());
+            let (wi, pdf) = here.phase_sample(lanes.nm[0], wo, rng.uniform2());
             let to_light = -wi;
             sc.rays.shadow += 1;
             match self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng) {
@@ -542,7 +545,7 @@ impl<'a> EyeTracer<'a> {
                             let le = |l: f64| light.emission.spectrum.eval(l);
                             for i in 0..lanes.len {
                                 let l = lanes.nm[i];
-                                out[i] += mis * d * m.sigma_s(l) * phase(l, wi) / pdf * le(l) * tr[i];
+                                out[i] += mis * d * here.sigma_s(l) * phase(l, wi) / pdf * le(l) * tr[i];
                             }
                         }
                     }
@@ -560,7 +563,7 @@ impl<'a> EyeTracer<'a> {
                             for i in 0..lanes.len {
                                 let l = lanes.nm[i];
                                 let le = sky.emission.spectrum.eval(l);
-                                out[i] += mis * d * m.sigma_s(l) * phase(l, wi) / pdf * le * tr[i];
+                                out[i] += mis * d * here.sigma_s(l) * phase(l, wi) / pdf * le * tr[i];
                             }
                         }
                     }
@@ -716,19 +719,20 @@ impl<'a> EyeTracer<'a> {
     }
 
     /// The next step: `march_step` halved `level` times and capped at a quarter of the local
-    /// mean free path, but no shorter than a [`MAX_MARCH_STEPS`]th of the chord — or, for a
-    /// gather ray, the chord in [`GATHER_STEPS`] steps.
+    /// mean free path, but not by that rule below a [`MAX_MARCH_STEPS`]th of the chord — or,
+    /// for a gather ray, the chord in [`GATHER_STEPS`] steps.
     fn step_length(&self, m: &Medium, c: &Chord, t0: f64, sigma_t_max: f64, level: u32, mode: Mode) -> f64 {
         let h_max = self.scene.integrator.march_step_m;
         if mode == Mode::Gather {
             return h_max.max(c.length / GATHER_STEPS);
         }
         let mut h = h_max / f64::from(1u32 << level);
+        let floor = h.min(c.length / MAX_MARCH_STEPS);
         let local = sigma_t_max * m.density.at(c.origin + t0 * c.dir);
         if local > 0.0 {
             h = h.min(0.25 / local);
         }
-        h.max(1e-6 * h_max).max(c.length / MAX_MARCH_STEPS)
+        h.max(1e-6 * h_max).max(floor)
     }
 
     /// Multiplies the carried transmittance by that of the chord between `a` and `b`.

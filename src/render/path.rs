@@ -168,8 +168,10 @@ impl<'a> PathTracer<'a> {
     ) -> Option<RayState> {
         let m = &self.scene.world.media[medium as usize];
         rays.medium_steps += 1;
-        w.beta *= m.albedo(w.lambda);
-        Some(self.scatter(position, dir, medium, &m.phase, w, l, rng, rays))
+        let at = m.at(position);
+        w.beta *= at.albedo(w.lambda);
+        let phase = at.choose_phase(w.lambda, rng);
+        Some(self.scatter(position, dir, medium, phase, w, l, rng, rays))
     }
 
     /// Next-event estimation and a direction drawn from `phase` at `position`.

@@ -8,6 +8,9 @@
 //! rayleigh = true          # Rayleigh scattering by dry air, Bodhaine et al. 1999 (default true)
 //! co2_ppm = 360            # CO₂ of the cross-section and King factor (default 360, Bodhaine's)
 //! refraction = false       # light also curves along the atmosphere's refractive index (default false)
+//! ozone_du = 300           # ozone column, Dobson units (default: no ozone)
+//! aerosol = { angstrom_beta = 0.05, angstrom_alpha = 1.3, scale_height_m = 1200, albedo = 0.95, g = 0.7 }
+//!                          # or visibility_km = 23 instead of angstrom_beta (default: no aerosols)
 //! ```
 //!
 //! The scattering coefficient is σ_s(λ, x) = σ(λ) N(h(x)), with σ the Rayleigh cross-section
@@ -17,6 +20,10 @@
 //! gives one, else on the atmosphere's own (USA76: the spherical Earth of radius 6371 km centred
 //! at (0, −R, 0)). The phase function is Rayleigh's with the depolarisation ratio ρ of Bodhaine's
 //! King factor at the middle of the scene's wavelength range (see the book's page "The sky").
+//!
+//! With `ozone_du` or `aerosol` the medium is an atmosphere of constituents (air, ozone,
+//! aerosols; [`crate::media::constituents`]), built in `atmosphere_constituents.rs`; without
+//! them it is the air alone, as before.
 
 use super::raw::RawMedium;
 use crate::atmosphere::{Atmosphere, Earth};
@@ -30,11 +37,11 @@ use crate::validate::present_fields;
 use crate::validate::{Ctx, R};
 use toml::{Spanned, Value};
 
-const ATMOSPHERE_FIELDS: &[&str] = &["atmosphere", "rayleigh", "co2_ppm", "refraction"];
+const ATMOSPHERE_FIELDS: &[&str] = &["atmosphere", "rayleigh", "co2_ppm", "refraction", "ozone_du", "aerosol"];
 
 /// Rejects atmosphere-only fields on a medium without `type = "atmosphere"`.
 pub fn reject_atmosphere_fields(ctx: &Ctx, m: &RawMedium, what: &str) -> R<()> {
-    for (name, span) in present_fields!(m; atmosphere, rayleigh, co2_ppm, refraction) {
+    for (name, span) in present_fields!(m; atmosphere, rayleigh, co2_ppm, refraction, ozone_du, aerosol) {
         if let Some(span) = span {
             return Err(ctx.err(&span, format!("{what}: field `{name}` is used only with type = \"atmosphere\"")));
         }
@@ -52,7 +59,7 @@ pub fn atmosphere_medium(
     earth: &(Earth, bool),
 ) -> R<Medium> {
     let what = format!("medium \"{name}\"");
-    let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo, phase, density, index, inelastic, chl_mg_m3, cdom_a440_per_m, cdom_slope_per_nm, chl_yield, cdom_yield, raman, particle_phase, data_dir, atmosphere, rayleigh, co2_ppm, refraction);
+    let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo, phase, density, index, inelastic, chl_mg_m3, cdom_a440_per_m, cdom_slope_per_nm, chl_yield, cdom_yield, raman, particle_phase, data_dir, atmosphere, rayleigh, co2_ppm, refraction, ozone_du, aerosol);
     ctx.only(&present, ATMOSPHERE_FIELDS, &format!("{what} (atmosphere)"))?;
     let atmosphere = profile(ctx, m.atmosphere.as_ref(), kind, &what)?;
     let atmosphere = if earth.1 { atmosphere.with_earth(earth.0) } else { atmosphere };
@@ -66,6 +73,22 @@ pub fn atmosphere_medium(
         .as_ref()
         .is_some_and(|r| *r.get_ref())
         .then(|| IndexField::Atmosphere(Box::new(atmosphere.clone())));
+    if m.ozone_du.is_some() || m.aerosol.is_some() {
+        let span = m.rayleigh.as_ref().map_or(kind.span(), |r| r.span());
+        if rayleigh {
+            check_range(ctx, span, &what, bands)?;
+        }
+        let air = super::atmosphere_constituents::Air { atmosphere: &atmosphere, rayleigh, co2_ppm, kind, bands };
+        let (constituents, phase) = super::atmosphere_constituents::constituents(ctx, m, &air, &what)?;
+        return Ok(Medium {
+            name: name.to_string(),
+            coefficients: Coefficients::Constituents(constituents),
+            phase,
+            density: Density::Uniform,
+            index,
+            inelastic: crate::media::inelastic::Inelastic::none(),
+        });
+    }
     let (coefficients, phase, density) = if rayleigh {
         check_range(ctx, m.rayleigh.as_ref().map_or(kind.span(), |r| r.span()), &what, bands)?;
         let density = AirProfile::new(&atmosphere, atmosphere.earth, N_STANDARD_PER_M3)

@@ -10,8 +10,8 @@ use super::raw::RawScene;
 use crate::atmosphere::Earth;
 use crate::error::Result;
 use crate::geometry::Shape;
-use crate::media::Medium;
 use crate::media::density::Density;
+use crate::media::{Coefficients, Medium};
 use crate::validate::Ctx;
 use crate::world::World;
 use glam::DVec3;
@@ -47,11 +47,16 @@ pub fn check_ground_closes_the_air(ctx: &Ctx, raw: &RawScene, world: &World) -> 
 /// any. A refractive index alone is left alone: below the ground it is held constant, paths
 /// there are straight and cheap, and a ray-bending test bench needs no ground.
 fn spherical_earth(m: &Medium) -> Option<(DVec3, f64)> {
+    let sphere = |e: &Earth| match e {
+        Earth::Spherical(s) => Some((s.centre, s.radius_m)),
+        Earth::Flat { .. } => None,
+    };
+    if let Coefficients::Constituents(c) = &m.coefficients {
+        // Air, ozone and aerosols each follow their own height profile over the same Earth.
+        return c.list().iter().find_map(|k| sphere(k.profile.earth()));
+    }
     match &m.density {
-        Density::AirProfile(a) => match a.earth() {
-            Earth::Spherical(s) => Some((s.centre, s.radius_m)),
-            Earth::Flat { .. } => None,
-        },
+        Density::AirProfile(a) => sphere(a.earth()),
         Density::SphericalExponential(s) => Some((s.centre, s.radius_m)),
         Density::Uniform | Density::ExponentialHeight(_) | Density::Grid(_) | Density::Fbm(_) => None,
     }

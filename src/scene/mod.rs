@@ -3,6 +3,7 @@
 //! Loading goes parse, then validate and transform, then build (as Mitsuba 3 does). Every
 //! error names the file, line and column, the field, what was wrong and what is allowed.
 
+mod atmosphere_constituents;
 mod atmosphere_medium;
 mod ground;
 mod inelastic;

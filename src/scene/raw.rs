@@ -115,6 +115,12 @@ pub struct RawMedium {
     pub co2_ppm: S<f64>,
     /// `[[medium]] refraction` (atmosphere): whether light curves along the air's refractive index.
     pub refraction: S<bool>,
+    /// `[[medium]] ozone_du` (atmosphere): the ozone column in Dobson units (AFGL mid-latitude
+    /// summer profile, Bogumil et al. 2003 cross-section).
+    pub ozone_du: S<f64>,
+    /// `[[medium]] aerosol` (atmosphere): a table of Ångström α and β (or a visibility), scale
+    /// height, single-scattering albedo and Henyey–Greenstein g.
+    pub aerosol: S<toml::Value>,
 }
 
 /// `[camera]`: a pinhole or all-sky camera.

@@ -53,19 +53,25 @@ impl AirProfile {
                 atmosphere.name
             ));
         }
-        let top_m = atmosphere.top_m();
-        let cells = (top_m / MAX_STEP_M).ceil() as usize;
-        let step_m = top_m / cells as f64;
         let at_height = |h: f64| {
             let air = atmosphere.air(point_at_height(&earth, h));
             gas::number_density_per_m3(air.pressure_pa, air.temperature_k) / reference_per_m3
         };
-        let values: Vec<f64> = (0..=cells).map(|i| at_height(i as f64 * step_m)).collect();
+        Ok(AirProfile::from_heights(earth, atmosphere.top_m(), at_height))
+    }
+
+    /// Any function `d(h)` ≥ 0 of the height above `earth`, tabulated from the ground to `top_m`
+    /// on the same nodes as an atmosphere's air of that top (so tables of one atmosphere's
+    /// constituents share their heights, pieces and majorant intervals).
+    pub fn from_heights(earth: Earth, top_m: f64, d: impl Fn(f64) -> f64) -> AirProfile {
+        let cells = (top_m / MAX_STEP_M).ceil() as usize;
+        let step_m = top_m / cells as f64;
+        let values: Vec<f64> = (0..=cells).map(|i| d(i as f64 * step_m)).collect();
         let mut max_above = values.clone();
         for i in (0..cells).rev() {
             max_above[i] = max_above[i].max(max_above[i + 1]);
         }
-        Ok(AirProfile { earth, top_m, step_m, values: values.into(), max_above: max_above.into() })
+        AirProfile { earth, top_m, step_m, values: values.into(), max_above: max_above.into() }
     }
 
     /// The atmosphere's top, m: d = 0 at and above it.
@@ -92,6 +98,11 @@ impl AirProfile {
         self.at_height(self.earth.height(p))
     }
 
+    /// The height of `p` above the table's Earth, m.
+    pub fn height(&self, p: DVec3) -> f64 {
+        self.earth.height(p)
+    }
+
     /// ∫₀ᵗ d(o + s·dir) ds by piecewise Gauss–Legendre quadrature below the top.
     pub fn integral(&self, o: DVec3, dir: DVec3, t: f64) -> f64 {
         let Some((a, b)) = self.below_top(o, dir, t) else { return 0.0 };
@@ -103,37 +114,70 @@ impl AirProfile {
         gauss_legendre(&|s: f64| self.at(o + s * dir), a, b, n)
     }
 
+    /// ∫₀ᵗ dₖ(o + s·dir) ds of several tables of one atmosphere (same Earth and top) into
+    /// `out[k]`: the heights are found once per node, and each integral equals
+    /// [`AirProfile::integral`] of that table to the bit.
+    pub fn integrals(tables: &[&AirProfile], o: DVec3, dir: DVec3, t: f64, out: &mut [f64]) {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        let Some(first) = tables.first() else { return };
+        let Some((a, b)) = first.below_top(o, dir, t) else { return };
+        if b.is_infinite() {
+            for (v, table) in out.iter_mut().zip(tables) {
+                *v = if table.values[0] > 0.0 { f64::INFINITY } else { 0.0 };
+            }
+            return;
+        }
+        let n = pieces(b - a);
+        let mut f = |s: f64, values: &mut [f64]| {
+            let h = first.earth.height(o + s * dir);
+            for (v, table) in values.iter_mut().zip(tables) {
+                *v = table.at_height(h);
+            }
+        };
+        crate::quadrature::gauss_legendre_many(&mut f, a, b, n, &mut out[..tables.len()]);
+    }
+
     /// Pieces of at most 1 km below the top, each bounded by the running maximum at its lowest
     /// height, and bound 0 elsewhere; see [`super::Density::majorant_intervals`].
     pub fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
+        self.pieces(o, dir, t_max, &mut |t0, t1, h| visit(t0, t1, self.bound_from(h)))
+    }
+
+    /// Calls `visit(t0, t1, h)` for consecutive intervals covering [0, t_max]: pieces of at most
+    /// 1 km below the top with h the least height on each (−∞ for a ray down or level for ever
+    /// under a flat Earth's top), and the parts above the top with h = +∞. `visit` returns false
+    /// to stop. The pieces depend only on the Earth and the top, so tables of one atmosphere
+    /// share them.
+    pub fn pieces(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
         let Some((a, b)) = self.below_top(o, dir, t_max) else {
-            visit(0.0, t_max, 0.0);
+            visit(0.0, t_max, f64::INFINITY);
             return;
         };
-        if a > 0.0 && !visit(0.0, a, 0.0) {
+        if a > 0.0 && !visit(0.0, a, f64::INFINITY) {
             return;
         }
         if b.is_infinite() {
             // Down or level for ever under a flat Earth's top: one interval, bounded by the
             // largest value of the table.
-            visit(a, b, self.max_above[0]);
+            visit(a, b, f64::NEG_INFINITY);
             return;
         }
         let n = pieces(b - a);
         let dt = (b - a) / n as f64;
         for i in 0..n {
             let (t0, t1) = (a + i as f64 * dt, if i + 1 == n { b } else { a + (i + 1) as f64 * dt });
-            if !visit(t0, t1, self.bound_from(self.lowest_height(o, dir, t0, t1))) {
+            if !visit(t0, t1, self.lowest_height(o, dir, t0, t1)) {
                 return;
             }
         }
         if b < t_max {
-            visit(b, t_max, 0.0);
+            visit(b, t_max, f64::INFINITY);
         }
     }
 
-    /// The largest tabulated value at or above height `h`.
-    fn bound_from(&self, h: f64) -> f64 {
+    /// The largest tabulated value at or above height `h` (0 at and above the top; the largest
+    /// of the table for h ≤ 0).
+    pub fn bound_from(&self, h: f64) -> f64 {
         if h >= self.top_m {
             return 0.0;
         }

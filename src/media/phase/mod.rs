@@ -205,7 +205,7 @@ impl PhaseFunction {
 }
 
 /// The unit vector at angle acos(`cos_theta`) from the unit vector `axis`, at azimuth 2π `u1`.
-fn direction_about(axis: DVec3, cos_theta: f64, u1: f64) -> DVec3 {
+pub fn direction_about(axis: DVec3, cos_theta: f64, u1: f64) -> DVec3 {
     let sin_theta = ((1.0 - cos_theta) * (1.0 + cos_theta)).max(0.0).sqrt();
     let phi = 2.0 * PI * u1;
     let local = DVec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta);

@@ -75,25 +75,26 @@ fn tally(
         return;
     }
     let Some(m) = scene.world.medium(scene.world.medium_at(p.position)) else { return };
-    let sigma_t = m.sigma_t(p.wavelength_nm) * m.density.at(p.position);
+    let at = m.at(p.position);
+    let sigma_t = at.sigma_t(p.wavelength_nm) * at.density();
     if sigma_t <= 0.0 {
         return;
     }
     let mu = p.dir.dot(s.up);
     let w = p.power_w / sigma_t;
     let l = p.wavelength_nm;
-    let up_elastic = m.albedo(l) * cone_mean_phase(&m.phase, l, p.dir, s.up, rng) * p.power_w;
+    let up_elastic = at.albedo(l) * cone_mean_phase(at.choose_phase(l, rng), l, p.dir, s.up, rng) * p.power_w;
     let mut up_inelastic = [0.0; crate::spectrum::MAX_BANDS];
     if let Some(t) = &m.inelastic.transfer {
         t.add_photon(&m.inelastic, &mut up_inelastic, l, mu, p.power_w);
     }
-    let density = m.density.at(p.position);
+    let density = at.density();
     for (k, z) in depths.iter().enumerate() {
         if depth > *z {
             let h = depth - z;
             sums[k * bands.count + b][4] += up_elastic * (-sigma_t * h).exp();
             for (j, v) in up_inelastic.iter().enumerate().take(bands.count).filter(|(_, v)| **v > 0.0) {
-                sums[k * bands.count + j][4] += v * (-m.sigma_t(bands.centre_nm(j)) * density * h).exp();
+                sums[k * bands.count + j][4] += v * (-at.sigma_t(bands.centre_nm(j)) * density * h).exp();
             }
         }
         // The slab clipped to the water (photons above the surface are not in it).

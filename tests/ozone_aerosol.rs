@@ -1,0 +1,327 @@
+//! Ozone and aerosols in the scattering atmosphere (`ozone_du`, `aerosol` of a
+//! `[[medium]] type = "atmosphere"`): the ozone column's optical depth at the Chappuis peak
+//! against σ·N, the aerosols' against Ångström's law, the whole atmosphere's transmittance —
+//! computed and path-traced — against Beer–Lambert on the summed profiles, energy conservation
+//! over a black Earth, a constituent of zero amount changing nothing, the mixture's phase
+//! sampling against its density, and the scene errors.
+
+mod common;
+
+use common::{scene, scene_error};
+use glam::DVec3;
+use morgana::media::Medium;
+use morgana::media::rayleigh_air::cross_section_m2;
+use morgana::media::tracking::transmittance;
+use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::photon_map::PhotonPath;
+use morgana::rng::{Rng, Stream};
+
+const R_EARTH_M: f64 = 6_371_000.0;
+
+/// Bogumil et al. (2003), SCIAMACHY, 293 K, as published: σ(603.0779 nm) = 5.30671 × 10⁻²¹ cm².
+const CHAPPUIS_NM: f64 = 603.0779;
+const CHAPPUIS_SIGMA_M2: f64 = 5.30671e-25;
+/// 1 DU = 2.6867 × 10¹⁶ molecules cm⁻² (WMO-No. 8): 300 DU = 8.0601 × 10²² m⁻².
+const MOLECULES_PER_M2_PER_DU: f64 = 2.6867e20;
+
+const ZENITH_BEAM: &str =
+    "[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 1.0\n";
+
+/// A black Earth of radius 6371 km in a USA76 atmosphere with the medium lines `extra`, over
+/// `min_nm`–`max_nm`, lit by `light`.
+fn black_earth(min_nm: f64, max_nm: f64, extra: &str, light: &str) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 1.0, 0.0]
+look_at = [0.0, 2.0, 0.001]
+fov_deg = 40.0
+width = 4
+height = 4
+
+[output]
+bands = 4
+min_nm = {min_nm:?}
+max_nm = {max_nm:?}
+
+[world]
+medium = "air"
+earth = "spherical"
+
+[[medium]]
+name = "air"
+type = "atmosphere"
+atmosphere = "usa76"
+{extra}
+
+[[material]]
+name = "black"
+type = "lambertian"
+reflectance = 0.0
+
+[[shape]]
+type = "sphere"
+center = [0.0, -{R_EARTH_M:?}, 0.0]
+radius = {R_EARTH_M:?}
+material = "black"
+{light}
+"#
+    )
+}
+
+fn air(s: &morgana::scene::Scene) -> &Medium {
+    s.world.media.iter().find(|m| m.name == "air").expect("the air medium")
+}
+
+/// Vertical optical depth of the whole atmosphere at `nm`, from the transmittance up a vertical
+/// chord from the ground.
+fn vertical_tau(m: &Medium, nm: f64) -> f64 {
+    let mut rng = Rng::for_task(1, Stream::Test, 0);
+    -transmittance(m, nm, DVec3::ZERO, DVec3::Y, 1e7, &mut rng).ln()
+}
+
+/// USA76 number density N = P N_A/(R* T) at geometric height `h` (the standard's constants).
+fn usa76_n(h: f64) -> f64 {
+    let s = morgana::atmosphere::usa76::at_geometric(h);
+    s.pressure_pa * 6.022_169e23 / (8.314_32 * s.temperature_k)
+}
+
+/// ∫ N dh from the ground to the 86 km top by Simpson's rule on 1 m steps.
+fn air_column_per_m2() -> f64 {
+    let n = 86_000usize;
+    let f = |i: usize| usa76_n(i as f64);
+    let inner: f64 = (1..n).map(|i| if i % 2 == 1 { 4.0 * f(i) } else { 2.0 * f(i) }).sum();
+    (f(0) + inner + f(n)) / 3.0
+}
+
+/// 300 DU of ozone alone (no Rayleigh): the vertical optical depth at the Chappuis peak is
+/// σ·N = 5.30671e-25 m² × 300 × 2.6867e20 m⁻² = 0.042773 (the column is the scene's by
+/// construction, so this checks the profile's scaling, its tabulation and quadrature, and the
+/// cross-section table against the published value). To 10⁻⁵: the profile is log-linear between
+/// AFGL's levels, so its slope breaks at each level, and the 16-point rule on 1 km pieces of the
+/// 5 m table integrates across those breaks with a relative error of 2 × 10⁻⁶ (the Simpson
+/// normalisation on 1 m steps agrees with the exact layer integrals to 10⁻⁹).
+#[test]
+fn ozone_column_optical_depth_at_the_chappuis_peak_is_sigma_n() {
+    let s = scene(&black_earth(550.0, 650.0, "rayleigh = false\nozone_du = 300", ZENITH_BEAM));
+    let got = vertical_tau(air(&s), CHAPPUIS_NM);
+    let want = CHAPPUIS_SIGMA_M2 * 300.0 * MOLECULES_PER_M2_PER_DU;
+    println!("τ_O3({CHAPPUIS_NM} nm, 300 DU) = {got:.6}, σN = {want:.6}");
+    assert!((got / want - 1.0).abs() < 1e-5, "τ = {got}, σN = {want}");
+    // Twice the column, twice the depth; none, none.
+    let s2 = scene(&black_earth(550.0, 650.0, "rayleigh = false\nozone_du = 600", ZENITH_BEAM));
+    assert!((vertical_tau(air(&s2), CHAPPUIS_NM) / (2.0 * want) - 1.0).abs() < 1e-5);
+}
+
+/// Aerosols alone: the vertical optical depth is β (λ/1 µm)^−α (Ångström 1929) at every
+/// wavelength, whatever the scale height (the profile integrates to one over the column).
+#[test]
+fn aerosol_optical_depth_follows_angstrom() {
+    for (alpha, beta, h) in [(1.3, 0.05, 1200.0), (0.4, 0.2, 3000.0)] {
+        let extra = format!(
+            "rayleigh = false\naerosol = {{ angstrom_alpha = {alpha:?}, angstrom_beta = {beta:?}, scale_height_m = {h:?}, albedo = 0.9, g = 0.7 }}"
+        );
+        let s = scene(&black_earth(400.0, 800.0, &extra, ZENITH_BEAM));
+        for nm in [400.0, 550.0, 700.0, 800.0] {
+            let got = vertical_tau(air(&s), nm);
+            let want = beta * (nm / 1000.0f64).powf(-alpha);
+            assert!((got / want - 1.0).abs() < 1e-5, "α {alpha}, β {beta}, {nm} nm: τ = {got}, βλ^−α = {want}");
+        }
+    }
+}
+
+const HAZE: &str =
+    "aerosol = { angstrom_alpha = 1.3, angstrom_beta = 0.1, scale_height_m = 1500, albedo = 1.0, g = 0.7 }";
+
+/// Air + 300 DU ozone + aerosols: the computed transmittance of the whole atmosphere straight up
+/// equals exp(−τ_R − τ_O3 − τ_a), each optical depth from its own closed form (Rayleigh:
+/// σ_R ∫N dh by Simpson's rule on the USA76 standard; ozone σN; aerosols βλ^−α), to 10⁻⁵ (the
+/// ozone quadrature above). Along the 60° chord of a round Earth the mixture's optical depth is
+/// the sum of each constituent's alone, to 10⁻¹².
+#[test]
+fn whole_atmosphere_transmittance_is_beer_lambert_on_the_summed_profile() {
+    let all = format!("ozone_du = 300\n{HAZE}");
+    let s = scene(&black_earth(550.0, 650.0, &all, ZENITH_BEAM));
+    let m = air(&s);
+    let nm = CHAPPUIS_NM;
+    let tau_r = cross_section_m2(nm, 360.0) * air_column_per_m2();
+    let tau_o3 = CHAPPUIS_SIGMA_M2 * 300.0 * MOLECULES_PER_M2_PER_DU;
+    let tau_a = 0.1 * (nm / 1000.0f64).powf(-1.3);
+    let got = vertical_tau(m, nm);
+    println!("τ = {got:.6}: Rayleigh {tau_r:.6} + ozone {tau_o3:.6} + aerosol {tau_a:.6}");
+    assert!((got / (tau_r + tau_o3 + tau_a) - 1.0).abs() < 1e-5, "{got} vs {}", tau_r + tau_o3 + tau_a);
+    // Slant: the mixture's depth is the sum of its constituents' alone, chord by chord.
+    let dir = DVec3::new(60f64.to_radians().sin(), 60f64.to_radians().cos(), 0.0);
+    let slant = |extra: &str| {
+        let s = scene(&black_earth(550.0, 650.0, extra, ZENITH_BEAM));
+        let mut rng = Rng::for_task(2, Stream::Test, 0);
+        -transmittance(air(&s), nm, DVec3::ZERO, dir, 1e7, &mut rng).ln()
+    };
+    let sum = slant("") + slant("rayleigh = false\nozone_du = 300") + slant(&format!("rayleigh = false\n{HAZE}"));
+    let mut rng = Rng::for_task(2, Stream::Test, 0);
+    let mixed = -transmittance(m, nm, DVec3::ZERO, dir, 1e7, &mut rng).ln();
+    assert!((mixed / sum - 1.0).abs() < 1e-12, "{mixed} vs {sum}");
+}
+
+/// Photons path-traced down through air + ozone + aerosols (delta tracking over the summed
+/// majorants): the fraction reaching the ground unscattered is exp(−τ_slant) of the summed
+/// optical depths along the 60° chord, within 4 standard errors; with ω = 1 aerosols, all that
+/// is lost in the air is ozone's absorption, and every watt is accounted for.
+#[test]
+fn path_traced_transmittance_and_energy_balance() {
+    let light = r#"
+[[light]]
+type = "directional"
+direction = [-0.8660254037844386, -0.5, 0.0]
+spectrum = 1.0
+irradiance_w_m2 = 1.0
+target_min = [-1000.0, 0.0, -1000.0]
+target_max = [1000.0, 1.0, 1000.0]
+"#;
+    // A 1 nm band at the Chappuis peak: σ_O3 varies by < 0.1 % across it (5.302–5.311e-21 cm²).
+    let all = format!("ozone_du = 300\n{HAZE}");
+    let s = scene(&black_earth(602.58, 603.58, &all, light));
+    let n = 100_000u64;
+    let (sink, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 21, &|_| {});
+    let emitted = n as f64 * st.power_per_photon_w;
+    assert_eq!(st.truncated_w, 0.0);
+    let out = st.absorbed_surface_w + st.escaped_w + st.absorbed_medium_w;
+    assert!((out / emitted - 1.0).abs() < 1e-9, "ground + space + air = {out} of {emitted} W");
+    assert!(st.absorbed_medium_w > 0.0, "ozone absorbs");
+    // The slant depth from the computed transmittance (checked against closed forms above).
+    let dir = DVec3::new(0.8660254037844386, 0.5, 0.0);
+    let mut rng = Rng::for_task(3, Stream::Test, 0);
+    let want = transmittance(air(&s), CHAPPUIS_NM, DVec3::ZERO, dir, 1e7, &mut rng);
+    let direct: f64 = sink.surface.iter().filter(|p| p.path == PhotonPath::Direct).map(|p| p.power_w).sum();
+    let got = direct / emitted;
+    let se = (want * (1.0 - want) / n as f64).sqrt();
+    println!(
+        "direct {got:.5} vs exp(−τ) {want:.5} (s.e. {se:.5}); absorbed in air {:.5}",
+        st.absorbed_medium_w / emitted
+    );
+    assert!((got - want).abs() < 4.0 * se, "direct {got} vs {want}");
+}
+
+/// Without ozone, ω = 1 aerosols over a black Earth: reflected + transmitted = incident, none
+/// absorbed in the air; with ω = 0.8 the air absorbs and the balance still closes.
+#[test]
+fn unit_albedo_aerosols_conserve_energy_over_a_black_earth() {
+    let light = r#"
+[[light]]
+type = "directional"
+direction = [-0.5, -0.8660254037844386, 0.0]
+spectrum = 1.0
+irradiance_w_m2 = 1.0
+target_min = [-1000.0, 0.0, -1000.0]
+target_max = [1000.0, 1.0, 1000.0]
+"#;
+    for (albedo, absorbs) in [(1.0, false), (0.8, true)] {
+        let extra = format!(
+            "aerosol = {{ angstrom_alpha = 1.3, angstrom_beta = 0.3, scale_height_m = 1500, albedo = {albedo:?}, g = 0.7 }}"
+        );
+        let s = scene(&black_earth(500.0, 600.0, &extra, light));
+        let n = 50_000u64;
+        let (_, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 31, &|_| {});
+        let emitted = n as f64 * st.power_per_photon_w;
+        let out = st.absorbed_surface_w + st.escaped_w + st.absorbed_medium_w;
+        assert!((out / emitted - 1.0).abs() < 1e-9, "ω = {albedo}: {out} of {emitted} W");
+        assert_eq!(st.absorbed_medium_w > 0.0, absorbs, "ω = {albedo}: absorbed {}", st.absorbed_medium_w);
+        assert!(st.escaped_w > 0.0 && st.absorbed_surface_w > 0.0);
+    }
+}
+
+/// `ozone_du = 0` gives the same photon pass, to the bit, as no ozone: zero extinction adds
+/// nothing to any majorant, rate or depth, and ozone does not scatter, so no choice is drawn.
+/// An aerosol of zero optical depth leaves the transmittance unchanged to the bit.
+#[test]
+fn a_constituent_of_zero_amount_changes_nothing() {
+    let light = r#"
+[[light]]
+type = "directional"
+direction = [-0.5, -0.8660254037844386, 0.0]
+spectrum = 1.0
+irradiance_w_m2 = 1.0
+target_min = [-1000.0, 0.0, -1000.0]
+target_max = [1000.0, 1.0, 1000.0]
+"#;
+    let plain = scene(&black_earth(400.0, 700.0, "", light));
+    let zero = scene(&black_earth(400.0, 700.0, "ozone_du = 0", light));
+    let n = 20_000u64;
+    let (a_sink, a) = shoot(&plain.world, &PassSettings::of(&plain), MapKind::Global, n, 41, &|_| {});
+    let (b_sink, b) = shoot(&zero.world, &PassSettings::of(&zero), MapKind::Global, n, 41, &|_| {});
+    assert_eq!(a, b, "photon statistics");
+    assert_eq!(a_sink.volume.len(), b_sink.volume.len());
+    assert!(a_sink.volume.iter().zip(&b_sink.volume).all(|(p, q)| p.position == q.position && p.power_w == q.power_w));
+    let no_haze = scene(&black_earth(
+        400.0,
+        700.0,
+        "aerosol = { angstrom_beta = 0.0, scale_height_m = 1000, albedo = 0.9, g = 0.7 }",
+        light,
+    ));
+    let dir = DVec3::new(0.5, 0.8660254037844386, 0.0);
+    for nm in [400.0, 550.0, 700.0] {
+        let mut rng = Rng::for_task(4, Stream::Test, 0);
+        let t0 = transmittance(air(&plain), nm, DVec3::ZERO, dir, 1e7, &mut rng);
+        let t1 = transmittance(air(&zero), nm, DVec3::ZERO, dir, 1e7, &mut rng);
+        let t2 = transmittance(air(&no_haze), nm, DVec3::ZERO, dir, 1e7, &mut rng);
+        assert_eq!(t0.to_bits(), t1.to_bits(), "{nm} nm: {t0} vs {t1}");
+        assert_eq!(t0.to_bits(), t2.to_bits(), "{nm} nm: {t0} vs {t2}");
+    }
+}
+
+/// At a height where air and aerosols scatter comparably, directions drawn by the medium at
+/// that point follow the density it reports (the scattering-weighted mixture of Rayleigh and
+/// Henyey–Greenstein): a χ² test of cos θ.
+#[test]
+fn the_mixture_at_a_point_samples_its_own_phase_function() {
+    let s = scene(&black_earth(540.0, 560.0, HAZE, ZENITH_BEAM));
+    let m = air(&s);
+    let x = DVec3::new(0.0, 1500.0, 0.0);
+    let at = m.at(x);
+    let wi = DVec3::new(0.3, -0.9, 0.1).normalize();
+    let mut rng = Rng::for_task(5, Stream::Test, 0);
+    let p = morgana::testing::chi2::chi2_1d(
+        (-1.0, 1.0),
+        40,
+        200_000,
+        || Some(at.phase_sample(550.0, wi, rng.uniform2()).0.dot(wi)),
+        |mu| 2.0 * std::f64::consts::PI * at.phase_eval(550.0, mu),
+    );
+    assert!(p > 1e-3, "p = {p}");
+    // Both constituents matter here: forward, the mixture lies well between Rayleigh's
+    // 3/(8π) ≈ 0.12 (depolarisation changes it by < 3 %) and Henyey–Greenstein's
+    // (1 − g²)/(4π (1 − g)³) = 1.503 sr⁻¹ for g = 0.7.
+    let forward = at.phase_eval(550.0, 1.0);
+    let hg = (1.0 - 0.49) / (4.0 * std::f64::consts::PI * 0.3f64.powi(3));
+    assert!(forward > 0.2 && forward < 0.9 * hg, "p(0°) = {forward}");
+}
+
+#[test]
+fn ozone_and_aerosol_keys_report_bad_input() {
+    let bad = |extra: &str| scene_error(&black_earth(400.0, 700.0, extra, ZENITH_BEAM));
+    let e = bad("ozone_du = -3.0");
+    assert!(e.contains("ozone_du") && e.contains("out of range"), "{e}");
+    let e = bad("aerosol = { scale_height_m = 1000, albedo = 0.9, g = 0.7 }");
+    assert!(e.contains("angstrom_beta") && e.contains("visibility_km"), "{e}");
+    let e = bad("aerosol = { angstrom_beta = 0.1, visibility_km = 20, scale_height_m = 1000, albedo = 0.9, g = 0.7 }");
+    assert!(e.contains("not both"), "{e}");
+    let e = bad("aerosol = { angstrom_beta = 0.1, scale_height_m = 1000, albedo = 1.5, g = 0.7 }");
+    assert!(e.contains("albedo") && e.contains("out of range"), "{e}");
+    let e = bad("aerosol = { angstrom_beta = 0.1, scale_height_m = 1000, albedo = 0.9, g = 1.0 }");
+    assert!(e.contains("g = 1") && e.contains("out of range"), "{e}");
+    let e = bad("aerosol = { angstrom_beta = 0.1, albedo = 0.9, g = 0.7 }");
+    assert!(e.contains("scale_height_m"), "{e}");
+    let e = bad("aerosol = { angstrom_beta = 0.1, scale_height_m = 1000, albedo = 0.9, g = 0.7, size = 3 }");
+    assert!(e.contains("unknown key `size`"), "{e}");
+    let e = bad("aerosol = { visibility_km = 900, scale_height_m = 1000, albedo = 0.9, g = 0.7 }");
+    assert!(e.contains("visibility_km") && e.contains("air alone"), "{e}");
+    let e = bad("aerosol = 0.3");
+    assert!(e.contains("aerosol") && e.contains("table"), "{e}");
+    // Every message names the file and line.
+    assert!(e.contains("test.toml:"), "{e}");
+    // Only an atmosphere takes them.
+    let plain = black_earth(400.0, 700.0, "", ZENITH_BEAM)
+        .replace("type = \"atmosphere\"\natmosphere = \"usa76\"\n", "sigma_a = 0\nsigma_s = 0.1\nozone_du = 300\n");
+    let e = scene_error(&plain);
+    assert!(e.contains("ozone_du") && e.contains("only with type = \"atmosphere\""), "{e}");
+}
