@@ -219,18 +219,18 @@ fn glint(passes: u32, spp: u32, seed: u64, extra: &str) -> morgana::render::Rend
 
 /// The measurement behind the book's adaptive-sampling paragraph (`scripts/bench_adaptive.sh`
 /// runs it and prints what it finds): on the glint scene, 16 passes of 4 samples per pixel,
-/// uniform and adaptive (the same seed: the same photon maps), against a reference of 48
-/// uniform passes of 16 samples per pixel (another seed). RMSE over every pixel and band,
+/// uniform and adaptive (the same seed: the same photon maps), against a reference of 32
+/// uniform passes of 8 samples per pixel (another seed). RMSE over every pixel and band,
 /// relative to the reference's image mean, with the reference's own noise removed in quadrature
-/// (RMSE² − mean SE²_ref, unbiased in the square, as `scripts/peer_mitsuba.py` does). About 15
+/// (RMSE² − mean SE²_ref, unbiased in the square, as `scripts/peer_mitsuba.py` does). About 6
 /// CPU minutes.
 #[test]
-#[ignore = "slow (about 15 CPU minutes): ./scripts/bench_adaptive.sh runs it"]
+#[ignore = "slow (about 6 CPU minutes): ./scripts/bench_adaptive.sh runs it"]
 fn adaptive_sampling_lowers_the_glint_scenes_rmse_at_equal_samples() {
     let t = std::time::Instant::now();
-    let reference = glint(48, 16, 1000, "");
+    let reference = glint(32, 8, 1000, "");
     let ref_s = t.elapsed().as_secs_f64();
-    let ref_se = reference.std_error.as_ref().expect("48 passes have standard errors");
+    let ref_se = reference.std_error.as_ref().expect("32 passes have standard errors");
     let n = reference.image.data.len() as f64;
     let ref_mean = reference.image.data.iter().map(|v| f64::from(*v)).sum::<f64>() / n;
     let ref_var = ref_se.iter().map(|s| f64::from(*s).powi(2)).sum::<f64>() / n;
@@ -263,7 +263,7 @@ fn adaptive_sampling_lowers_the_glint_scenes_rmse_at_equal_samples() {
         rows.push(e);
     }
     println!(
-        "reference: 48 passes × 16 spp in {ref_s:.1} s, its noise RMSE {:.4} of its mean; adaptive/uniform RMSE ratio {:.3}",
+        "reference: 32 passes × 8 spp in {ref_s:.1} s, its noise RMSE {:.4} of its mean; adaptive/uniform RMSE ratio {:.3}",
         ref_var.sqrt() / ref_mean,
         rows[1] / rows[0]
     );
