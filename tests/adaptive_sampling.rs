@@ -148,7 +148,7 @@ fn adaptive_output_does_not_depend_on_the_thread_count() {
 }
 
 #[test]
-fn adaptive_sampling_without_passes_is_refused_naming_the_key() {
+fn a_bad_adaptive_value_is_refused_naming_the_key() {
     let e = scene_error(&emitter("adaptive = \"yes\""));
     assert!(e.contains("adaptive"), "{e}");
 }
@@ -175,6 +175,11 @@ fn a_resumed_adaptive_run_writes_the_bytes_of_an_uninterrupted_one() {
     let (code, err) = run(&["render", &scene, "--adaptive", "--out", &whole_s]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--adaptive"), "{err}");
+    let keyed = dir.join("keyed.toml");
+    std::fs::write(&keyed, lit_plate(16, 12, "").replace("spp = 1", "spp = 2\nadaptive = true")).expect("scene");
+    let (code, err) = run(&["render", &keyed.display().to_string(), "--out", &whole_s]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("[integrator] adaptive") && err.contains("one pass"), "{err}");
     let (code, err) = run(&["render", &scene, "--adaptive", "--passes", "4", "--threads", "2", "--out", &whole_s]);
     assert_eq!(code, Some(0), "{err}");
     let (code, err) = run(&["render", &scene, "--adaptive", "--passes", "2", "--threads", "2", "--out", &part_s]);
@@ -222,10 +227,12 @@ fn glint(passes: u32, spp: u32, seed: u64, extra: &str) -> morgana::render::Rend
 /// uniform and adaptive (the same seed: the same photon maps), against a reference of 32
 /// uniform passes of 8 samples per pixel (another seed). RMSE over every pixel and band,
 /// relative to the reference's image mean, with the reference's own noise removed in quadrature
-/// (RMSE² − mean SE²_ref, unbiased in the square, as `scripts/peer_mitsuba.py` does). About 6
-/// CPU minutes.
+/// (RMSE² − mean SE²_ref, unbiased in the square, as `scripts/peer_mitsuba.py` does). About 5
+/// CPU minutes. Measured 2026-12-03: uniform 0.874, adaptive 0.637, ratio 0.73 (the glints, the
+/// worst 1 % of pixels, holding 97–98 % of the squared error). It asserts only that adaptive is
+/// below uniform: one run's ratio has the noise of a few dozen glint pixels.
 #[test]
-#[ignore = "slow (about 6 CPU minutes): ./scripts/bench_adaptive.sh runs it"]
+#[ignore = "slow (about 5 CPU minutes): ./scripts/bench_adaptive.sh runs it"]
 fn adaptive_sampling_lowers_the_glint_scenes_rmse_at_equal_samples() {
     let t = std::time::Instant::now();
     let reference = glint(32, 8, 1000, "");
