@@ -9,7 +9,8 @@
 #      not see the same scene (another command line; another copy of a file the scene names,
 #      where `unshare -m` can bind-mount one for a single rank) end every rank with one message
 #      and no output;
-#   3. progressive passes give the same bytes on any rank count, also when resumed on another;
+#   3. progressive passes give the same bytes on any rank count, also when resumed on another,
+#      with and without adaptive sampling (--adaptive);
 #   4. a rank killed (SIGKILL) during the photon pass or the eye pass makes mpirun fail and leaves
 #      the output directory empty.
 # Needs OpenMPI and libclang (scripts/setup_mpi.sh). Takes a few minutes, mostly the two builds.
@@ -94,16 +95,19 @@ step "progressive passes: same bytes on 1, 2 and 3 ranks, and a resume on anothe
 # final gathering) and of the fog box (volume map); then a run stopped after two passes on 2
 # ranks and resumed to three on 3 ranks must give the uninterrupted run's bytes.
 for scene in box fog; do
-  out="$work/prog-$scene"
+for mode in uniform adaptive; do
+  out="$work/prog-$scene-$mode"
   common=(render "$work/$scene.toml" --photons 10000 --seed 5 --quiet)
+  # Adaptive sampling: rank 0 decides each pass's sample counts and sends them to the others.
+  if [ "$mode" = adaptive ]; then common+=(--adaptive); fi
   "$work/morgana-local" "${common[@]}" --passes 3 --out "$out/local" --threads 2 >/dev/null
   ref="$(ls "$out/local"/*.exr)"
   for n in 1 2 3; do
     "${LIMIT[@]}" "${MPIRUN[@]}" -np "$n" "$work/morgana-mpi" "${common[@]}" --passes 3 --out "$out/np$n" \
       --threads 1 >/dev/null
-    cmp -s "$ref" "$out/np$n/$(basename "$ref")" || fail "$scene: 3 passes on $n rank(s) differ from the non-MPI build"
+    cmp -s "$ref" "$out/np$n/$(basename "$ref")" || fail "$scene ($mode): 3 passes on $n rank(s) differ from the non-MPI build"
   done
-  python3 - "$out/np2/report.json" <<'PY' || fail "$scene: report.json of the 2-rank progressive run"
+  python3 - "$out/np2/report.json" <<'PY' || fail "$scene ($mode): report.json of the 2-rank progressive run"
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["progressive"]["passes"] == 3 and r["distributed"]["ranks"] == 2
@@ -113,8 +117,9 @@ PY
     --threads 1 >/dev/null
   "${LIMIT[@]}" "${MPIRUN[@]}" -np 3 "$work/morgana-mpi" "${common[@]}" --passes 3 --resume "$out/resumed" \
     --threads 1 >/dev/null
-  cmp -s "$ref" "$out/resumed/$(basename "$ref")" || fail "$scene: 2 passes on 2 ranks resumed to 3 on 3 ranks differ"
-  ok "$scene: 3 progressive passes identical on 1, 2 and 3 ranks and without MPI; 2 passes on 2 ranks resumed to 3 on 3 ranks identical"
+  cmp -s "$ref" "$out/resumed/$(basename "$ref")" || fail "$scene ($mode): 2 passes on 2 ranks resumed to 3 on 3 ranks differ"
+  ok "$scene ($mode): 3 progressive passes identical on 1, 2 and 3 ranks and without MPI; 2 passes on 2 ranks resumed to 3 on 3 ranks identical"
+done
 done
 
 step "the lease server answers while rank 0 renders"

@@ -120,6 +120,8 @@ class Scene:
           below it, e.g. 0.01 (``--target-rel-error``).
         - ``target``: what that error is measured on: ``"image"``, a sensor's name or a pixel
           region ``(x0, y0, x1, y1)``, x1 and y1 exclusive (``--target``).
+        - ``adaptive``: from the second pass on, spend each pass's eye samples where the pixels'
+          samples spread most (``--adaptive``; needs more than one pass).
 
         A stopping rule replaces the scene's ``[integrator]`` key of the same name. None leaves
         a setting as it is; an unknown name or a value of the wrong type is a TypeError, a value

@@ -33,12 +33,12 @@ pub struct Overrides {
     pub photons: Option<u64>,
     /// `--seed`: the random seed.
     pub seed: Option<u64>,
-    /// `--passes`, `--time`, `--target-rel-error`, `--target`.
+    /// `--passes`, `--time`, `--target-rel-error`, `--target`, `--adaptive`.
     pub stop: Flags,
 }
 
 /// The names `with_overrides` accepts (the scene-changing flags of `morgana render`).
-pub const OVERRIDES: [&str; 6] = ["photons", "seed", "passes", "time", "target_rel_error", "target"];
+pub const OVERRIDES: [&str; 7] = ["photons", "seed", "passes", "time", "target_rel_error", "target", "adaptive"];
 
 /// A validated scene (native part of `morgana.Scene`).
 #[pyclass(module = "morgana._native", frozen)]
@@ -110,6 +110,7 @@ impl NativeScene {
                     o.stop.time = Some(duration_text(&v).ok_or_else(|| wrong("seconds or a text such as '90s'"))?)
                 }
                 "target_rel_error" => o.stop.target_rel_error = Some(v.extract().map_err(|_| wrong("a number"))?),
+                "adaptive" => o.stop.adaptive = v.extract().map_err(|_| wrong("True or False"))?,
                 "target" => {
                     o.stop.target =
                         Some(target_text(&v).ok_or_else(|| wrong("'image', a sensor name or (x0, y0, x1, y1)"))?)

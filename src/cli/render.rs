@@ -74,6 +74,11 @@ pub struct StopArgs {
     /// region x0,y0,x1,y1 (x1, y1 exclusive).
     #[arg(long)]
     pub target: Option<String>,
+    /// From the second pass on, spend each pass's eye samples (spp × pixels) where the pixels'
+    /// samples spread most: at least one a pixel, at most 32 × spp (adaptive sampling; the
+    /// same as `[integrator] adaptive = true`).
+    #[arg(long)]
+    pub adaptive: bool,
     /// Continue the progressive run whose output directory (with its checkpoint) is DIR, with
     /// the same scene and options; --passes counts the passes already done.
     #[arg(long, value_name = "DIR")]
@@ -92,6 +97,7 @@ impl StopArgs {
             time: self.time.clone(),
             target_rel_error: self.target_rel_error,
             target: self.target.clone(),
+            adaptive: self.adaptive,
             style: crate::scene::progressive::FlagStyle::Cli,
         }
     }

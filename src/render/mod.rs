@@ -5,6 +5,7 @@
 //! of threads — and of ranks: [`render_on`] runs the same passes split across the processes of
 //! a [`Comm`] ([`crate::distributed`]); [`render`] is that with one process.
 
+pub mod adaptive;
 pub mod checkpoint;
 mod direct;
 pub mod eye;
@@ -116,7 +117,8 @@ pub fn render_on(
     while comm.broadcast(vec![u8::from(stop.is_none())]).first() == Some(&1) {
         let s = scene.integrator.for_pass(pass);
         let t = std::time::Instant::now();
-        let (pass_stats, out, pass_ranks) = match one_pass(&mut rank, scene, &s, opts)? {
+        let counts = sample_counts(comm, scene, &run.spread);
+        let (pass_stats, out, pass_ranks) = match one_pass(&mut rank, scene, (&s, counts.as_deref()), opts)? {
             Pass::Done(stats, out, ranks) => (*stats, out, ranks),
             Pass::Cut(progress) => {
                 stop = Some(cut(opts, pass, progress)?);
@@ -128,7 +130,7 @@ pub fn render_on(
         ranks = pass_ranks;
         if let Some(out) = out {
             let seconds = t.elapsed().as_secs_f64();
-            stop = run.add(scene, (pass, &s), out, (started.elapsed().as_secs_f64(), seconds));
+            stop = run.add(scene, (pass, &s), (out, counts.as_deref()), (started.elapsed().as_secs_f64(), seconds));
         }
         if let Some(plan) = &opts.checkpoint {
             distributed::fault::agree(comm, run.write_checkpoint(plan, pass + 1))?;
@@ -165,11 +167,13 @@ pub fn render_on(
 }
 
 /// A progressive run's state on rank 0: every output's running sums, the target's, the
-/// report with the history, and the elapsed time of the passes taken from a checkpoint.
+/// spread of the pixels' samples (under adaptive sampling), the report with the history, and
+/// the elapsed time of the passes taken from a checkpoint.
 struct Run<'a> {
     p: &'a crate::scene::progressive::Progressive,
     outputs: progressive::Outputs,
     target: progressive::Scalar,
+    spread: Option<adaptive::Spread>,
     report: progressive::ProgressiveReport,
     resumed_s: f64,
 }
@@ -182,25 +186,33 @@ impl<'a> Run<'a> {
             target: progressive::target_label(&p.target),
             ..Default::default()
         };
+        let fresh = p.adaptive.then(adaptive::Spread::default);
         let Some(c) = resume else {
-            return Run { p, outputs: Default::default(), target: Default::default(), report, resumed_s: 0.0 };
+            let (outputs, target) = Default::default();
+            return Run { p, outputs, target, spread: fresh, report, resumed_s: 0.0 };
         };
         report.resumed_after_pass = Some(c.passes);
         let resumed_s = c.history.last().map_or(0.0, |r| r.elapsed_s);
         report.history = c.history;
-        Run { p, outputs: c.outputs, target: c.target, report, resumed_s }
+        let spread = c.spread.or(fresh).filter(|_| p.adaptive);
+        Run { p, outputs: c.outputs, target: c.target, spread, report, resumed_s }
     }
 
-    /// Adds pass `pass`'s outputs, run with settings `s`, at `elapsed` s into this run after
-    /// `seconds` of work; says whether the run stops (`elapsed` counts this run for the
-    /// `time` budget, and the checkpoint's time too in the history).
+    /// Adds pass `pass`'s outputs, run with settings `s` and the pixels' sample `counts`
+    /// (under adaptive sampling), at `elapsed` s into this run after `seconds` of work; says
+    /// whether the run stops (`elapsed` counts this run for the `time` budget, and the
+    /// checkpoint's time too in the history).
     fn add(
         &mut self,
         scene: &Scene,
         (pass, s): (u32, &crate::scene::IntegratorSettings),
-        out: PassOutput,
+        (out, counts): (PassOutput, Option<&[u32]>),
         (elapsed, seconds): (f64, f64),
     ) -> Option<progressive::Stop> {
+        if let (Some(spread), Some(ss), Some(counts)) = (&mut self.spread, &out.spread, counts) {
+            spread.add(ss, counts);
+            self.report.adaptive = Some(adaptive::AdaptiveReport::of(counts, scene.integrator.spp));
+        }
         let image = (&out.data[..], scene.camera.width, scene.bands.count);
         let v = progressive::target_value(&self.p.target, image, &out.sensors, &out.profiles);
         self.target.add(v);
@@ -217,7 +229,8 @@ impl<'a> Run<'a> {
             return Ok(());
         }
         let state = (passes, &self.target, &self.report.history[..]);
-        checkpoint::write(&plan.dir, &checkpoint::encode(&plan.fingerprint, state, &self.outputs))
+        let bytes = checkpoint::encode(&plan.fingerprint, state, (&self.outputs, self.spread.as_ref()));
+        checkpoint::write(&plan.dir, &bytes)
     }
 }
 
@@ -244,20 +257,22 @@ enum Pass {
     Cut(String),
 }
 
-/// What one pass produced on rank 0: the image's band values and the readings.
+/// What one pass produced on rank 0: the image's band values, the spread of each pixel's
+/// samples (under adaptive sampling: see [`adaptive::PixelSpread`]) and the readings.
 struct PassOutput {
     data: Vec<f32>,
+    spread: Option<Vec<f32>>,
     sensors: Vec<crate::sensor::Reading>,
     profiles: Vec<crate::sensor::ProfileReading>,
 }
 
-/// One progressive pass with settings `s`: photon maps, eye pass and sensors (`opts`: progress,
-/// deadline and cancel flag). Returns the pass's statistics, its outputs on rank 0, and every
-/// rank's report. Collective.
+/// One progressive pass with settings `s` and the pixels' sample `counts` (`None`: `spp`
+/// each): photon maps, eye pass and sensors (`opts`: progress, deadline and cancel flag).
+/// Returns the pass's statistics, its outputs on rank 0, and every rank's report. Collective.
 fn one_pass(
     rank: &mut Rank,
     scene: &Scene,
-    s: &crate::scene::IntegratorSettings,
+    (s, counts): (&crate::scene::IntegratorSettings, Option<&[u32]>),
     opts: &RenderOptions,
 ) -> Result<Pass> {
     let quiet = opts.quiet || !rank.comm.is_root();
@@ -285,7 +300,7 @@ fn one_pass(
         stats.irradiance_memory_bytes = c.memory_bytes() as u64;
     }
     let t = Span::start();
-    let (data, work, curved) = eye_pass(rank, scene, s, &maps, bars, stop);
+    let (data, work, curved) = eye_pass(rank, scene, (s, counts), &maps, bars, stop);
     stats.phases.add("eye pass", t);
     rank.report.eye = work;
     rank.report.eye_curved = curved;
@@ -299,6 +314,13 @@ fn one_pass(
         )));
     }
     let Some(data) = data else { return Ok(Pass::Done(Box::new(stats), None, ranks)) };
+    let (data, spread) = match counts {
+        Some(_) => {
+            let (image, spread) = split_rows(data, scene.camera.width * scene.bands.count, scene.camera.width);
+            (image, Some(spread))
+        }
+        None => (data, None),
+    };
     for r in &ranks {
         stats.rays.add(&r.eye.rays);
         stats.eye_curved.add(&r.eye_curved);
@@ -309,7 +331,7 @@ fn one_pass(
     if !sensors.is_empty() || !profiles.is_empty() {
         stats.phases.add("sensors", t);
     }
-    Ok(Pass::Done(Box::new(stats), Some(PassOutput { data, sensors, profiles }), ranks))
+    Ok(Pass::Done(Box::new(stats), Some(PassOutput { data, spread, sensors, profiles }), ranks))
 }
 
 /// The error of a run whose time budget ran out or that was cancelled: exit code 1, nothing
@@ -319,12 +341,40 @@ fn out_of_time(opts: &RenderOptions, progress: String) -> crate::error::Error {
     crate::error::Error::internal(format!("{why} {progress}; no output was written"))
 }
 
-/// This rank's part of the eye pass: the image's band averages (row-major, `bands.count` per
-/// pixel) on rank 0, this rank's work, and the integrator work along its curved eye paths.
+/// The eye samples of each pixel in the next pass under adaptive sampling (`None`: `spp`
+/// each, and no spread measured): rank 0 decides from its sums ([`adaptive::counts`]) and
+/// sends them to every rank. Collective when the scene asks for adaptive sampling.
+fn sample_counts(comm: &Comm, scene: &Scene, spread: &Option<adaptive::Spread>) -> Option<Vec<u32>> {
+    let spread = spread.as_ref()?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let mine: Vec<u8> = if comm.is_root() {
+        adaptive::counts(spread, (w, h), scene.integrator.spp).iter().flat_map(|n| n.to_le_bytes()).collect()
+    } else {
+        Vec::new()
+    };
+    let bytes = comm.broadcast(mine);
+    Some(bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
+}
+
+/// Rows of `image` values followed by `extra` values, split into the two images.
+fn split_rows(data: Vec<f32>, image: usize, extra: usize) -> (Vec<f32>, Vec<f32>) {
+    let rows = data.len() / (image + extra).max(1);
+    let (mut a, mut b) = (Vec::with_capacity(rows * image), Vec::with_capacity(rows * extra));
+    for row in data.chunks_exact(image + extra) {
+        a.extend_from_slice(&row[..image]);
+        b.extend_from_slice(&row[image..]);
+    }
+    (a, b)
+}
+
+/// This rank's part of the eye pass with the pixels' sample `counts` (`None`: `spp` each):
+/// the image's band averages (row-major, `bands.count` per pixel; with `counts`, each row
+/// followed by its pixels' spreads, [`adaptive::PixelSpread::sum_sq`]) on rank 0, this rank's
+/// work, and the integrator work along its curved eye paths.
 fn eye_pass(
     rank: &Rank,
     scene: &Scene,
-    s: &crate::scene::IntegratorSettings,
+    (s, counts): (&crate::scene::IntegratorSettings, Option<&[u32]>),
     maps: &photon_pass::Maps,
     bars: progress::Bars,
     stop: crate::timing::Stop,
@@ -339,20 +389,25 @@ fn eye_pass(
         &format!("eye pass: {h} rows over {ranks} ranks, {:?} leases", rank.options.schedule),
     );
     let pb = bars.bar(h as u64, "eye pass");
+    let row_values = if counts.is_some() { w * (nb + 1) } else { w * nb };
     let render_rows = |rows: std::ops::Range<usize>| -> (Vec<f32>, RayCounts) {
         let done: Vec<(Vec<f32>, RayCounts)> = rows
             .into_par_iter()
             .map_init(Scratch::default, |sc, y| {
                 let before = sc.rays;
-                let mut row = vec![0f32; w * nb];
+                let mut row = vec![0f32; row_values];
                 if stop.reached() {
                     pb.inc(1);
                     return (row, RayCounts { stopped_rows: 1, ..RayCounts::default() });
                 }
                 for x in 0..w {
-                    let px = pixel((scene, s.seed), &tracer, x, y, sc);
+                    let n = counts.map_or(scene.integrator.spp, |c| c[y * w + x] as usize);
+                    let (px, spread) = pixel((scene, s.seed), &tracer, (x, y), (n, counts.is_some()), sc);
                     for b in 0..nb {
                         row[x * nb + b] = px[b] as f32;
+                    }
+                    if let Some(ss) = spread {
+                        row[w * nb + x] = ss as f32;
                     }
                 }
                 pb.inc(1);
@@ -367,7 +422,7 @@ fn eye_pass(
         }
         (data, rays)
     };
-    let out = distributed::eye::run(rank.comm, rank.options.schedule, h, w * nb, &render_rows, &|n| pb.inc(n));
+    let out = distributed::eye::run(rank.comm, rank.options.schedule, h, row_values, &render_rows, &|n| pb.inc(n));
     pb.finish_and_clear();
     let curved = match &tracer {
         Tracer::PhotonMap(t) => t.curved_work(),
@@ -391,22 +446,28 @@ impl<'a> Tracer<'a> {
     }
 }
 
-/// The band averages of one pixel: the mean over `spp` jittered samples, drawn from the pass's
-/// `seed`.
+/// The band averages of pixel (`x`, `y`): the mean over `n` jittered samples, drawn from the
+/// pass's `seed`; with `spread`, also the spread of the samples ([`adaptive::PixelSpread`]).
 fn pixel(
     (scene, seed): (&Scene, u64),
     tracer: &Tracer,
-    x: usize,
-    y: usize,
+    (x, y): (usize, usize),
+    (n, spread): (usize, bool),
     sc: &mut Scratch,
-) -> [f64; crate::spectrum::MAX_BANDS] {
-    let s = &scene.integrator;
+) -> ([f64; crate::spectrum::MAX_BANDS], Option<f64>) {
     let mut rng = Rng::for_task(seed, Stream::Eye, (y * scene.camera.width + x) as u64);
-    let weight = Lanes::film_weight(&scene.bands, scene.sampling) / s.spp as f64;
+    let film = Lanes::film_weight(&scene.bands, scene.sampling);
+    let weight = film / n as f64;
     let mut acc = [0.0; crate::spectrum::MAX_BANDS];
-    for _ in 0..s.spp {
+    let mut spread = spread.then(|| adaptive::PixelSpread::new(scene.bands.count));
+    for _ in 0..n {
         let [jx, jy] = rng.uniform2();
-        let Some(ray) = scene.camera.ray(x as f64 + jx, y as f64 + jy) else { continue };
+        let Some(ray) = scene.camera.ray(x as f64 + jx, y as f64 + jy) else {
+            if let Some(sp) = &mut spread {
+                sp.add(&[0.0; crate::spectrum::MAX_BANDS]);
+            }
+            continue;
+        };
         let lanes = Lanes::new(&scene.bands, scene.sampling, rng.uniform());
         let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
         let l = match tracer {
@@ -416,8 +477,15 @@ fn pixel(
         for i in 0..lanes.len {
             acc[lanes.band[i] as usize] += weight * l[i];
         }
+        if let Some(sp) = &mut spread {
+            let mut one = [0.0; crate::spectrum::MAX_BANDS];
+            for i in 0..lanes.len {
+                one[lanes.band[i] as usize] += film * l[i];
+            }
+            sp.add(&one);
+        }
     }
-    acc
+    (acc, spread.map(|sp| sp.sum_sq()))
 }
 
 fn to_image(scene: &Scene, data: Vec<f32>) -> SpectralImage {

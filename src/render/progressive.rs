@@ -255,6 +255,10 @@ pub struct ProgressiveReport {
     pub image_mean_rel_error: Option<f64>,
     /// The error estimate after each pass against elapsed time.
     pub history: Vec<PassRecord>,
+    /// Adaptive sampling, when it was on ([`super::adaptive`]): the budget and how the last
+    /// pass spent it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adaptive: Option<super::adaptive::AdaptiveReport>,
     /// The least-squares line through the history on log-log axes (from two passes with an
     /// error estimate, i.e. three passes).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -156,9 +156,18 @@ impl EffectPlan {
                 "one pass: no passes > 1, time or target_rel_error (or --passes, --time, --target-rel-error)",
             ),
             _ => Decision::on(format!(
-                "passes with fresh maps and radii shrinking by Knaus & Zwicker's rule (alpha = {:.3}), averaged {}",
+                "passes with fresh maps and radii shrinking by Knaus & Zwicker's rule (alpha = {:.3}), averaged {}{}",
                 p.alpha,
-                rules.join(", ")
+                rules.join(", "),
+                if p.adaptive {
+                    format!(
+                        "; adaptive sampling: from pass 2 on, each pass's {} eye samples per pixel on average go where the pixels' samples spread most (at least 1, at most {} per pixel)",
+                        s.spp,
+                        s.spp.saturating_mul(crate::scene::progressive::ADAPTIVE_MAX_FACTOR)
+                    )
+                } else {
+                    String::new()
+                }
             )),
         }
     }

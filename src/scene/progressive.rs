@@ -1,7 +1,7 @@
 //! `[integrator]` progressive passes and stopping rules: how many passes a render runs, or
 //! for how long, or to what relative standard error (`passes`, `time`, `target_rel_error`,
 //! `target`, `alpha`; on the command line `--passes`, `--time`, `--target-rel-error`,
-//! `--target`). What a pass does is in [`crate::photon_map::progressive`].
+//! `--target`), and whether later passes steer their eye samples (`adaptive`, `--adaptive`). What a pass does is in [`crate::photon_map::progressive`].
 
 use super::raw::RawIntegrator;
 use crate::photon_map::progressive::DEFAULT_ALPHA;
@@ -11,6 +11,9 @@ use toml::{Spanned, Value};
 
 /// The most passes a run may ask for.
 pub const MAX_PASSES: u32 = 1_000_000;
+
+/// Under adaptive sampling a pixel gets at most this many times `spp` eye samples in one pass.
+pub const ADAPTIVE_MAX_FACTOR: usize = 32;
 
 /// The longest `time` budget, s (a year).
 pub const MAX_TIME_S: f64 = 3.2e7;
@@ -49,11 +52,21 @@ pub struct Progressive {
     pub target: Target,
     /// Knaus & Zwicker's α: how fast the gather radii shrink (0 < α < 1).
     pub alpha: f64,
+    /// Adaptive sampling: from the second pass on, each pass spends its eye samples where the
+    /// pixels' samples spread most (see `render::adaptive`).
+    pub adaptive: bool,
 }
 
 impl Default for Progressive {
     fn default() -> Progressive {
-        Progressive { passes: None, time_s: None, target_rel_error: None, target: Target::Image, alpha: DEFAULT_ALPHA }
+        Progressive {
+            passes: None,
+            time_s: None,
+            target_rel_error: None,
+            target: Target::Image,
+            alpha: DEFAULT_ALPHA,
+            adaptive: false,
+        }
     }
 }
 
@@ -97,6 +110,16 @@ impl Progressive {
                 )));
             }
         }
+        self.adaptive |= flags.adaptive;
+        if self.adaptive && self.pass_limit() == 1 {
+            let named = if flags.adaptive { flags.style.name("adaptive") } else { "[integrator] adaptive".into() };
+            return Err(input_error(format!(
+                "{named} steers the eye samples of later passes, but the run makes one pass: give {}, {} or {} (or passes, time or target_rel_error in [integrator])",
+                flags.style.said("passes", &"N"),
+                flags.style.said("time", &"90s"),
+                flags.style.said("target_rel_error", &"0.01")
+            )));
+        }
         Ok(())
     }
 
@@ -133,6 +156,8 @@ pub struct Flags {
     pub target_rel_error: Option<f64>,
     /// `--target SENSOR|x0,y0,x1,y1`.
     pub target: Option<String>,
+    /// `--adaptive` (given: on; not given: the scene's `adaptive`).
+    pub adaptive: bool,
     /// How messages spell the rules.
     pub style: FlagStyle,
 }
@@ -224,7 +249,8 @@ pub fn parse_target(text: &str) -> Result<Target, String> {
     Ok(Target::Sensor(t.to_string()))
 }
 
-/// The `[integrator]` keys `passes`, `time`, `target_rel_error`, `target` and `alpha`.
+/// The `[integrator]` keys `passes`, `time`, `target_rel_error`, `target`, `alpha` and
+/// `adaptive`.
 pub fn progressive(ctx: &Ctx, r: &RawIntegrator) -> R<Progressive> {
     let mut p = Progressive::default();
     if let Some(v) = &r.passes {
@@ -248,6 +274,9 @@ pub fn progressive(ctx: &Ctx, r: &RawIntegrator) -> R<Progressive> {
     }
     if let Some(v) = &r.alpha {
         p.alpha = ctx.number(v, "alpha", 0.0, 1.0, true)?;
+    }
+    if let Some(v) = &r.adaptive {
+        p.adaptive = *v.get_ref();
     }
     Ok(p)
 }

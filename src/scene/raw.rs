@@ -257,6 +257,9 @@ pub struct RawIntegrator {
     pub target: S<String>,
     /// `[integrator] alpha`: how fast progressive gather radii shrink (Knaus & Zwicker's α).
     pub alpha: S<f64>,
+    /// `[integrator] adaptive`: from the second progressive pass on, spend each pass's eye
+    /// samples where the pixels' samples spread most.
+    pub adaptive: S<bool>,
 }
 
 /// `[[material]]`: a surface material; the union of every type's keys.

@@ -1,7 +1,7 @@
 //! What a checkpoint was rendered from, part by part, so that a resume with anything different
 //! is refused naming the part: the morgana version, every key of the scene file (per table key,
 //! per array-of-tables entry), the bytes of every file the scene names, and the effective
-//! photons, seed, α and target. The stopping rules (`passes`, `time`, `target_rel_error`) are
+//! photons, seed, α and target, and adaptive sampling when it is on. The stopping rules (`passes`, `time`, `target_rel_error`) are
 //! left out: a resume exists to change them. The thread and rank counts are left out: the
 //! output does not depend on them.
 
@@ -10,7 +10,8 @@ use crate::scene::Scene;
 use std::path::Path;
 
 /// `[integrator]` keys left out: the stopping rules, and what the effective values cover.
-const NOT_COMPARED: &[&str] = &["passes", "time", "target_rel_error", "target", "photons", "caustic_photons", "seed"];
+const NOT_COMPARED: &[&str] =
+    &["passes", "time", "target_rel_error", "target", "photons", "caustic_photons", "seed", "adaptive"];
 
 /// Values longer than this are compared by their FNV-1a hash.
 const SHOWN_CHARS: usize = 48;
@@ -41,6 +42,10 @@ impl Fingerprint {
         parts.push(("seed".into(), s.seed.to_string()));
         parts.push(("alpha".into(), s.progressive.alpha.to_string()));
         parts.push(("target".into(), crate::scene::progressive::label(&s.progressive.target)));
+        if s.progressive.adaptive {
+            // Only when on: a checkpoint without adaptive sampling keeps its bytes.
+            parts.push(("adaptive sampling".into(), "on".into()));
+        }
         Fingerprint(parts)
     }
 

@@ -15,6 +15,7 @@
 pub mod codec;
 pub mod fingerprint;
 
+use super::adaptive::Spread;
 use super::progressive::{Outputs, PassRecord, Scalar};
 use crate::error::{Error, Location, Result};
 pub use fingerprint::Fingerprint;
@@ -39,6 +40,8 @@ pub struct Checkpoint {
     pub target: Scalar,
     /// The record of each pass.
     pub history: Vec<PassRecord>,
+    /// The spread of the pixels' samples, under adaptive sampling.
+    pub spread: Option<Spread>,
 }
 
 /// Where a run writes its checkpoints, and the one it resumes from.
@@ -55,7 +58,7 @@ pub struct Plan {
 impl Checkpoint {
     /// The checkpoint as bytes.
     pub fn encode(&self) -> Vec<u8> {
-        encode(&self.fingerprint, (self.passes, &self.target, &self.history), &self.outputs)
+        encode(&self.fingerprint, (self.passes, &self.target, &self.history), (&self.outputs, self.spread.as_ref()))
     }
 
     /// The checkpoint from bytes; `Err` says what is wrong with them.
@@ -69,13 +72,14 @@ impl Checkpoint {
         let n = r.len(8)?;
         let history = (0..n).map(|_| PassRecord::load(&mut r)).collect::<codec::Result<Vec<_>>>()?;
         let outputs = Outputs::load(&mut r)?;
+        let spread = if r.at_end() { None } else { Some(Spread::load(&mut r)?) };
         if !r.at_end() {
             return Err("it has bytes after its end".into());
         }
         if history.len() != passes as usize || outputs.passes() != passes {
             return Err(format!("it says {passes} passes but holds {} records", history.len()));
         }
-        Ok(Checkpoint { fingerprint: Fingerprint(parts), passes, outputs, target, history })
+        Ok(Checkpoint { fingerprint: Fingerprint(parts), passes, outputs, target, history, spread })
     }
 
     /// Reads the checkpoint in `dir` (`--resume DIR`) and checks it was made from `now`:
@@ -100,11 +104,12 @@ impl Checkpoint {
 }
 
 /// The bytes of a checkpoint of `passes` passes with these parts (what
-/// [`Checkpoint::decode`] reads back), without copying them into a [`Checkpoint`].
+/// [`Checkpoint::decode`] reads back), without copying them into a [`Checkpoint`]; the
+/// spread of adaptive sampling, when there is one, comes last.
 pub fn encode(
     fingerprint: &Fingerprint,
     (passes, target, history): (u32, &Scalar, &[PassRecord]),
-    outputs: &Outputs,
+    (outputs, spread): (&Outputs, Option<&Spread>),
 ) -> Vec<u8> {
     let mut w = codec::Writer::default();
     w.bytes.extend_from_slice(MAGIC);
@@ -118,6 +123,9 @@ pub fn encode(
     w.usize(history.len());
     history.iter().for_each(|r| r.save(&mut w));
     outputs.save(&mut w);
+    if let Some(s) = spread {
+        s.save(&mut w);
+    }
     w.bytes
 }
 
@@ -187,10 +195,19 @@ mod tests {
                     rel_error: (i > 0).then_some(0.25),
                 })
                 .collect();
-            let c =
-                Checkpoint { fingerprint: fingerprint.clone(), passes: stored, outputs: run.clone(), target, history };
+            let mut spread = Spread::default();
+            spread.add(&[1.5, 0.0, 2.0], &[4, 1, 9]);
+            let c = Checkpoint {
+                fingerprint: fingerprint.clone(),
+                passes: stored,
+                outputs: run.clone(),
+                target,
+                history,
+                spread: (stored == 3).then_some(spread),
+            };
             let back = Checkpoint::decode(&c.encode()).expect("a checkpoint it wrote");
             assert_eq!(back.fingerprint, fingerprint);
+            assert_eq!(back.spread, c.spread);
             assert_eq!(
                 (back.passes, back.target.mean(), back.target.rel_error()),
                 (stored, target.mean(), target.rel_error())
