@@ -203,10 +203,11 @@ impl Atmosphere {
         }
     }
 
-    /// Heights below the top where ∇n is not smooth, ascending, m: the base profile's kinks and
-    /// the start of the taper (where d²n/dh² jumps).
+    /// Heights below the top where ∇n is not smooth, ascending, m: the base profile's kinks, the
+    /// edits' (a hot surface's ground) and the start of the taper (where d²n/dh² jumps).
     pub fn kink_heights_m(&self) -> Vec<f64> {
         let mut k = self.base.kink_heights_m();
+        k.extend(self.edits.iter().filter_map(Edit::kink_height_m));
         k.push(self.top_m - self.taper_m);
         k.retain(|h| *h < self.top_m);
         k.sort_by(f64::total_cmp);

@@ -107,10 +107,14 @@ pub enum Event {
     },
 }
 
-/// The kink spheres of a radial field, if it has any.
+/// The kink spheres of a radial field, if it has any, each probed at the reference wavelength.
 fn kink_spheres(f: &IndexField) -> Option<kink::KinkSpheres> {
     let radii = f.kink_radii_m();
-    (!radii.is_empty()).then_some(kink::KinkSpheres { centre: f.radial_centre()?, radii })
+    if radii.is_empty() {
+        return None;
+    }
+    let sample = |p: DVec3| f.n_grad(curved::REFERENCE_WAVELENGTH_NM, p);
+    Some(kink::KinkSpheres::new(&sample, f.radial_centre()?, &radii))
 }
 
 /// Moves light through a world.
