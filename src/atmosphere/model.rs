@@ -183,6 +183,21 @@ impl Atmosphere {
         (n, s * (nr_p * a.grad_pressure + nr_t * a.grad_temperature) + (nr * ds) * gh)
     }
 
+    /// For an atmosphere whose edits depend on height alone: q(h) and dq/dh with
+    /// n − 1 = K(λ)·q(h), K the dispersion law's Gladstone–Dale factor
+    /// ([`AirDispersion::gladstone_dale_m3_per_kg`]) and q the density it refers to times the
+    /// taper ([`AirDispersion::density_grad`]); (0, 0) at and above the top. What
+    /// [`super::RadialTable`] tabulates.
+    pub fn reduced_refractivity(&self, h: f64) -> (f64, f64) {
+        if h >= self.top_m {
+            return (0.0, 0.0);
+        }
+        let a = self.air_at(DVec3::ZERO, h, DVec3::Y);
+        let (s, ds) = self.taper(h);
+        let (d, d_p, d_t) = self.dispersion.density_grad(a.pressure_pa, a.temperature_k);
+        (d * s, s * (d_p * a.grad_pressure.y + d_t * a.grad_temperature.y) + d * ds)
+    }
+
     /// The taper s(h) and ds/dh.
     fn taper(&self, h: f64) -> (f64, f64) {
         let u = (self.top_m - h) / self.taper_m;

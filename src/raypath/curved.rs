@@ -65,8 +65,15 @@ pub(super) fn next_event(
     visit: &mut dyn FnMut(&Chord) -> Option<f64>,
 ) -> Event {
     let lambda = state.wavelength_nm.unwrap_or(REFERENCE_WAVELENGTH_NM);
-    let sample = |p: DVec3| field.n_grad(lambda, p);
     let medium = state.medium.unwrap_or_default();
+    // The medium's tabulated index where it has one (an atmosphere of height alone), else the
+    // field itself.
+    let table = prop.aids[medium as usize].table.as_ref();
+    let k = table.map_or(0.0, |t| t.k(lambda));
+    let sample = |p: DVec3| match table {
+        Some(t) => t.n_grad(k, lambda, p),
+        None => field.n_grad(lambda, p),
+    };
     let mut walk = Walk {
         position: state.position,
         dir: state.dir,
@@ -156,7 +163,7 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     ode.resume();
     let Some(settings) = prop.curved else { return Leg::Done(Event::Lost { position: w.position }) };
     let h_cap = settings.max_step_m.min(prop.world_radius);
-    let kinks = prop.kinks[w.medium as usize].as_ref();
+    let kinks = prop.aids[w.medium as usize].kinks.as_ref();
     // ∇n where the next step starts (the first step's slope, sampled once): the path's curvature.
     let Ok(f0) = ode.prime(sample, &state.y) else { return Leg::Done(Event::Lost { position: w.position }) };
     let mut grad = f0.v;
