@@ -183,6 +183,21 @@ impl Atmosphere {
         (n, s * (nr_p * a.grad_pressure + nr_t * a.grad_temperature) + (nr * ds) * gh)
     }
 
+    /// For an atmosphere whose edits depend on height alone: q(h) and dq/dh with
+    /// n − 1 = K(λ)·q(h), K the dispersion law's Gladstone–Dale factor
+    /// ([`AirDispersion::gladstone_dale_m3_per_kg`]) and q the density it refers to times the
+    /// taper ([`AirDispersion::density_grad`]); (0, 0) at and above the top. What
+    /// [`super::RadialTable`] tabulates.
+    pub fn reduced_refractivity(&self, h: f64) -> (f64, f64) {
+        if h >= self.top_m {
+            return (0.0, 0.0);
+        }
+        let a = self.air_at(DVec3::ZERO, h, DVec3::Y);
+        let (s, ds) = self.taper(h);
+        let (d, d_p, d_t) = self.dispersion.density_grad(a.pressure_pa, a.temperature_k);
+        (d * s, s * (d_p * a.grad_pressure.y + d_t * a.grad_temperature.y) + d * ds)
+    }
+
     /// The taper s(h) and ds/dh.
     fn taper(&self, h: f64) -> (f64, f64) {
         let u = (self.top_m - h) / self.taper_m;
@@ -203,10 +218,11 @@ impl Atmosphere {
         }
     }
 
-    /// Heights below the top where ∇n is not smooth, ascending, m: the base profile's kinks and
-    /// the start of the taper (where d²n/dh² jumps).
+    /// Heights below the top where ∇n is not smooth, ascending, m: the base profile's kinks, the
+    /// edits' (a hot surface's ground) and the start of the taper (where d²n/dh² jumps).
     pub fn kink_heights_m(&self) -> Vec<f64> {
         let mut k = self.base.kink_heights_m();
+        k.extend(self.edits.iter().filter_map(Edit::kink_height_m));
         k.push(self.top_m - self.taper_m);
         k.retain(|h| *h < self.top_m);
         k.sort_by(f64::total_cmp);

@@ -331,6 +331,23 @@ impl Integrator {
         Ok(step)
     }
 
+    /// Proposes `h` (m) as the next step when the integrator has none yet (a new path), in place
+    /// of the starting-step guess; a step size already reached is kept.
+    pub fn propose_first_step(&mut self, h: f64) {
+        if self.h_next.is_none() && h > 0.0 && h.is_finite() {
+            self.h_next = Some(h.min(self.controller.h_max).max(self.controller.h_min));
+        }
+    }
+
+    /// f(y) = (v/n, ∇n) at `y`, kept as the slope the next step from `y` starts with, so it
+    /// costs no second field sample: for a caller that looks ahead before stepping (the path's
+    /// curvature (∇n − (∇n·d)d)/n, which predicts where it meets a kink).
+    pub fn prime<F: IndexSample>(&mut self, field: &F, y: &RayY) -> Result<RayY, OdeError> {
+        let f = self.slope_at(field, y)?;
+        self.end = Some(EndSlope { y: *y, f });
+        Ok(f)
+    }
+
     /// Steps from `state` until its arc length is exactly `s_end` (m).
     pub fn integrate_to<F: IndexSample>(
         &mut self,

@@ -23,6 +23,18 @@ pub struct CurvedSettings {
     pub arc_tolerance_m: f64,
 }
 
+impl CurvedSettings {
+    /// The error Dormand–Prince allows in the ray vector v per step where |v| = `n`, as the
+    /// propagator's kink cuts judge a straddle by: atol + rtol·n/√3 (a component's
+    /// share of |v|); `None` for the fixed-step methods, which reject nothing.
+    pub fn kink_tolerance(&self, n: f64) -> Option<f64> {
+        match self.method {
+            super::Method::DormandPrince { rtol, atol, .. } => Some(atol + rtol * n / 3f64.sqrt()),
+            super::Method::Rk4 { .. } | super::Method::Euler { .. } => None,
+        }
+    }
+}
+
 impl Default for CurvedSettings {
     fn default() -> Self {
         let (rtol, atol) = (1e-9, 1e-9);

@@ -65,8 +65,15 @@ pub(super) fn next_event(
     visit: &mut dyn FnMut(&Chord) -> Option<f64>,
 ) -> Event {
     let lambda = state.wavelength_nm.unwrap_or(REFERENCE_WAVELENGTH_NM);
-    let sample = |p: DVec3| field.n_grad(lambda, p);
     let medium = state.medium.unwrap_or_default();
+    // The medium's tabulated index where it has one (an atmosphere of height alone), else the
+    // field itself.
+    let table = prop.aids[medium as usize].table.as_ref();
+    let k = table.map_or(0.0, |t| t.k(lambda));
+    let sample = |p: DVec3| match table {
+        Some(t) => t.n_grad(k, lambda, p),
+        None => field.n_grad(lambda, p),
+    };
     let mut walk = Walk {
         position: state.position,
         dir: state.dir,
@@ -156,12 +163,24 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     ode.resume();
     let Some(settings) = prop.curved else { return Leg::Done(Event::Lost { position: w.position }) };
     let h_cap = settings.max_step_m.min(prop.world_radius);
-    let kinks = prop.kinks[w.medium as usize].as_ref();
+    let kinks = prop.aids[w.medium as usize].kinks.as_ref();
+    // ∇n where the next step starts (the first step's slope, sampled once): the path's curvature.
+    let Ok(f0) = ode.prime(sample, &state.y) else { return Leg::Done(Event::Lost { position: w.position }) };
+    let mut grad = f0.v;
     loop {
-        let h_limit = kinks.and_then(|k| k.next_cut(w.position, w.dir, KINK_MIN_M)).map_or(h_cap, |t| t.min(h_cap));
+        let tol_v = settings.kink_tolerance(state.y.v.length());
+        let cut = kinks.and_then(|k| k.next_cut(w.position, w.dir, bend(grad, &state), KINK_MIN_M, tol_v));
+        let h_limit = cut.map_or(h_cap, |t| t.min(h_cap));
+        if grad == DVec3::ZERO && cut.is_some() {
+            // Entering where ∇n = 0 (the top of an atmosphere, where n − 1 tapers to 0 with
+            // zero slope) the starting-step guess has no scale to go by and comes out at
+            // centimetres; the field is smooth up to the next kink, so that is the first step.
+            ode.propose_first_step(h_limit);
+        }
         let Ok(step) = ode.step(sample, &mut state, h_limit) else {
             return Leg::Done(Event::Lost { position: w.position });
         };
+        grad = step.dense.f1.v;
         if let Some(e) = chords_of(prop, &step, settings.arc_tolerance_m, w, visit) {
             return Leg::Done(e);
         }
@@ -180,6 +199,14 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
             return Leg::Done(Event::Escape { dir: w.dir });
         }
     }
+}
+
+/// The curvature vector of the path at `state` where the gradient is `grad`:
+/// (∇n − (∇n·d)d)/n, d = v/|v| and n = |v|.
+fn bend(grad: DVec3, state: &OdeState) -> DVec3 {
+    let n = state.y.v.length();
+    let d = state.y.v / n;
+    (grad - grad.dot(d) * d) / n
 }
 
 /// Hands the chords of one step to the scene and the visitor; the event, if one happens on

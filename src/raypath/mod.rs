@@ -107,10 +107,25 @@ pub enum Event {
     },
 }
 
-/// The kink spheres of a radial field, if it has any.
+/// The kink spheres of a radial field, if it has any, each probed at the reference wavelength.
 fn kink_spheres(f: &IndexField) -> Option<kink::KinkSpheres> {
     let radii = f.kink_radii_m();
-    (!radii.is_empty()).then_some(kink::KinkSpheres { centre: f.radial_centre()?, radii })
+    if radii.is_empty() {
+        return None;
+    }
+    let sample = |p: DVec3| f.n_grad(curved::REFERENCE_WAVELENGTH_NM, p);
+    Some(kink::KinkSpheres::new(&sample, f.radial_centre()?, &radii))
+}
+
+/// What a medium's curved paths are followed with besides its field.
+#[derive(Clone, Debug, Default)]
+struct Aids {
+    /// With a radial field: the spheres where its gradient jumps, where integrator steps end
+    /// ([`kink`]).
+    kinks: Option<kink::KinkSpheres>,
+    /// In an atmosphere of height alone: its index tabulated
+    /// ([`crate::atmosphere::RadialTable`]), to the integrator's rtol.
+    table: Option<crate::atmosphere::RadialTable>,
 }
 
 /// Moves light through a world.
@@ -127,9 +142,8 @@ pub struct Propagator<'a> {
     /// Per medium with a radial field: the cone of finite geometry, past which a path trapped
     /// in a duct escapes ([`far`]).
     far: Vec<Option<far::FarCone>>,
-    /// Per medium with a radial field: the spheres where its gradient jumps, where integrator
-    /// steps end ([`kink`]).
-    kinks: Vec<Option<kink::KinkSpheres>>,
+    /// Per medium: what makes its curved paths cheaper (kinks as step ends, a tabulated index).
+    aids: Vec<Aids>,
     /// Integrator work along curved paths.
     pub work: CurvedWork,
 }
@@ -147,7 +161,17 @@ impl<'a> Propagator<'a> {
         // Only fields whose paths are followed as curves need the cone and the kinks.
         let bending = |m: &'a crate::media::Medium| m.index.as_ref().filter(|f| curved.is_some() && !f.is_uniform());
         let far = world.media.iter().map(|m| bending(m).and_then(|f| far::FarCone::new(world, f))).collect();
-        let kinks = world.media.iter().map(|m| bending(m).and_then(kink_spheres)).collect();
+        let aids = world
+            .media
+            .iter()
+            .map(|m| Aids {
+                kinks: bending(m).and_then(kink_spheres),
+                table: match (bending(m), curved) {
+                    (Some(IndexField::Atmosphere(a)), Some(c)) => crate::atmosphere::RadialTable::new(a, c.rtol),
+                    _ => None,
+                },
+            })
+            .collect();
         Propagator {
             world,
             curved,
@@ -156,7 +180,7 @@ impl<'a> Propagator<'a> {
             regions,
             clear,
             far,
-            kinks,
+            aids,
             work: CurvedWork::default(),
         }
     }

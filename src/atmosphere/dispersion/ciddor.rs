@@ -95,6 +95,14 @@ impl Ciddor {
         (n, n * (1.0 / pressure_pa - z_p / z), n * (-1.0 / temperature_k - z_t / z))
     }
 
+    /// The real-gas density ρ = pM_a/(ZRT) of the dry air and its partial derivatives
+    /// (ρ, ∂ρ/∂p, ∂ρ/∂T): n − 1 = K(λ)·ρ ([`Ciddor::gladstone_dale_m3_per_kg`]).
+    pub fn density_grad(&self, temperature_k: f64, pressure_pa: f64) -> (f64, f64, f64) {
+        let rho = dry_density(pressure_pa, temperature_k, self.co2_ppm);
+        let (z, z_p, z_t) = compressibility(pressure_pa, temperature_k);
+        (rho, rho * (1.0 / pressure_pa - z_p / z), rho * (-1.0 / temperature_k - z_t / z))
+    }
+
     /// K(λ) = (n_axs − 1)/ρ_axs, m³ kg⁻¹.
     pub fn gladstone_dale_m3_per_kg(&self, wavelength_nm: f64) -> f64 {
         self.refractivity_standard_state(wavelength_nm) / self.rho_axs

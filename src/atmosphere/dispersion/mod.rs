@@ -67,6 +67,19 @@ impl AirDispersion {
         }
     }
 
+    /// The density D that K refers to at `pressure_pa` and `temperature_k`, so that
+    /// n − 1 = K(λ)·D (the factor of [`AirDispersion::refractivity_grad`] that does not depend on
+    /// wavelength), and its partial derivatives: (D in kg m⁻³, ∂D/∂p, ∂D/∂T).
+    pub fn density_grad(&self, pressure_pa: f64, temperature_k: f64) -> (f64, f64, f64) {
+        match self {
+            AirDispersion::CauchyBornWolf => {
+                let d = super::gas::density_kg_m3(pressure_pa, temperature_k);
+                (d, d / pressure_pa, -d / temperature_k)
+            }
+            AirDispersion::Ciddor(c) => c.density_grad(temperature_k, pressure_pa),
+        }
+    }
+
     /// The scene's wavelength range must lie where the law is defined.
     pub fn check_range(&self, (min_nm, max_nm): (f64, f64)) -> Result<(), String> {
         let (lo, hi) = AIR_LAW_RANGE_NM;

@@ -53,6 +53,16 @@ impl Edit {
         }
     }
 
+    /// The height where ∇ΔT jumps, if the edit has one: a hot surface is held at ΔT below the
+    /// ground, so its gradient −ΔT/z₀ drops to 0 at h = 0 (the others are smooth, or do not
+    /// depend on height alone).
+    pub fn kink_height_m(&self) -> Option<f64> {
+        match self {
+            Edit::HotSurface(_) => Some(0.0),
+            Edit::Offset(_) | Edit::Inversion(_) | Edit::Bubble(_) | Edit::Grid(_) => None,
+        }
+    }
+
     /// The smallest and largest ΔT the edit can add, K.
     pub fn range_k(&self) -> (f64, f64) {
         match self {
