@@ -1,7 +1,7 @@
 //! The refractive index of an atmosphere that depends on height alone, tabulated once per scene
 //! (issue 18, item 3): the cheapest field evaluation that keeps the accuracy.
 //!
-//! Both air laws are Gladstone–Dale, n − 1 = K(λ)·D(P, T) ([`AirDispersion::density_grad`]), and
+//! Both air laws are Gladstone–Dale, n − 1 = K(λ)·D(P, T) ([`crate::atmosphere::dispersion::AirDispersion::density_grad`]), and
 //! the atmosphere tapers n − 1 by s(h), so where T and P depend on height alone
 //!
 //! ```text
