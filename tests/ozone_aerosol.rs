@@ -53,19 +53,10 @@ name = "air"
 type = "atmosphere"
 atmosphere = "usa76"
 {extra}
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, -{R_EARTH_M:?}, 0.0]
-radius = {R_EARTH_M:?}
-material = "black"
+{earth}
 {light}
-"#
+"#,
+        earth = common::black_sphere_at([0.0, -R_EARTH_M, 0.0], R_EARTH_M),
     )
 }
 

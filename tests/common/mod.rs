@@ -79,6 +79,12 @@ power_w = 10.0
 /// A black Lambertian sphere of `radius_m` at the origin: the enclosure of the tests that count
 /// what a source inside it delivers.
 pub fn black_sphere(radius_m: f64) -> String {
+    black_sphere_at([0.0, 0.0, 0.0], radius_m)
+}
+
+/// A black Lambertian sphere of `radius_m` about `centre` (e.g. a black Earth under the air).
+pub fn black_sphere_at(centre: [f64; 3], radius_m: f64) -> String {
+    let [x, y, z] = centre;
     format!(
         r#"
 [[material]]
@@ -88,7 +94,7 @@ reflectance = 0.0
 
 [[shape]]
 type = "sphere"
-center = [0.0, 0.0, 0.0]
+center = [{x:?}, {y:?}, {z:?}]
 radius = {radius_m:?}
 material = "black"
 "#
