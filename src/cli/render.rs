@@ -112,12 +112,20 @@ pub fn run(args: &RenderArgs) -> Result<String> {
     let dist = distributed::Options { map_memory, schedule: args.schedule };
     let comm = Comm::start()?;
     let result = render_and_write(&comm, args, &dist, start);
-    let root = comm.is_root();
-    drop(comm); // MPI_Finalize on every rank, also after an error
-    match result {
-        Err(e) if !root => std::process::exit(e.exit_code()),
-        r => r,
+    if let Err(e) = &result
+        && comm.size() > 1
+    {
+        // `mpirun` ends the whole job as soon as one rank exits non-zero, so rank 0 prints
+        // before any rank may leave: the all-gather after the message is the barrier.
+        if comm.is_root() {
+            eprintln!("morgana: {e}");
+        }
+        comm.all_gather(&[]);
+        drop(comm); // MPI_Finalize on every rank
+        std::process::exit(e.exit_code());
     }
+    drop(comm); // MPI_Finalize
+    result
 }
 
 /// The longest `--max-seconds` (a year).
