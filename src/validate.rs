@@ -31,6 +31,25 @@ pub const MAX_LENGTH_M: f64 = 1e15;
 /// and volumes underflow (a slab of 5 × 10⁻³²⁴ m gave NaN readings).
 pub const MIN_LENGTH_M: f64 = 1e-9;
 
+/// A TOML array of exactly `N` values. serde's fixed-size arrays read the first `N` elements of a
+/// TOML array and the `toml` crate does not complain about the rest, so `position = [0, 0, 0, 7]`
+/// passed as a point; this type refuses any other length at the array's line ("invalid length 4,
+/// expected an array of length 3"), as serde does for a shorter array.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exactly<T, const N: usize>(pub [T; N]);
+
+impl<'de, T: serde::Deserialize<'de>, const N: usize> serde::Deserialize<'de> for Exactly<T, N> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let values = Vec::<T>::deserialize(d)?;
+        let len = values.len();
+        let expected = format!("an array of length {N}");
+        values.try_into().map(Exactly).map_err(|_| serde::de::Error::invalid_length(len, &expected.as_str()))
+    }
+}
+
+/// Three numbers, exactly: a point, a direction or three coefficients.
+pub type Vec3Raw = Exactly<f64, 3>;
+
 impl<'a> Ctx<'a> {
     /// A context for `source`, read from `file`, resolving relative paths against `dir`.
     pub fn new(file: &Path, source: &'a str, dir: &Path) -> Ctx<'a> {
@@ -139,8 +158,8 @@ impl<'a> Ctx<'a> {
     }
 
     /// A vector of three finite numbers of magnitude at most [`MAX_LENGTH_M`].
-    pub fn vec3(&self, v: &Spanned<[f64; 3]>, what: &str) -> R<DVec3> {
-        let a = v.get_ref();
+    pub fn vec3(&self, v: &Spanned<Vec3Raw>, what: &str) -> R<DVec3> {
+        let a = &v.get_ref().0;
         if a.iter().all(|x| x.abs() <= MAX_LENGTH_M) {
             Ok(DVec3::from_array(*a))
         } else {
@@ -149,7 +168,7 @@ impl<'a> Ctx<'a> {
     }
 
     /// A finite non-zero vector, normalised.
-    pub fn direction(&self, v: &Spanned<[f64; 3]>, what: &str) -> R<DVec3> {
+    pub fn direction(&self, v: &Spanned<Vec3Raw>, what: &str) -> R<DVec3> {
         let d = self.vec3(v, what)?;
         if d.length_squared() > 0.0 {
             Ok(d.normalize())

@@ -473,6 +473,10 @@ fn bad_atmosphere_files_are_rejected_with_file_line_and_key() {
         ),
         ("[[edit]]\ntype = \"inversion\"\ndT_k = 1\nheight_m = 3\nthickness_m = -1\n", &["thickness_m = -1"]),
         ("[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1]\nradius_m = 2\n", &["test.toml:4", "field `centre`"]),
+        (
+            "[[edit]]\ntype = \"bubble\"\ndT_k = 1\ncentre = [0, 1, 2, 3]\nradius_m = 2\n",
+            &["test.toml:4", "field `centre`", "invalid length 4, expected an array of length 3"],
+        ),
         ("[[edit]]\ntype = \"offset\"\ndT_k = -400\n", &["can cool the air to", "must stay positive"]),
         ("[[edit]]\ntype = \"grid\"\nfile = \"missing.mfield\"\n", &["missing.mfield", "cannot read"]),
         ("top_m = \"high\"\n", &["test.toml:1:9", "field `top_m`", "expected f64"]),

@@ -354,12 +354,85 @@ fn values_that_rendered_nan_are_refused_naming_their_line() {
         let e = common::scene_error(&scene);
         assert!(e.contains(&format!("test.toml:{line}:")) && e.contains(field) && e.contains(limit), "{e}");
     }
+    // The sun as a sphere at 1 au fits (beside a lit plate: a world filled with fog would have
+    // to be marched across 3e11 m, which check_march_work refuses).
+    let plate = common::lit_plate(4, 4, "");
     let sun = "\n[[shape]]\nname = \"sun\"\ntype = \"sphere\"\ncenter = [0.0, 1.496e11, 0.0]\nradius = RADIUS\nmaterial = \"white\"\n";
-    common::scene(&format!("{fog}{}", sun.replace("RADIUS", "6.957e8")));
+    let radius_line = plate.matches('\n').count() + 6;
+    common::scene(&format!("{plate}{}", sun.replace("RADIUS", "6.957e8")));
     for radius in ["1e300", "5e-324"] {
-        let e = common::scene_error(&format!("{fog}{}", sun.replace("RADIUS", radius)));
-        assert!(e.contains("test.toml:113:") && e.contains("radius = ") && e.contains("out of range"), "{e}");
+        let e = common::scene_error(&format!("{plate}{}", sun.replace("RADIUS", radius)));
+        assert!(
+            e.contains(&format!("test.toml:{radius_line}:")) && e.contains("radius = ") && e.contains("out of range"),
+            "{e}"
+        );
     }
+}
+
+#[test]
+fn arrays_longer_than_their_field_takes_are_refused_at_their_line() {
+    // The render fuzzer (seed 3, 2026-12-03) found `max = [0.1, 0.1, 0.1, 7.0]` accepted: serde
+    // reads the first three numbers of a TOML array into a point and the `toml` crate ignored the
+    // rest. Every fixed-length array of a scene now refuses another length, longer or shorter.
+    let plate = common::lit_plate(4, 4, "");
+    let tail = concat!(
+        "[[sensor]]\nname = \"desk\"\ntype = \"illuminance_plane\"\norigin = [-0.5, 0.01, 0.5]\n",
+        "u = [1.0, 0.0, 0.0]\nv = [0.0, 0.0, -1.0]\nresolution = [2, 2]\nsamples = 1\ngather_rays = 1\n\n",
+        "[[sensor]]\nname = \"sky\"\ntype = \"sky_radiance\"\norigin = [0.0, 1.0, 0.0]\n",
+        "directions_deg = [[0.0, 0.0], [60.0, 90.0]]\nsamples = 1\n\n",
+        "[[shape]]\ntype = \"triangle\"\nvertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]\n",
+        "material = \"white\"\n\n[output]\nregion = [0, 0, 2, 2]\n",
+    );
+    let scene = format!("{plate}\n{tail}");
+    common::scene(&scene);
+    for (old, new, length, wanted) in [
+        ("position = [0.0, 1.0, 3.0]", "position = [0.0, 1.0, 3.0, 7.0]", 4, 3),
+        ("u = [0.0, 0.0, 2.0]", "u = [0.0, 0.0]", 2, 3),
+        ("resolution = [2, 2]", "resolution = [2, 2, 2]", 3, 2),
+        ("[60.0, 90.0]]", "[60.0, 90.0, 1.0]]", 3, 2),
+        ("[0.0, 1.0, 0.0]]", "[0.0, 1.0, 0.0, 0.0]]", 4, 3),
+        ("region = [0, 0, 2, 2]", "region = [0, 0, 2, 2, 9]", 5, 4),
+    ] {
+        assert_eq!(scene.matches(old).count(), 1, "{old}");
+        let line = scene[..scene.find(old).unwrap()].matches('\n').count() + 1;
+        let e = common::scene_error(&scene.replacen(old, new, 1));
+        assert!(
+            e.contains(&format!("test.toml:{line}:"))
+                && e.contains(&format!("invalid length {length}, expected an array of length {wanted}")),
+            "{new}: {e}"
+        );
+    }
+}
+
+#[test]
+fn a_march_step_far_below_the_medium_it_crosses_is_refused_naming_the_key() {
+    // The render fuzzer (seed 3) found the glass block of examples/fluorescent_glass_block.toml
+    // grown to 2e9 m and still marched in 5 mm steps (4e11 steps a camera ray), and the sunset
+    // sky's air marched in 0.25 m steps across its 4.4e7 m world: each past the deadline for 4 × 4
+    // pixels. A march step must cross a scattering medium's extent in at most 1e5 steps.
+    let example = |name: &str| {
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).expect(name)
+    };
+    let block = example("fluorescent_glass_block.toml");
+    let corners = "min = [-0.15, 0.0005, -0.08]\nmax = [0.15, 0.16, 0.08]";
+    assert!(block.contains(corners) && block.contains("march_step = 0.005"), "the example changed");
+    let step_line = |text: &str| text.lines().position(|l| l.starts_with("march_step")).expect("march_step") + 1;
+    let huge = block.replacen(corners, "min = [-1.05e9, 0.0005, -0.08]\nmax = [1.05e9, 0.16, 0.08]", 1);
+    let e = common::scene_error(&huge);
+    assert!(
+        e.contains(&format!("test.toml:{}:", step_line(&huge)))
+            && e.contains("march_step = 0.005 m")
+            && e.contains("medium \"uranium glass\"")
+            && e.contains("use march_step ≥ 2.100e4 m"),
+        "{e}"
+    );
+    common::scene(&huge.replacen("march_step = 0.005", "march_step = 21001", 1));
+    // The world medium's extent is the world sphere's diameter (4.414e7 m for the sunset sky).
+    let sky = example("sky_sunset.toml");
+    let fine = sky.replacen("[integrator]\n", "[integrator]\nmarch_step = 0.25\n", 1);
+    let e = common::scene_error(&fine);
+    assert!(e.contains(&format!("test.toml:{}:", step_line(&fine))) && e.contains("medium \"air\""), "{e}");
+    common::scene(&sky.replacen("[integrator]\n", "[integrator]\nmarch_step = 450\n", 1));
 }
 
 #[test]

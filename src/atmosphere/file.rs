@@ -8,7 +8,7 @@ use super::{AirDispersion, Atmosphere, BaseProfile, EARTH_RADIUS_M, Earth, MAX_E
 use crate::error::{Error, Location, Result};
 use crate::field::Interpolation;
 use crate::field::grid_file::{self, Quantity};
-use crate::validate::Ctx;
+use crate::validate::{Ctx, Vec3Raw};
 use glam::DVec3;
 use serde::Deserialize;
 use std::ops::Range;
@@ -60,7 +60,7 @@ pub struct RawEdit {
     /// `[[edit]] thickness_m`: thickness parameter w of an inversion, m.
     pub thickness_m: S<f64>,
     /// `[[edit]] centre`: centre of a bubble, m.
-    pub centre: S<[f64; 3]>,
+    pub centre: S<Vec3Raw>,
     /// `[[edit]] radius_m`: radius of a bubble, m.
     pub radius_m: S<f64>,
     /// `[[edit]] file`: lattice file of a grid edit (quantity `delta_temperature_k`), relative to
@@ -217,7 +217,7 @@ fn edit(ctx: &Ctx, files: &Files, e: &Spanned<RawEdit>) -> Result<Edit> {
         }
         "bubble" => {
             let c = ctx.require(&r.centre, "centre", &span, &what)?;
-            let centre = DVec3::from_array(*c.get_ref());
+            let centre = DVec3::from_array(c.get_ref().0);
             if !centre.is_finite() {
                 return Err(ctx.err(&c.span(), format!("centre = {centre} must have three finite numbers (m)")));
             }

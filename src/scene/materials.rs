@@ -136,7 +136,7 @@ fn ior(
             let (Some(b), Some(c)) = (&m.sellmeier_b, &m.sellmeier_c_um2) else {
                 return Err(ctx.err(span, format!("{what}: ior_model \"sellmeier\" needs both sellmeier_b and sellmeier_c_um2 (three numbers each)")));
             };
-            Ior::Sellmeier { b: *b.get_ref(), c_um2: *c.get_ref() }
+            Ior::Sellmeier { b: b.get_ref().0, c_um2: c.get_ref().0 }
         }
     };
     ior.validate(bands.min_nm, bands.max_nm).map_err(|e| ctx.err(span, format!("{what}: {e}")))?;

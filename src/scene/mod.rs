@@ -289,6 +289,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     };
     world.light_media = world.lights.iter().map(|l| world.medium_at(l.representative_point())).collect();
     ground::check_ground_closes_the_air(ctx, raw, &world)?;
+    check_march_work(ctx, raw, &world, &integrator)?;
     let plan = decide_plan(&world, &integrator, &sensors, sampling, &bands);
     let camera_medium = world.medium_at(camera.position);
     let mut scene = Scene {
@@ -469,6 +470,48 @@ fn check_tracking_work(ctx: &Ctx, raw: &RawScene, media: &[Medium], bands: &Band
                 format!(
                     "medium \"{}\": σ_t up to {sigma_max:e} m⁻¹ × density bound {bound:e} over {chord:.3e} m is a majorant optical depth of {depth:e}, above {MAX_MAJORANT_OPTICAL_DEPTH:e}: one transmittance would take about that many samples. Lower sigma_t or the density, or make the medium homogeneous (its transmittance is exact)",
                     m.name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The most steps `march_step` may ask of one camera ray across the extent of a scattering
+/// medium. The step only halves from there (at most 16-fold, where the in-scattered light changes
+/// fast), and each step reads the volume estimate or casts shadow rays: 10⁵ steps take about a
+/// second of CPU per pixel sample.
+pub const MAX_MARCH_STEPS_ACROSS: f64 = 1e5;
+
+/// Refuses a `march_step` that would march a camera ray through more than
+/// [`MAX_MARCH_STEPS_ACROSS`] steps across a scattering medium. The medium's extent is the world
+/// sphere's diameter for the world medium, the diagonal of the shapes bounding it otherwise; a
+/// path, curved or not, crosses it a few times at most. The render fuzzer found a 2 × 10⁹ m
+/// glass block marched in 5 mm steps and the sunset sky's air in 0.25 m steps across its
+/// 4.4 × 10⁷ m world: 10⁸–10¹¹ steps a ray.
+fn check_march_work(ctx: &Ctx, raw: &RawScene, world: &World, integrator: &IntegratorSettings) -> Result<()> {
+    let Some(given) = raw.integrator.as_ref().and_then(|i| i.get_ref().march_step.as_ref()) else { return Ok(()) };
+    if integrator.method != Method::PhotonMap {
+        return Ok(());
+    }
+    let step = integrator.march_step_m;
+    let world_diameter = 2.0 * world.bounds.diagonal().length();
+    for (id, m) in world.media.iter().enumerate().filter(|(_, m)| m.scatters()) {
+        let id = Some(id as u32);
+        let (extent, whose) = if world.global_medium == id {
+            (world_diameter, "the world sphere's diameter: it is the world medium")
+        } else {
+            let bounding = world.shapes.iter().zip(&world.prims).filter(|(_, p)| p.interior == id || p.exterior == id);
+            (bounding.fold(Aabb::EMPTY, |b, (s, _)| b.union(s.bounds())).diagonal().length(), "its shapes' extent")
+        };
+        if extent / step > MAX_MARCH_STEPS_ACROSS {
+            return Err(ctx.err(
+                &given.span(),
+                format!(
+                    "march_step = {step} m would cross medium \"{}\" ({extent:.3e} m, {whose}) in {:.2e} steps, more than {MAX_MARCH_STEPS_ACROSS:e} per camera ray; use march_step ≥ {:.3e} m, or give the medium a smaller extent (a shape's interior)",
+                    m.name,
+                    extent / step,
+                    extent / MAX_MARCH_STEPS_ACROSS
                 ),
             ));
         }

@@ -5,6 +5,7 @@
 //! fields: the validator rejects a field that the given type does not use, naming the fields it
 //! does use (a parameter the scene gives but nobody reads is an error).
 
+use crate::validate::{Exactly, Vec3Raw};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use toml::Spanned;
@@ -128,11 +129,11 @@ pub struct RawMedium {
 #[serde(deny_unknown_fields)]
 pub struct RawCamera {
     /// `[camera] position`: eye point, m.
-    pub position: S<[f64; 3]>,
+    pub position: S<Vec3Raw>,
     /// `[camera] look_at`: a point on the optical axis, m.
-    pub look_at: S<[f64; 3]>,
+    pub look_at: S<Vec3Raw>,
     /// `[camera] up`: up direction (need not be unit or orthogonal to the view).
-    pub up: S<[f64; 3]>,
+    pub up: S<Vec3Raw>,
     /// `[camera] fov_deg`: full vertical field of view, degrees.
     pub fov_deg: S<f64>,
     /// `[camera] width`: image width, pixels.
@@ -187,7 +188,7 @@ pub struct RawOutput {
     pub false_colour: S<bool>,
     /// `[output] region`: pixel rectangle [x0, y0, x1, y1] (x1, y1 exclusive) written to
     /// `NAME.region.csv`.
-    pub region: S<[i64; 4]>,
+    pub region: S<Exactly<i64, 4>>,
 }
 
 /// `[integrator]`: how light is simulated.
@@ -284,9 +285,9 @@ pub struct RawMaterial {
     /// `[[material]] c_um4`: Cauchy c, μm⁴.
     pub c_um4: S<f64>,
     /// `[[material]] sellmeier_b`: Sellmeier coefficients B₁..B₃ (dimensionless).
-    pub sellmeier_b: S<[f64; 3]>,
+    pub sellmeier_b: S<Vec3Raw>,
     /// `[[material]] sellmeier_c_um2`: Sellmeier coefficients C₁..C₃, μm².
-    pub sellmeier_c_um2: S<[f64; 3]>,
+    pub sellmeier_c_um2: S<Vec3Raw>,
     /// `[[material]] wind_speed_m_s` (rough_dielectric): wind speed of the Cox–Munk sea, m s⁻¹.
     pub wind_speed_m_s: S<f64>,
     /// `[[material]] rms_slope` (rough_dielectric): Beckmann RMS slope α.
@@ -309,30 +310,30 @@ pub struct RawShape {
     /// `[[shape]] exterior`: medium outside (in front of the normal).
     pub exterior: S<String>,
     /// `[[shape]] center`: centre of a sphere or disk, m.
-    pub center: S<[f64; 3]>,
+    pub center: S<Vec3Raw>,
     /// `[[shape]] radius`: radius of a sphere or disk, m.
     pub radius: S<f64>,
     /// `[[shape]] normal`: normal of a disk.
-    pub normal: S<[f64; 3]>,
+    pub normal: S<Vec3Raw>,
     /// `[[shape]] origin`: corner of a quad, m.
-    pub origin: S<[f64; 3]>,
+    pub origin: S<Vec3Raw>,
     /// `[[shape]] u`: first edge of a quad, m (the normal is u × v).
-    pub u: S<[f64; 3]>,
+    pub u: S<Vec3Raw>,
     /// `[[shape]] v`: second edge of a quad, m.
-    pub v: S<[f64; 3]>,
+    pub v: S<Vec3Raw>,
     /// `[[shape]] min`: lower corner of a box, m.
-    pub min: S<[f64; 3]>,
+    pub min: S<Vec3Raw>,
     /// `[[shape]] max`: upper corner of a box, m.
-    pub max: S<[f64; 3]>,
+    pub max: S<Vec3Raw>,
     /// `[[shape]] vertices`: the three corners of a triangle, m, counter-clockwise seen from the
     /// front.
-    pub vertices: S<Vec<[f64; 3]>>,
+    pub vertices: S<Vec<Vec3Raw>>,
     /// `[[shape]] file`: OBJ file of a mesh, relative to the scene file.
     pub file: S<String>,
     /// `[[shape]] scale`: uniform scale of a mesh, applied first.
     pub scale: S<f64>,
     /// `[[shape]] translate`: translation of a mesh, m, applied last.
-    pub translate: S<[f64; 3]>,
+    pub translate: S<Vec3Raw>,
     /// `[[shape]] rotate_y_deg`: rotation of a mesh about +y, degrees, applied after scaling.
     pub rotate_y_deg: S<f64>,
 }
@@ -363,33 +364,33 @@ pub struct RawLight {
     /// `[[light]] material`: material of an area light's surface (default black).
     pub material: S<String>,
     /// `[[light]] center`: centre of an area light's disk or sphere, m.
-    pub center: S<[f64; 3]>,
+    pub center: S<Vec3Raw>,
     /// `[[light]] radius`: radius of an area light's disk or sphere, m.
     pub radius: S<f64>,
     /// `[[light]] normal`: normal of an area light's disk.
-    pub normal: S<[f64; 3]>,
+    pub normal: S<Vec3Raw>,
     /// `[[light]] origin`: corner of an area light's quad, m.
-    pub origin: S<[f64; 3]>,
+    pub origin: S<Vec3Raw>,
     /// `[[light]] u`: first edge of an area light's quad, m.
-    pub u: S<[f64; 3]>,
+    pub u: S<Vec3Raw>,
     /// `[[light]] v`: second edge of an area light's quad, m.
-    pub v: S<[f64; 3]>,
+    pub v: S<Vec3Raw>,
     /// `[[light]] position`: position of a point light, spot or luminaire's photometric centre, m.
-    pub position: S<[f64; 3]>,
+    pub position: S<Vec3Raw>,
     /// `[[light]] direction`: direction of travel of a directional light or sun; the axis of a
     /// spot; a luminaire's nadir.
-    pub direction: S<[f64; 3]>,
+    pub direction: S<Vec3Raw>,
     /// `[[light]] look_at`: point the spot or luminaire aims at, m (instead of `direction`).
-    pub look_at: S<[f64; 3]>,
+    pub look_at: S<Vec3Raw>,
     /// `[[light]] cone_deg`: half-angle of a spot's cone, degrees.
     pub cone_deg: S<f64>,
     /// `[[light]] falloff_start_deg`: half-angle where a spot's falloff begins, degrees.
     pub falloff_start_deg: S<f64>,
     /// `[[light]] target_min`: lower corner of the box a directional light or sun or sky aims its
     /// photons at, m.
-    pub target_min: S<[f64; 3]>,
+    pub target_min: S<Vec3Raw>,
     /// `[[light]] target_max`: upper corner of that target box, m.
-    pub target_max: S<[f64; 3]>,
+    pub target_max: S<Vec3Raw>,
     /// `[[light]] file`: photometric file of a luminaire (IES, EULUMDAT, ...), relative to the
     /// scene file.
     pub file: S<String>,
@@ -398,10 +399,10 @@ pub struct RawLight {
     /// `[[light]] flux_scale`: multiplier of a luminaire file's intensities.
     pub flux_scale: S<f64>,
     /// `[[light]] c0_toward`: direction the luminaire's C0 half-plane points toward.
-    pub c0_toward: S<[f64; 3]>,
+    pub c0_toward: S<Vec3Raw>,
     /// `[[light]] rotation_deg`: a luminaire's Euler angles about the fixed X, then Y, then Z axes,
     /// degrees.
-    pub rotation_deg: S<[f64; 3]>,
+    pub rotation_deg: S<Vec3Raw>,
     /// `[[light]] emitter`: where a luminaire's photons start, `"point"` or `"opening"`.
     pub emitter: S<String>,
     /// `type = "luminaire"` with a GLDF file: the variant id.
@@ -417,7 +418,7 @@ pub struct RawLight {
     /// edge, `"none"` (uniform) or `"neckel_labs_1994"`.
     pub limb_darkening: S<String>,
     /// `[[light]] up`: zenith direction of a sky.
-    pub up: S<[f64; 3]>,
+    pub up: S<Vec3Raw>,
     /// `[[light]] horizon_deg`: elevation of a sky's lower edge above the plane normal to `up`,
     /// degrees.
     pub horizon_deg: S<f64>,
@@ -434,15 +435,15 @@ pub struct RawSensor {
     pub kind: S<String>,
     /// `[[sensor]] origin`: a corner of the plane's grid, or the centre of the profile's square on
     /// the water surface, m.
-    pub origin: S<[f64; 3]>,
+    pub origin: S<Vec3Raw>,
     /// `[[sensor]] u`: first edge of the grid or square, m.
-    pub u: S<[f64; 3]>,
+    pub u: S<Vec3Raw>,
     /// `[[sensor]] v`: second edge of the grid or square, m.
-    pub v: S<[f64; 3]>,
+    pub v: S<Vec3Raw>,
     /// `[[sensor]] normal`: the side measured (plane), or up toward the air (profile).
-    pub normal: S<[f64; 3]>,
+    pub normal: S<Vec3Raw>,
     /// `[[sensor]] resolution`: grid points [nu, nv] of an illuminance plane.
-    pub resolution: S<[i64; 2]>,
+    pub resolution: S<Exactly<i64, 2>>,
     /// `[[sensor]] samples`: estimates averaged per point (plane), or shadow rays per band for
     /// Ed(0+) (profile).
     pub samples: S<i64>,
@@ -452,7 +453,7 @@ pub struct RawSensor {
     /// `type = "ocean_profile"` only.
     pub depths_m: S<Vec<f64>>,
     /// `type = "sky_radiance"` only: [view zenith, view azimuth] pairs, degrees.
-    pub directions_deg: S<Vec<[f64; 2]>>,
+    pub directions_deg: S<Vec<Exactly<f64, 2>>>,
     /// `[[sensor]] slab_m`: thickness of each measuring slab of an ocean profile, m.
     pub slab_m: S<f64>,
     /// `[[sensor]] ior`: water's refractive index used for the water-leaving radiance Lw.

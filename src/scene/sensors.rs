@@ -82,7 +82,7 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
         None => cross.normalize(),
     };
     let res = ctx.require(&s.resolution, "resolution", &span, &what)?;
-    let [nx, ny] = *res.get_ref();
+    let [nx, ny] = res.get_ref().0;
     if !(1..=MAX_POINTS).contains(&nx) || !(1..=MAX_POINTS).contains(&ny) {
         return Err(ctx.err(
             &res.span(),
@@ -161,7 +161,7 @@ fn sky_radiance(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str) -
     ctx.only(&present, &["origin", "directions_deg", "samples"], what)?;
     let position = ctx.vec3(ctx.require(&s.origin, "origin", &span, what)?, "origin")?;
     let d = ctx.require(&s.directions_deg, "directions_deg", &span, what)?;
-    let directions_deg = d.get_ref().clone();
+    let directions_deg: Vec<[f64; 2]> = d.get_ref().iter().map(|x| x.0).collect();
     if directions_deg.is_empty() || directions_deg.len() > MAX_POINTS as usize {
         return Err(
             ctx.err(&d.span(), format!("{what}: directions_deg must list 1 to {MAX_POINTS} [zenith, azimuth] pairs"))

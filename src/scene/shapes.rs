@@ -71,7 +71,7 @@ pub fn shape(ctx: &Ctx, rec: &Spanned<RawShape>, index: usize) -> R<ShapeGroup> 
         "triangle" => {
             ctx.only(&present, &["vertices"], &what)?;
             let v = ctx.require(&s.vertices, "vertices", &span, &what)?;
-            let p = v.get_ref();
+            let p: Vec<[f64; 3]> = v.get_ref().iter().map(|x| x.0).collect();
             if p.len() != 3 || p.iter().flatten().any(|x| x.abs() > MAX_LENGTH_M) {
                 return Err(ctx.err(
                     &v.span(),

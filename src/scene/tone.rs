@@ -35,7 +35,7 @@ pub fn tone(
 ) -> R<(Option<ToneSettings>, Option<Region>)> {
     let region = match &o.region {
         None => None,
-        Some(r) => Some(region(ctx, r.get_ref(), &r.span(), camera)?),
+        Some(r) => Some(region(ctx, &r.get_ref().0, &r.span(), camera)?),
     };
     let given = o.tonemap.is_some()
         || o.adapt_to.is_some()
