@@ -433,6 +433,14 @@ fn a_march_step_far_below_the_medium_it_crosses_is_refused_naming_the_key() {
     let e = common::scene_error(&fine);
     assert!(e.contains(&format!("test.toml:{}:", step_line(&fine))) && e.contains("medium \"air\""), "{e}");
     common::scene(&sky.replacen("[integrator]\n", "[integrator]\nmarch_step = 450\n", 1));
+    // The default step (1 % of the geometry's diagonal) from a camera 1e12 m away (seed 4, case
+    // 8938): the world sphere then spans 2e12 m, and the error names the camera's position.
+    let camera = "position = [0.0, 2.0, 0.0]";
+    assert!(sky.contains(camera), "the example's camera moved");
+    let far = sky.replacen(camera, "position = [1e12, 2.0, 1e9]", 1);
+    let camera_line = far.lines().position(|l| l.starts_with("position = [1e12")).expect("camera") + 1;
+    let e = common::scene_error(&far);
+    assert!(e.contains(&format!("test.toml:{camera_line}:")) && e.contains("the default march_step"), "{e}");
 }
 
 #[test]

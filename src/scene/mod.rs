@@ -485,36 +485,46 @@ pub const MAX_MARCH_STEPS_ACROSS: f64 = 1e5;
 
 /// Refuses a `march_step` that would march a camera ray through more than
 /// [`MAX_MARCH_STEPS_ACROSS`] steps across a scattering medium. The medium's extent is the world
-/// sphere's diameter for the world medium, the diagonal of the shapes bounding it otherwise; a
-/// path, curved or not, crosses it a few times at most. The render fuzzer found a 2 × 10⁹ m
-/// glass block marched in 5 mm steps and the sunset sky's air in 0.25 m steps across its
-/// 4.4 × 10⁷ m world: 10⁸–10¹¹ steps a ray.
+/// sphere's diameter for the world medium (geometry and camera), the diagonal of the shapes
+/// bounding it otherwise; a path, curved or not, crosses it a few times at most. The render
+/// fuzzer found a 2 × 10⁹ m glass block marched in 5 mm steps, the sunset sky's air in 0.25 m
+/// steps across its 4.4 × 10⁷ m world, and a camera 10¹² m from that sky, which the default
+/// step (1 % of the geometry's diagonal) crossed in 10⁷ steps. The error names `march_step`'s
+/// line when the scene gives it, else the camera's position.
 fn check_march_work(ctx: &Ctx, raw: &RawScene, world: &World, integrator: &IntegratorSettings) -> Result<()> {
-    let Some(given) = raw.integrator.as_ref().and_then(|i| i.get_ref().march_step.as_ref()) else { return Ok(()) };
     if integrator.method != Method::PhotonMap {
         return Ok(());
     }
     let step = integrator.march_step_m;
-    let world_diameter = 2.0 * world.bounds.diagonal().length();
     for (id, m) in world.media.iter().enumerate().filter(|(_, m)| m.scatters()) {
         let id = Some(id as u32);
         let (extent, whose) = if world.global_medium == id {
-            (world_diameter, "the world sphere's diameter: it is the world medium")
+            (2.0 * world.reach.radius, "the world sphere's diameter: it is the world medium")
         } else {
             let bounding = world.shapes.iter().zip(&world.prims).filter(|(_, p)| p.interior == id || p.exterior == id);
             (bounding.fold(Aabb::EMPTY, |b, (s, _)| b.union(s.bounds())).diagonal().length(), "its shapes' extent")
         };
-        if extent / step > MAX_MARCH_STEPS_ACROSS {
-            return Err(ctx.err(
-                &given.span(),
-                format!(
-                    "march_step = {step} m would cross medium \"{}\" ({extent:.3e} m, {whose}) in {:.2e} steps, more than {MAX_MARCH_STEPS_ACROSS:e} per camera ray; use march_step ≥ {:.3e} m, or give the medium a smaller extent (a shape's interior)",
-                    m.name,
-                    extent / step,
-                    extent / MAX_MARCH_STEPS_ACROSS
-                ),
-            ));
+        if extent / step <= MAX_MARCH_STEPS_ACROSS {
+            continue;
         }
+        let given = raw.integrator.as_ref().and_then(|i| i.get_ref().march_step.as_ref());
+        let camera = raw.camera.get_ref().position.as_ref().map_or(raw.camera.span(), |p| p.span());
+        let (span, what) = match given {
+            Some(g) => (g.span(), format!("march_step = {step} m")),
+            None => (
+                camera,
+                format!("the default march_step ({step:.3e} m, 1 % of the geometry's diagonal) with the camera here"),
+            ),
+        };
+        return Err(ctx.err(
+            &span,
+            format!(
+                "{what} would cross medium \"{}\" ({extent:.3e} m, {whose}) in {:.2e} steps, more than {MAX_MARCH_STEPS_ACROSS:e} per camera ray; use march_step ≥ {:.3e} m, or give the medium a smaller extent (a shape's interior)",
+                m.name,
+                extent / step,
+                extent / MAX_MARCH_STEPS_ACROSS
+            ),
+        ));
     }
     Ok(())
 }
