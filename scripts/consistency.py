@@ -85,7 +85,7 @@ def scene_text(name: str, alpha: float | None, seed: int) -> str:
 
 
 def run_chain(args, name: str, seed: int, log) -> list[dict]:
-    work = args.out / f"{name}_seed{seed}"
+    work = args.out / (f"{name}_seed{seed}" + (f"_alpha{args.alpha:g}" if args.alpha else ""))
     work.mkdir(parents=True, exist_ok=True)
     scene = work / f"{name}.toml"
     scene.write_text(scene_text(name, args.alpha, seed))
@@ -135,7 +135,7 @@ def calibrate_fog(args, rows_a: list[dict], log) -> list[dict]:
         b_name = f"seed {args.seed + 1000}"
     out = []
     for r in rows_a:
-        va, sa = np.load(args.out / f"fog_box_seed{r['seed']}" / f"bands_{r['passes']}.npy")
+        va, sa = np.load(args.out / f"fog_box_seed{int(r['seed'])}" / f"bands_{r['passes']}.npy")
         if r["passes"] < 2:
             continue
         both = np.sqrt(sa**2 + sb**2)
