@@ -11,7 +11,7 @@
 # budgets, morgana's progressive photon mapping as one run stopped and resumed at growing pass
 # counts up to --max-cpu CPU seconds (scripts/progressive_chain.py), uniform and, on the volume
 # caustic, adaptive (--adaptive); Mitsuba at --mitsuba-spp, its RMSE at longer times by the
-# 1/sqrt(t) law of an unbiased estimator. Writes progressive.csv and progressive_runs.csv:
+# 1/sqrt(t) law of an unbiased estimator. Writes progressive_SCENES.csv and progressive_runs_SCENES.csv:
 #   scripts/bench_mitsuba.sh --progressive --cpu-times 10 60 300
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -126,7 +126,8 @@ def calibrate_fog(args, rows_a: list[dict], log) -> list[dict]:
     settings and another seed, with its standard-error layer)."""
     if args.calibrate_against:
         vb, sb = spectral(args.calibrate_against)
-        last = {"passes": json.loads((args.calibrate_against.parent / "report.json").read_text())["progressive"]["passes"]}
+        report = json.loads((args.calibrate_against.parent / "report.json").read_text())
+        last = {"passes": report["progressive"]["passes"]}
         b_name = str(args.calibrate_against)
     else:
         rows_b = run_chain(args, "fog_box", args.seed + 1000, log)
@@ -152,7 +153,8 @@ def summarise(rows: list[dict], args, log):
     sel = [r for r in rows if args.fit_from <= r["cpu_s"] <= args.fit_to]
     for clock in ("cpu_s", "wall_s"):
         s, b, n = chain.fit_slope([r[clock] for r in sel], [r["rel_rmse"] for r in sel])
-        log(f"    slope of ln(rel. RMSE) on ln({clock}) over {args.fit_from:g}..{args.fit_to:g} CPU s: {s:.3f} ({n} points)")
+        log(f"    slope of ln(rel. RMSE) on ln({clock}) over {args.fit_from:g}..{args.fit_to:g} CPU s: "
+            f"{s:.3f} ({n} points)")
     if len(sel) >= 4:
         half = len(sel) // 2
         s1, _, _ = chain.fit_slope([r["cpu_s"] for r in sel[: half + 1]], [r["rel_rmse"] for r in sel[: half + 1]])

@@ -1147,9 +1147,10 @@ def main(argv=None):
             runs, summary = bench_scene_progressive(name, SCENES[name], args, log)
             all_runs += runs
             all_summary += summary
-        write_csv(args.out / "progressive_runs.csv", [{k: getattr(r, k) for k in RUN_FIELDS} for r in all_runs])
-        write_csv(args.out / "progressive.csv", all_summary)
-        print(f"\nwrote {args.out}/progressive_runs.csv, progressive.csv, log.txt and preview PNGs")
+        tag = "_".join(args.scenes)
+        write_csv(args.out / f"progressive_runs_{tag}.csv", [{k: getattr(r, k) for k in RUN_FIELDS} for r in all_runs])
+        write_csv(args.out / f"progressive_{tag}.csv", all_summary)
+        print(f"\nwrote {args.out}/progressive_runs_{tag}.csv, progressive_{tag}.csv, log.txt and preview PNGs")
         return 0
     for name in args.scenes:
         runs, summary = bench_scene(name, SCENES[name], args, log)
