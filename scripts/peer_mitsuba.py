@@ -53,6 +53,9 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import progressive_chain  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 
 # Absolute luminance per unit of Mitsuba's normalised Y: K_m (lm/W) times the denominator of
@@ -78,6 +81,10 @@ class SceneSpec:
     # (L S+ E paths: glints, the light's images in glass), dilated by this many pixels (None: no
     # such second figure). See `specular_light_mask`.
     mask_glints_dilate: int | None = None
+    # `--progressive`: the [integrator] settings of one pass of morgana's progressive runs, and
+    # whether adaptive sampling (`--adaptive`) runs too.
+    progressive: dict = field(default_factory=dict)
+    progressive_adaptive: bool = False
 
 
 PM_COMMON = {"direct": "shadow_rays", "final_gather": True}
@@ -94,6 +101,7 @@ SCENES = {
             {"photons": 2_000_000, "volume_k": 100, "march_step": 0.05, "gather_rays": 8, "spp": 8},
             {"photons": 4_000_000, "volume_k": 200, "march_step": 0.1, "gather_rays": 4, "spp": 16},
         ],
+        progressive={"photons": 200_000, "volume_k": 50, "march_step": 0.1, "gather_rays": 4, "spp": 2},
         regions={
             "left wall": (0, 48, 8, 80),
             "right wall": (120, 48, 128, 80),
@@ -116,6 +124,10 @@ SCENES = {
             {"photons": 8_000_000, "caustic_photons": 2_000_000, "volume_k": 100, "march_step": 0.05,
              "gather_rays": 4, "spp": 16},
         ],
+        # Cheap photons, more eye samples: the whole-image error is the glints' (eye samples).
+        progressive={"photons": 100_000, "caustic_photons": 100_000, "volume_k": 50, "march_step": 0.1,
+                     "final_gather": False, "k": 100, "spp": 4},
+        progressive_adaptive=True,
         regions={
             "sphere": (56, 56, 72, 72),
             "caustic": (96, 96, 112, 112),
@@ -874,6 +886,90 @@ def bench_scene(name: str, spec: SceneSpec, args, log) -> tuple[list[Run], list[
     return runs, summaries(name, runs, args)
 
 
+PROGRESSIVE, ADAPTIVE = "morgana progressive", "morgana adaptive"
+# Mitsuba's budgets in --progressive mode (--mitsuba-spp): its RMSE at longer times follows from
+# the largest by the law of an unbiased estimator (`mitsuba_at`).
+PROGRESSIVE_MITSUBA_SPP = [64, 256, 1024]
+
+
+def bench_scene_progressive(name: str, spec: SceneSpec, args, log) -> tuple[list[Run], list[dict]]:
+    """`--progressive`: Mitsuba at PROGRESSIVE_MITSUBA_SPP, then morgana's progressive photon
+    mapping as one run stopped and resumed at growing pass counts (scripts/progressive_chain.py),
+    uniform and, where the scene says so, adaptive; each stop is a point of morgana's RMSE(time)."""
+    base, get_runner, ref, started = load_scene(name, spec, args, log)
+    out = args.out / name
+    full, masked = scene_metrics(spec, tomllib.loads(base), ref, out, log)
+    runs: list[Run] = []
+
+    def add(method, label, img, seconds, cpu):
+        raw, corr = full.errors(img)
+        raw_m, corr_m = masked.errors(img) if masked else (NAN, NAN)
+        runs.append(Run(name, method, label, seconds, cpu, raw, corr, corr / full.mean, raw_m, corr_m, rgb=img))
+        log(f"  {method:26s} {label:40s} {seconds:7.2f} s (CPU {cpu:7.2f} s, load {os.getloadavg()[0]:4.1f})  "
+            f"RMSE {corr:.4g} ({100 * corr / full.mean:.2f}%), raw {raw:.4g}"
+            + (f", masked {corr_m:.4g}" if masked else ""))
+
+    for i, spp in enumerate(args.mitsuba_spp):
+        img, seconds, cpu = get_runner().render(spp, seed=1 + i)
+        add(MITSUBA, f"spp={spp}", img, seconds, cpu)
+    for r in started:
+        r.close()
+    variants = [(PROGRESSIVE, [])] + ([(ADAPTIVE, ["--adaptive"])] if spec.progressive_adaptive else [])
+    if args.no_adaptive:
+        variants = variants[:1]
+    for method, extra in variants:
+        work = out / method.replace(" ", "_")
+        work.mkdir(parents=True, exist_ok=True)
+        scene = work / f"{name}.toml"
+        scene.write_text(variant_toml(base, {"method": "photon_map", **PM_COMMON, **spec.progressive, "seed": 7}, name))
+        log(f"  {method}: {settings_label(spec.progressive)} a pass, up to {args.max_cpu:g} CPU s")
+        for step in progressive_chain.run(args.bin, scene, work, args.threads, args.max_cpu, extra, log):
+            add(method, f"passes={step.passes}", read_exr_rgb(work / f"{name}.exr"), step.phase_s, step.cpu_s)
+    set_ratios(runs)
+    previews(out, ref, runs, spec.regions, log)
+    means = {"rmse": full.mean, "rmse_m": masked.mean if masked else NAN}
+    return runs, progressive_summary(name, runs, means, args, log)
+
+
+def mitsuba_at(runs: list[Run], key: str, t: float, cpu: bool) -> float:
+    """Mitsuba's RMSE at time t from its largest run by the law of an unbiased estimator: its
+    squared error is its variance, which falls as 1/spp, and its time grows as spp, so
+    RMSE(t) = RMSE(t₀) √(t₀/t). (Measured on these scenes: Mitsuba's RMSE falls as t^-0.50,
+    benchmarks.md.) The runs' own fit is logged as a check."""
+    last = [r for r in runs if r.method == MITSUBA][-1]
+    t0 = last.cpu_seconds if cpu else last.seconds
+    return getattr(last, key) * math.sqrt(t0 / t)
+
+
+def progressive_summary(name: str, runs: list[Run], means: dict, args, log) -> list[dict]:
+    """Each progressive variant's RMSE at --cpu-times (and --times of wall/phase time), Mitsuba's
+    there, their ratio, and the slope of morgana's RMSE over the chain."""
+    ts, es = curve(runs, MITSUBA, cpu=True)
+    slope_mi, _, _ = progressive_chain.fit_slope(ts, es)
+    log(f"  {name}: Mitsuba's RMSE against CPU time over its runs: slope {slope_mi:.3f} (the law: -0.5)")
+    rows = []
+    for method in (PROGRESSIVE, ADAPTIVE):
+        if not any(r.method == method for r in runs):
+            continue
+        for key, label in (("rmse", "all pixels"), ("rmse_m", "masked")):
+            t, e = curve(runs, method, key, cpu=True)
+            if not all(math.isfinite(x) for x in e):
+                continue
+            sel = [(a, b) for a, b in zip(t, e) if args.fit_from <= a <= args.fit_to]
+            slope, _, n = progressive_chain.fit_slope([a for a, _ in sel], [b for _, b in sel])
+            log(f"  {name} {method} ({label}): RMSE against CPU time, slope {slope:.3f} over "
+                f"{args.fit_from:g}..{args.fit_to:g} s ({n} points)")
+            for cpu_t in args.cpu_times:
+                mo = loglog_interp(t, e, cpu_t)
+                mi_ = mitsuba_at(runs, key, cpu_t, cpu=True)
+                rows.append({"scene": name, "method": method, "pixels": label, "clock": "cpu", "seconds": cpu_t,
+                             "morgana": mo, "mitsuba": mi_, "ratio": mo / mi_, "slope": slope,
+                             "reference_mean": means[key]})
+                log(f"    {cpu_t:6g} CPU s: morgana {mo:.4g} ({100 * mo / means[key]:.1f}% of the mean), "
+                    f"Mitsuba {mi_:.4g} ({100 * mi_ / means[key]:.1f}%), ratio {mo / mi_:.3f}")
+    return rows
+
+
 def summaries(name: str, runs: list[Run], args) -> list[dict]:
     return equal_time_summary(name, runs, args.times, cpu=False) + equal_time_summary(name, runs, args.cpu_times, True)
 
@@ -994,6 +1090,14 @@ def parse_args(argv):
     p.add_argument("--quick", action="store_true", help="the first three budgets of each series only")
     p.add_argument("--no-point-spot", action="store_true", help="skip the point-spotlight check of scene 2")
     p.add_argument("--reference-only", action="store_true", help="render (or reuse) the references only")
+    p.add_argument("--progressive", action="store_true",
+                   help="morgana's progressive runs (uniform and adaptive) against Mitsuba up to --max-cpu CPU s")
+    p.add_argument("--max-cpu", type=float, default=300.0, help="--progressive: CPU seconds of each morgana run")
+    p.add_argument("--fit-from", type=float, default=10.0, help="--progressive: slopes fitted from this CPU time")
+    p.add_argument("--fit-to", type=float, default=300.0, help="--progressive: ... to this CPU time")
+    p.add_argument("--no-adaptive", action="store_true", help="--progressive: the uniform passes only")
+    p.add_argument("--mitsuba-spp", type=int, nargs="+", default=PROGRESSIVE_MITSUBA_SPP,
+                   help="--progressive: Mitsuba's budgets (its RMSE beyond the largest by the 1/sqrt(t) law)")
     return p.parse_args(argv)
 
 
@@ -1038,6 +1142,16 @@ def main(argv=None):
         return 0
     write_csv(args.out / "colour_check.csv", colour_check(log))
     all_runs, all_summary = [], []
+    if args.progressive:
+        for name in args.scenes:
+            runs, summary = bench_scene_progressive(name, SCENES[name], args, log)
+            all_runs += runs
+            all_summary += summary
+        tag = "_".join(args.scenes)
+        write_csv(args.out / f"progressive_runs_{tag}.csv", [{k: getattr(r, k) for k in RUN_FIELDS} for r in all_runs])
+        write_csv(args.out / f"progressive_{tag}.csv", all_summary)
+        print(f"\nwrote {args.out}/progressive_runs_{tag}.csv, progressive_{tag}.csv, log.txt and preview PNGs")
+        return 0
     for name in args.scenes:
         runs, summary = bench_scene(name, SCENES[name], args, log)
         all_runs += runs

@@ -143,6 +143,54 @@ fn standard_errors_cover_the_exact_furnace_radiance_95_percent_of_the_time() {
     assert!((fraction - 0.95).abs() <= 0.03, "{covered} of {total} pixel-bands covered ({fraction})");
 }
 
+/// The exact illuminance anywhere inside the furnace over 554–556 nm: the irradiance on either
+/// side of a plane is π L = 5π W m⁻² nm⁻¹ at every wavelength, so E_v = K_m · 5π · ∫ ȳ dλ with
+/// K_m = 683.002 lm W⁻¹ and ∫₅₅₄⁵⁵⁶ ȳ dλ = 1.9998025 nm (trapezoid on the CIE 1931 2° table at
+/// 1 nm, CIE 018:2019: ȳ(554) = 0.9997482, ȳ(555) = 1, ȳ(556) = 0.9998567).
+const EXACT_FURNACE_LUX: f64 = 683.002 * 5.0 * PI * 1.9998025;
+
+#[test]
+fn standard_errors_cover_the_exact_furnace_illuminance_95_percent_of_the_sensor_rows() {
+    // A 16 × 16 illuminance plane in the furnace, one band of 554–556 nm, direct light by
+    // shadow rays and indirect light by gather rays into each pass's map: every row's E_lx is
+    // the same exact value. 16 passes: ±t SE with t = 2.131 (15 degrees of freedom) should
+    // cover it for 95 % of the 6 × 256 rows; the rows of a pass share its photon map, so ± 3 %
+    // as above. (Measured with 12 seeds of an 8 × 8 plane: 94.4 %, RMS z 1.087 where Student's
+    // t with 15 degrees of freedom has 1.074.)
+    let sensor = "\n[[sensor]]\nname = \"plane\"\ntype = \"illuminance_plane\"\norigin = [-0.4, -0.2, 0.4]\n\
+                  u = [0.8, 0.0, 0.0]\nv = [0.0, 0.0, -0.8]\nresolution = [16, 16]\nsamples = 4\ngather_rays = 4\n";
+    let (mut covered, mut total) = (0usize, 0usize);
+    let (mut z1, mut z2, mut rel) = (0.0, 0.0, 0.0);
+    for seed in 1..=6 {
+        let text = furnace(16, seed)
+            .replace("min_nm = 400.0\nmax_nm = 700.0", "min_nm = 554.0\nmax_nm = 556.0")
+            .replace("bands = 2", "bands = 1")
+            .replace("width = 16\nheight = 16", "width = 2\nheight = 2")
+            + sensor;
+        let r = render_with(&scene(&text), 2);
+        let columns = &r.sensors[0].columns;
+        let column = |name: &str| &columns.iter().find(|c| c.0 == name).unwrap_or_else(|| panic!("no {name}")).1;
+        for (e, se) in column("E_lx").iter().zip(column("E_lx_se")) {
+            total += 1;
+            z1 += (e - EXACT_FURNACE_LUX) / se;
+            z2 += ((e - EXACT_FURNACE_LUX) / se).powi(2);
+            rel += se / EXACT_FURNACE_LUX;
+            if (e - EXACT_FURNACE_LUX).abs() <= 2.131 * se {
+                covered += 1;
+            }
+        }
+    }
+    let fraction = covered as f64 / total as f64;
+    let rms_z = (z2 / total as f64).sqrt();
+    let n = total as f64;
+    eprintln!(
+        "sensor rows: {covered} of {total} covered ({fraction:.3}), RMS z {rms_z:.3}, mean z {:.3}, mean rel. SE {:.4}",
+        z1 / n,
+        rel / n
+    );
+    assert!((fraction - 0.95).abs() <= 0.03, "{covered} of {total} rows covered ({fraction}; RMS z {rms_z})");
+}
+
 #[test]
 fn progressive_output_does_not_depend_on_the_thread_count() {
     let s = scene(&furnace(3, 9));
