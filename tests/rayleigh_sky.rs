@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::sky::{R_EARTH_M, ZENITH_BEAM};
+use common::sky::{R_EARTH_M, ZENITH_BEAM, usa76_n};
 use common::{scene, scene_error};
 use glam::DVec3;
 use morgana::media::Medium;
@@ -24,13 +24,6 @@ fn black_earth(min_nm: f64, max_nm: f64, light: &str) -> String {
 
 fn air(s: &morgana::scene::Scene) -> &Medium {
     s.world.media.iter().find(|m| m.name == "air").expect("the air medium")
-}
-
-/// USA76 number density N = P N_A/(R* T) at geometric height `h` (the standard's constants,
-/// Table 2: N_A = 6.022169e23 mol⁻¹, R* = 8.31432 J mol⁻¹ K⁻¹), m⁻³.
-fn usa76_n(h: f64) -> f64 {
-    let s = morgana::atmosphere::usa76::at_geometric(h);
-    s.pressure_pa * 6.022_169e23 / (8.314_32 * s.temperature_k)
 }
 
 /// ∫ N ds along the chord from the ground at the origin toward zenith angle `zenith_deg`, up to

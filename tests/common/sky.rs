@@ -97,3 +97,10 @@ pub fn ground_and_space_sensors(up: &[[f64; 2]], down: &[[f64; 2]], samples: usi
 /// A collimated beam from the zenith (scenes need a light to load).
 pub const ZENITH_BEAM: &str =
     "[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 1.0\n";
+
+/// USA76 number density N = P N_A/(R* T) at geometric height `h` (the standard's constants,
+/// Table 2: N_A = 6.022169e23 mol⁻¹, R* = 8.31432 J mol⁻¹ K⁻¹), m⁻³.
+pub fn usa76_n(h: f64) -> f64 {
+    let s = morgana::atmosphere::usa76::at_geometric(h);
+    s.pressure_pa * 6.022_169e23 / (8.314_32 * s.temperature_k)
+}
