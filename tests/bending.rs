@@ -38,16 +38,7 @@ method = "photon_map"
 photons = 0
 spp = 4
 
-[world]
-medium = "air"
-earth = "spherical"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-atmosphere = "usa76"
-refraction = {refraction}
-{earth}
+{air}{earth}
 [[light]]
 type = "sun"
 elevation_deg = {elevation_deg:?}
@@ -65,6 +56,7 @@ samples = 4
         zenith = 90.0 - elevation_deg,
         x = e.cos(),
         y = 2.0 + e.sin(),
+        air = common::sky::round_air(&format!("refraction = {refraction}")),
         earth = common::black_sphere_at([0.0, -R_EARTH_M, 0.0], R_EARTH_M),
     )
 }

@@ -244,18 +244,7 @@ fn morgana_readings(
 ) -> Vec<Vec<f64>> {
     let toml = format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 1
-min_nm = {MIN_NM:?}
-max_nm = {MAX_NM:?}
-
+{pixel}
 [integrator]
 method = "path"
 spp = 1
@@ -265,6 +254,7 @@ seed = {seed}
 {ground}
 {sun}
 {sensors}"#,
+        pixel = common::sky::zenith_pixel(1, MIN_NM, MAX_NM),
         ground = common::sky::flat_air_over_black_ground(),
         sun = common::sky::point_sun(90.0 - sun_zenith),
         sensors = common::sky::ground_and_space_sensors(up, down, samples),

@@ -252,21 +252,11 @@ fn a_sky_radiance_sensor_reads_the_single_scattered_sky() {
     let down = [[140.0, 30.0], [180.0, 0.0]];
     let toml = format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 1
-min_nm = 545.0
-max_nm = 555.0
-
+{pixel}
 {ground}
 {sun}
 {sensors}"#,
+        pixel = common::sky::zenith_pixel(1, 545.0, 555.0),
         ground = flat_black_ground(1),
         sun = common::sky::point_sun(90.0 - sun_zenith),
         sensors = common::sky::ground_and_space_sensors(&up, &down, 32),

@@ -10,18 +10,7 @@ use std::path::PathBuf;
 fn scene_text(elevation_deg: f64) -> String {
     format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 2
-min_nm = 450.0
-max_nm = 650.0
-
+{pixel}
 [integrator]
 photons = 0
 march_step = 2000.0
@@ -36,26 +25,14 @@ origin = [0.0, 1.0, 0.0]
 directions_deg = [[0.0, 0.0], [90.0, 90.0]]
 samples = 4
 "#,
+        pixel = common::sky::zenith_pixel(2, 450.0, 650.0),
         ground = common::sky::flat_air_over_black_ground(),
         sun = common::sky::point_sun(elevation_deg),
     )
 }
 
 fn args(scene: PathBuf, out: PathBuf, zeniths: Vec<f64>) -> RenderArgs {
-    RenderArgs {
-        scene: Some(scene),
-        out: Some(out),
-        photons: None,
-        seed: Some(3),
-        threads: Some(2),
-        quiet: true,
-        max_map_memory: None,
-        max_memory: None,
-        max_seconds: None,
-        schedule: morgana::distributed::Schedule::Dynamic,
-        sun_zenith_deg: zeniths,
-        stop: Default::default(),
-    }
+    common::sky::sweep_args(scene, out, 3, zeniths)
 }
 
 #[test]

@@ -14,9 +14,9 @@
 mod common;
 
 use common::sky::{R_EARTH_M, point_sun, usa76_n};
-use morgana::cli::render::{RenderArgs, run};
+use morgana::cli::render::run;
 use morgana::media::rayleigh_air::{cross_section_m2, depolarisation};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// USA76 stops at 86 km; morgana puts no air above it.
 const TOP_M: f64 = 86_000.0;
@@ -35,32 +35,13 @@ const SUN_ZENITHS_DEG: [f64; 5] = [90.0, 92.0, 94.0, 96.0, 98.0];
 fn scene_text() -> String {
     format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 1
-min_nm = {MIN_NM:?}
-max_nm = {MAX_NM:?}
-
+{pixel}
 [integrator]
 photons = 0
 march_step = 500.0
 spp = 1
 
-[world]
-medium = "air"
-earth = "spherical"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-atmosphere = "usa76"
-{earth}
+{air}{earth}
 {sun}
 [[sensor]]
 name = "sky"
@@ -69,32 +50,18 @@ origin = [0.0, {EYE_M:?}, 0.0]
 directions_deg = [[0.0, 0.0]]
 samples = 4
 "#,
+        pixel = common::sky::zenith_pixel(1, MIN_NM, MAX_NM),
+        air = common::sky::round_air(""),
         earth = common::black_sphere_at([0.0, -R_EARTH_M, 0.0], R_EARTH_M),
         sun = point_sun(0.0),
     )
 }
 
-fn args(scene: PathBuf, out: PathBuf, seed: u64) -> RenderArgs {
-    RenderArgs {
-        scene: Some(scene),
-        out: Some(out),
-        photons: None,
-        seed: Some(seed),
-        threads: Some(2),
-        quiet: true,
-        max_map_memory: None,
-        max_memory: None,
-        max_seconds: None,
-        schedule: morgana::distributed::Schedule::Dynamic,
-        sun_zenith_deg: SUN_ZENITHS_DEG.to_vec(),
-        stop: Default::default(),
-    }
-}
-
 /// The sweep's zenith radiance (the band's column) at each solar zenith angle, in order.
 fn sweep_zenith_radiance(dir: &Path, seed: u64) -> Vec<f64> {
     let out = dir.join(format!("out{seed}"));
-    run(&args(dir.join("twilight.toml"), out.clone(), seed)).expect("the sweep runs");
+    run(&common::sky::sweep_args(dir.join("twilight.toml"), out.clone(), seed, SUN_ZENITHS_DEG.to_vec()))
+        .expect("the sweep runs");
     let csv = std::fs::read_to_string(out.join("twilight_sun_sweep.csv")).expect("the sweep's CSV");
     let mut lines = csv.lines();
     let header = lines.next().expect("a header");

@@ -48,18 +48,10 @@ bands = 4
 min_nm = {min_nm:?}
 max_nm = {max_nm:?}
 
-[world]
-medium = "air"
-earth = "spherical"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-atmosphere = "usa76"
-{medium_lines}
-{earth}
+{air}{earth}
 {light}
 "#,
+        air = round_air(medium_lines),
         earth = super::black_sphere_at([0.0, -R_EARTH_M, 0.0], R_EARTH_M),
     )
 }
@@ -103,4 +95,43 @@ pub const ZENITH_BEAM: &str =
 pub fn usa76_n(h: f64) -> f64 {
     let s = morgana::atmosphere::usa76::at_geometric(h);
     s.pressure_pa * 6.022_169e23 / (8.314_32 * s.temperature_k)
+}
+
+/// A 1 × 1 camera 1 m up looking at the zenith (a scene needs one; its sensors measure) and an
+/// `[output]` of `bands` bands over `min_nm`–`max_nm`.
+pub fn zenith_pixel(bands: usize, min_nm: f64, max_nm: f64) -> String {
+    format!(
+        "\n[camera]\nposition = [0.0, 1.0, 0.0]\nlook_at = [0.0, 2.0, 0.001]\nfov_deg = 1.0\nwidth = 1\nheight = 1\n\n[output]\nbands = {bands}\nmin_nm = {min_nm:?}\nmax_nm = {max_nm:?}\n"
+    )
+}
+
+/// `[world]` in the medium "air" on a round Earth, and the USA76 `[[medium]]` "air" with the
+/// lines `medium_lines`.
+pub fn round_air(medium_lines: &str) -> String {
+    format!(
+        "\n[world]\nmedium = \"air\"\nearth = \"spherical\"\n\n[[medium]]\nname = \"air\"\ntype = \"atmosphere\"\natmosphere = \"usa76\"\n{medium_lines}\n"
+    )
+}
+
+/// `morgana render SCENE --out OUT --seed SEED --threads 2 --quiet --sun-zenith-deg ZENITHS`.
+pub fn sweep_args(
+    scene: std::path::PathBuf,
+    out: std::path::PathBuf,
+    seed: u64,
+    zeniths: Vec<f64>,
+) -> morgana::cli::render::RenderArgs {
+    morgana::cli::render::RenderArgs {
+        scene: Some(scene),
+        out: Some(out),
+        photons: None,
+        seed: Some(seed),
+        threads: Some(2),
+        quiet: true,
+        max_map_memory: None,
+        max_memory: None,
+        max_seconds: None,
+        schedule: morgana::distributed::Schedule::Dynamic,
+        sun_zenith_deg: zeniths,
+        stop: Default::default(),
+    }
 }
