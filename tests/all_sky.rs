@@ -32,23 +32,14 @@ method = "{method}"
 photons = 1000
 spp = 64
 
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-1.0, -1.0, -1.0]
-u = [0.0, 0.0, 2.0]
-v = [2.0, 0.0, 0.0]
-material = "black"
+{box_floor}
 
 [[light]]
 type = "sky"
 spectrum = 3.0
 scale = 1.0
-"#
+"#,
+        box_floor = common::black_quad([-1.0, -1.0, -1.0], [0.0, 0.0, 2.0], [2.0, 0.0, 0.0]),
     )
 }
 
@@ -179,35 +170,11 @@ photons = 0
 march_step = 200.0
 spp = 64
 
-[world]
-medium = "air"
-earth = "flat"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-2000000.0, 0.0, -2000000.0]
-u = [0.0, 0.0, 4000000.0]
-v = [4000000.0, 0.0, 0.0]
-material = "black"
-
-[[light]]
-type = "sun"
-elevation_deg = 30.0
-azimuth_deg = 90.0
-angular_diameter_deg = 0.0
-spectrum = 1.0
-scale = 1.0
-
+{ground}
+{sun}
 {extra}
-"#
+"#,
+        ground = common::sky::flat_air_over_black_ground(),
+        sun = common::sky::point_sun(30.0),
     )
 }

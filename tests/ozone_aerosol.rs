@@ -7,58 +7,21 @@
 
 mod common;
 
+use common::sky::{ZENITH_BEAM, black_earth, directional_beam};
 use common::{scene, scene_error};
 use glam::DVec3;
 use morgana::media::Medium;
 use morgana::media::rayleigh_air::cross_section_m2;
 use morgana::media::tracking::transmittance;
-use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::photon::{MapKind, PassSettings, PhotonSink, PhotonStats, shoot};
 use morgana::photon_map::PhotonPath;
 use morgana::rng::{Rng, Stream};
-
-const R_EARTH_M: f64 = 6_371_000.0;
 
 /// Bogumil et al. (2003), SCIAMACHY, 293 K, as published: σ(603.0779 nm) = 5.30671 × 10⁻²¹ cm².
 const CHAPPUIS_NM: f64 = 603.0779;
 const CHAPPUIS_SIGMA_M2: f64 = 5.30671e-25;
 /// 1 DU = 2.6867 × 10¹⁶ molecules cm⁻² (WMO-No. 8): 300 DU = 8.0601 × 10²² m⁻².
 const MOLECULES_PER_M2_PER_DU: f64 = 2.6867e20;
-
-const ZENITH_BEAM: &str =
-    "[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 1.0\n";
-
-/// A black Earth of radius 6371 km in a USA76 atmosphere with the medium lines `extra`, over
-/// `min_nm`–`max_nm`, lit by `light`.
-fn black_earth(min_nm: f64, max_nm: f64, extra: &str, light: &str) -> String {
-    format!(
-        r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 40.0
-width = 4
-height = 4
-
-[output]
-bands = 4
-min_nm = {min_nm:?}
-max_nm = {max_nm:?}
-
-[world]
-medium = "air"
-earth = "spherical"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-atmosphere = "usa76"
-{extra}
-{earth}
-{light}
-"#,
-        earth = common::black_sphere_at([0.0, -R_EARTH_M, 0.0], R_EARTH_M),
-    )
-}
 
 fn air(s: &morgana::scene::Scene) -> &Medium {
     s.world.media.iter().find(|m| m.name == "air").expect("the air medium")
@@ -154,30 +117,30 @@ fn whole_atmosphere_transmittance_is_beer_lambert_on_the_summed_profile() {
     assert!((mixed / sum - 1.0).abs() < 1e-12, "{mixed} vs {sum}");
 }
 
+/// Shoots `n` photons of the global pass with `seed`, and checks that every emitted watt is
+/// accounted for: absorbed by the ground, escaped to space or absorbed in the air (to 10⁻⁹), none
+/// truncated. Returns the sink, the statistics and the emitted power.
+fn shoot_balanced(s: &morgana::scene::Scene, n: u64, seed: u64) -> (PhotonSink, PhotonStats, f64) {
+    let (sink, st) = shoot(&s.world, &PassSettings::of(s), MapKind::Global, n, seed, &|_| {});
+    let emitted = n as f64 * st.power_per_photon_w;
+    assert_eq!(st.truncated_w, 0.0);
+    let out = st.absorbed_surface_w + st.escaped_w + st.absorbed_medium_w;
+    assert!((out / emitted - 1.0).abs() < 1e-9, "ground + space + air = {out} of {emitted} W");
+    (sink, st, emitted)
+}
+
 /// Photons path-traced down through air + ozone + aerosols (delta tracking over the summed
 /// majorants): the fraction reaching the ground unscattered is exp(−τ_slant) of the summed
 /// optical depths along the 60° chord, within 4 standard errors; with ω = 1 aerosols, all that
 /// is lost in the air is ozone's absorption, and every watt is accounted for.
 #[test]
 fn path_traced_transmittance_and_energy_balance() {
-    let light = r#"
-[[light]]
-type = "directional"
-direction = [-0.8660254037844386, -0.5, 0.0]
-spectrum = 1.0
-irradiance_w_m2 = 1.0
-target_min = [-1000.0, 0.0, -1000.0]
-target_max = [1000.0, 1.0, 1000.0]
-"#;
+    let light = directional_beam([-0.8660254037844386, -0.5, 0.0]);
     // A 1 nm band at the Chappuis peak: σ_O3 varies by < 0.1 % across it (5.302–5.311e-21 cm²).
     let all = format!("ozone_du = 300\n{HAZE}");
-    let s = scene(&black_earth(602.58, 603.58, &all, light));
+    let s = scene(&black_earth(602.58, 603.58, &all, &light));
     let n = 100_000u64;
-    let (sink, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 21, &|_| {});
-    let emitted = n as f64 * st.power_per_photon_w;
-    assert_eq!(st.truncated_w, 0.0);
-    let out = st.absorbed_surface_w + st.escaped_w + st.absorbed_medium_w;
-    assert!((out / emitted - 1.0).abs() < 1e-9, "ground + space + air = {out} of {emitted} W");
+    let (sink, st, emitted) = shoot_balanced(&s, n, 21);
     assert!(st.absorbed_medium_w > 0.0, "ozone absorbs");
     // The slant depth from the computed transmittance (checked against closed forms above).
     let dir = DVec3::new(0.8660254037844386, 0.5, 0.0);
@@ -197,25 +160,14 @@ target_max = [1000.0, 1.0, 1000.0]
 /// absorbed in the air; with ω = 0.8 the air absorbs and the balance still closes.
 #[test]
 fn unit_albedo_aerosols_conserve_energy_over_a_black_earth() {
-    let light = r#"
-[[light]]
-type = "directional"
-direction = [-0.5, -0.8660254037844386, 0.0]
-spectrum = 1.0
-irradiance_w_m2 = 1.0
-target_min = [-1000.0, 0.0, -1000.0]
-target_max = [1000.0, 1.0, 1000.0]
-"#;
+    let light = directional_beam([-0.5, -0.8660254037844386, 0.0]);
     for (albedo, absorbs) in [(1.0, false), (0.8, true)] {
         let extra = format!(
             "aerosol = {{ angstrom_alpha = 1.3, angstrom_beta = 0.3, scale_height_m = 1500, albedo = {albedo:?}, g = 0.7 }}"
         );
-        let s = scene(&black_earth(500.0, 600.0, &extra, light));
+        let s = scene(&black_earth(500.0, 600.0, &extra, &light));
         let n = 50_000u64;
-        let (_, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 31, &|_| {});
-        let emitted = n as f64 * st.power_per_photon_w;
-        let out = st.absorbed_surface_w + st.escaped_w + st.absorbed_medium_w;
-        assert!((out / emitted - 1.0).abs() < 1e-9, "ω = {albedo}: {out} of {emitted} W");
+        let (_, st, _) = shoot_balanced(&s, n, 31);
         assert_eq!(st.absorbed_medium_w > 0.0, absorbs, "ω = {albedo}: absorbed {}", st.absorbed_medium_w);
         assert!(st.escaped_w > 0.0 && st.absorbed_surface_w > 0.0);
     }
@@ -226,17 +178,9 @@ target_max = [1000.0, 1.0, 1000.0]
 /// An aerosol of zero optical depth leaves the transmittance unchanged to the bit.
 #[test]
 fn a_constituent_of_zero_amount_changes_nothing() {
-    let light = r#"
-[[light]]
-type = "directional"
-direction = [-0.5, -0.8660254037844386, 0.0]
-spectrum = 1.0
-irradiance_w_m2 = 1.0
-target_min = [-1000.0, 0.0, -1000.0]
-target_max = [1000.0, 1.0, 1000.0]
-"#;
-    let plain = scene(&black_earth(400.0, 700.0, "", light));
-    let zero = scene(&black_earth(400.0, 700.0, "ozone_du = 0", light));
+    let light = directional_beam([-0.5, -0.8660254037844386, 0.0]);
+    let plain = scene(&black_earth(400.0, 700.0, "", &light));
+    let zero = scene(&black_earth(400.0, 700.0, "ozone_du = 0", &light));
     let n = 20_000u64;
     let (a_sink, a) = shoot(&plain.world, &PassSettings::of(&plain), MapKind::Global, n, 41, &|_| {});
     let (b_sink, b) = shoot(&zero.world, &PassSettings::of(&zero), MapKind::Global, n, 41, &|_| {});
@@ -247,7 +191,7 @@ target_max = [1000.0, 1.0, 1000.0]
         400.0,
         700.0,
         "aerosol = { angstrom_beta = 0.0, scale_height_m = 1000, albedo = 0.9, g = 0.7 }",
-        light,
+        &light,
     ));
     let dir = DVec3::new(0.5, 0.8660254037844386, 0.0);
     for nm in [400.0, 550.0, 700.0] {

@@ -242,72 +242,22 @@ fn morgana_readings(
     samples: usize,
     seed: u64,
 ) -> Vec<Vec<f64>> {
-    let list = |d: &[[f64; 2]]| d.iter().map(|[z, a]| format!("[{z:?}, {a:?}]")).collect::<Vec<_>>().join(", ");
     let toml = format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 1
-min_nm = {MIN_NM:?}
-max_nm = {MAX_NM:?}
-
+{pixel}
 [integrator]
 method = "path"
 spp = 1
 max_depth = 1000
 seed = {seed}
 
-[world]
-medium = "air"
-earth = "flat"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-2000000.0, 0.0, -2000000.0]
-u = [0.0, 0.0, 4000000.0]
-v = [4000000.0, 0.0, 0.0]
-material = "black"
-
-[[light]]
-type = "sun"
-elevation_deg = {elev:?}
-azimuth_deg = 90.0
-angular_diameter_deg = 0.0
-spectrum = 1.0
-scale = 1.0
-
-[[sensor]]
-name = "ground"
-type = "sky_radiance"
-origin = [0.0, 1.0, 0.0]
-directions_deg = [{up}]
-samples = {samples}
-
-[[sensor]]
-name = "space"
-type = "sky_radiance"
-origin = [0.0, 100000.0, 0.0]
-directions_deg = [{down}]
-samples = {samples}
-"#,
-        elev = 90.0 - sun_zenith,
-        up = list(up),
-        down = list(down),
+{ground}
+{sun}
+{sensors}"#,
+        pixel = common::sky::zenith_pixel(1, MIN_NM, MAX_NM),
+        ground = common::sky::flat_air_over_black_ground(),
+        sun = common::sky::point_sun(90.0 - sun_zenith),
+        sensors = common::sky::ground_and_space_sensors(up, down, samples),
     );
     let s = scene(&toml);
     let rendered = common::render_with(&s, 2);

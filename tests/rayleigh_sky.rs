@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::sky::{R_EARTH_M, ZENITH_BEAM, usa76_n};
 use common::{scene, scene_error};
 use glam::DVec3;
 use morgana::media::Medium;
@@ -13,65 +14,16 @@ use morgana::photon::{MapKind, PassSettings, shoot};
 use morgana::photon_map::PhotonPath;
 use morgana::rng::{Rng, Stream};
 
-const R_EARTH_M: f64 = 6_371_000.0;
 const TOP_M: f64 = 86_000.0;
-
-/// A collimated beam from the zenith (scenes need a light to load).
-const ZENITH_BEAM: &str =
-    "[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 1.0\n";
 
 /// A black Earth (a sphere of radius 6371 km centred at (0, −R, 0)) in a USA76 Rayleigh
 /// atmosphere over `min_nm`–`max_nm`, with `light` (TOML) added.
 fn black_earth(min_nm: f64, max_nm: f64, light: &str) -> String {
-    format!(
-        r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 40.0
-width = 4
-height = 4
-
-[output]
-bands = 4
-min_nm = {min_nm:?}
-max_nm = {max_nm:?}
-
-[world]
-medium = "air"
-earth = "spherical"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-atmosphere = "usa76"
-rayleigh = true
-co2_ppm = 360
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [0.0, -{R_EARTH_M:?}, 0.0]
-radius = {R_EARTH_M:?}
-material = "black"
-{light}
-"#
-    )
+    common::sky::black_earth(min_nm, max_nm, "rayleigh = true\nco2_ppm = 360", light)
 }
 
 fn air(s: &morgana::scene::Scene) -> &Medium {
     s.world.media.iter().find(|m| m.name == "air").expect("the air medium")
-}
-
-/// USA76 number density N = P N_A/(R* T) at geometric height `h` (the standard's constants,
-/// Table 2: N_A = 6.022169e23 mol⁻¹, R* = 8.31432 J mol⁻¹ K⁻¹), m⁻³.
-fn usa76_n(h: f64) -> f64 {
-    let s = morgana::atmosphere::usa76::at_geometric(h);
-    s.pressure_pa * 6.022_169e23 / (8.314_32 * s.temperature_k)
 }
 
 /// ∫ N ds along the chord from the ground at the origin toward zenith angle `zenith_deg`, up to
@@ -143,16 +95,8 @@ fn vertical_rayleigh_optical_depth_matches_bodhaine() {
 /// 60° chord (Beer–Lambert through the free-flight sampling), within 4 standard errors.
 #[test]
 fn a_rayleigh_atmosphere_over_a_black_earth_conserves_energy() {
-    let light = r#"
-[[light]]
-type = "directional"
-direction = [-0.8660254037844386, -0.5, 0.0]
-spectrum = 1.0
-irradiance_w_m2 = 1.0
-target_min = [-1000.0, 0.0, -1000.0]
-target_max = [1000.0, 1.0, 1000.0]
-"#;
-    let s = scene(&black_earth(545.0, 555.0, light));
+    let light = common::sky::directional_beam([-0.8660254037844386, -0.5, 0.0]);
+    let s = scene(&black_earth(545.0, 555.0, &light));
     let n = 100_000u64;
     let (sink, st) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, n, 11, &|_| {});
     let emitted = n as f64 * st.power_per_photon_w;
@@ -198,33 +142,7 @@ fn atmosphere_media_report_bad_input() {
 /// The `[integrator]` (path tracer, `spp` samples, no photons) and the world of the
 /// single-scattering tests: Rayleigh air over a flat black ground 4000 km across.
 fn flat_black_ground(spp: u32) -> String {
-    format!(
-        r#"[integrator]
-photons = 0
-march_step = 200.0
-spp = {spp}
-
-[world]
-medium = "air"
-earth = "flat"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-2000000.0, 0.0, -2000000.0]
-u = [0.0, 0.0, 4000000.0]
-v = [4000000.0, 0.0, 0.0]
-material = "black"
-"#
-    )
+    format!("[integrator]\nphotons = 0\nmarch_step = 200.0\nspp = {spp}\n{}", common::sky::flat_air_over_black_ground())
 }
 
 /// A flat-Earth USA76 Rayleigh atmosphere over black ground, lit by a collimated beam of
@@ -332,49 +250,16 @@ fn a_sky_radiance_sensor_reads_the_single_scattered_sky() {
     let sun_zenith: f64 = 30.0;
     let up = [[0.0, 0.0], [45.0, 90.0], [60.0, 200.0], [80.0, 270.0]];
     let down = [[140.0, 30.0], [180.0, 0.0]];
-    let list = |d: &[[f64; 2]]| d.iter().map(|[z, a]| format!("[{z:?}, {a:?}]")).collect::<Vec<_>>().join(", ");
     let toml = format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 1
-min_nm = 545.0
-max_nm = 555.0
-
+{pixel}
 {ground}
-
-[[light]]
-type = "sun"
-elevation_deg = {elev:?}
-azimuth_deg = 90.0
-angular_diameter_deg = 0.0
-spectrum = 1.0
-scale = 1.0
-
-[[sensor]]
-name = "ground"
-type = "sky_radiance"
-origin = [0.0, 1.0, 0.0]
-directions_deg = [{up}]
-samples = 32
-
-[[sensor]]
-name = "space"
-type = "sky_radiance"
-origin = [0.0, 100000.0, 0.0]
-directions_deg = [{down}]
-samples = 32
-"#,
+{sun}
+{sensors}"#,
+        pixel = common::sky::zenith_pixel(1, 545.0, 555.0),
         ground = flat_black_ground(1),
-        elev = 90.0 - sun_zenith,
-        up = list(&up),
-        down = list(&down),
+        sun = common::sky::point_sun(90.0 - sun_zenith),
+        sensors = common::sky::ground_and_space_sensors(&up, &down, 32),
     );
     let mut s = scene(&toml);
     let runs: Vec<Vec<morgana::sensor::Reading>> = (1..=8)

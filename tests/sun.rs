@@ -29,17 +29,7 @@ method = "{method}"
 photons = 1000
 spp = 16
 
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-1.0, -10.0, -1.0]
-u = [0.0, 0.0, 2.0]
-v = [2.0, 0.0, 0.0]
-material = "black"
+{floor}
 
 [[light]]
 type = "sun"
@@ -47,7 +37,8 @@ elevation_deg = 30.0
 azimuth_deg = 0.0
 spectrum = 1.0
 scale = 2.0
-"#
+"#,
+        floor = common::black_quad([-1.0, -10.0, -1.0], [0.0, 0.0, 2.0], [2.0, 0.0, 0.0]),
     )
 }
 

@@ -7,79 +7,32 @@ use std::path::PathBuf;
 
 /// A flat USA76 Rayleigh sky over black ground (single scattering), a one-pixel camera and a
 /// sky_radiance sensor at the zenith and the horizon, with the sun at `elevation`.
-fn scene_text(elevation: &str) -> String {
+fn scene_text(elevation_deg: f64) -> String {
     format!(
         r#"
-[camera]
-position = [0.0, 1.0, 0.0]
-look_at = [0.0, 2.0, 0.001]
-fov_deg = 1.0
-width = 1
-height = 1
-
-[output]
-bands = 2
-min_nm = 450.0
-max_nm = 650.0
-
+{pixel}
 [integrator]
 photons = 0
 march_step = 2000.0
 spp = 1
 
-[world]
-medium = "air"
-earth = "flat"
-
-[[medium]]
-name = "air"
-type = "atmosphere"
-
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "quad"
-origin = [-2000000.0, 0.0, -2000000.0]
-u = [0.0, 0.0, 4000000.0]
-v = [4000000.0, 0.0, 0.0]
-material = "black"
-
-[[light]]
-type = "sun"
-elevation_deg = {elevation}
-azimuth_deg = 90.0
-angular_diameter_deg = 0.0
-spectrum = 1.0
-scale = 1.0
-
+{ground}
+{sun}
 [[sensor]]
 name = "sky"
 type = "sky_radiance"
 origin = [0.0, 1.0, 0.0]
 directions_deg = [[0.0, 0.0], [90.0, 90.0]]
 samples = 4
-"#
+"#,
+        pixel = common::sky::zenith_pixel(2, 450.0, 650.0),
+        ground = common::sky::flat_air_over_black_ground(),
+        sun = common::sky::point_sun(elevation_deg),
     )
 }
 
 fn args(scene: PathBuf, out: PathBuf, zeniths: Vec<f64>) -> RenderArgs {
-    RenderArgs {
-        scene: Some(scene),
-        out: Some(out),
-        photons: None,
-        seed: Some(3),
-        threads: Some(2),
-        quiet: true,
-        max_map_memory: None,
-        max_memory: None,
-        max_seconds: None,
-        schedule: morgana::distributed::Schedule::Dynamic,
-        sun_zenith_deg: zeniths,
-        stop: Default::default(),
-    }
+    common::sky::sweep_args(scene, out, 3, zeniths)
 }
 
 #[test]
@@ -90,7 +43,7 @@ fn a_sweep_gathers_what_separate_runs_at_each_angle_read() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     let sweep_scene = dir.join("sweep.toml");
-    std::fs::write(&sweep_scene, scene_text("10.0")).expect("scene");
+    std::fs::write(&sweep_scene, scene_text(10.0)).expect("scene");
     run(&args(sweep_scene, dir.join("out"), vec![30.0, 75.0])).expect("sweep");
     let csv = std::fs::read_to_string(dir.join("out/sweep_sun_sweep.csv")).expect("the sweep's CSV");
     let lines: Vec<&str> = csv.lines().collect();
@@ -100,7 +53,7 @@ fn a_sweep_gathers_what_separate_runs_at_each_angle_read() {
         lines[0]
     );
     assert_eq!(lines.len(), 5, "{csv}");
-    for (k, (zenith, elevation)) in [(30.0, "60.0"), (75.0, "15.0")].into_iter().enumerate() {
+    for (k, (zenith, elevation)) in [(30.0, 60.0), (75.0, 15.0)].into_iter().enumerate() {
         let mut s = common::scene(&scene_text(elevation));
         s.apply_overrides(None, Some(3));
         let r = common::render_with(&s, 2);
@@ -128,18 +81,18 @@ fn a_sweep_needs_one_sun_placed_by_elevation() {
     let dir = std::env::temp_dir().join(format!("morgana_sweep_bad_{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let by_direction =
-        scene_text("10.0").replace("elevation_deg = 10.0\nazimuth_deg = 90.0", "direction = [0.0, -1.0, 0.0]");
+        scene_text(10.0).replace("elevation_deg = 10.0\nazimuth_deg = 90.0", "direction = [0.0, -1.0, 0.0]");
     std::fs::write(dir.join("d.toml"), by_direction).expect("scene");
     let e = run(&args(dir.join("d.toml"), dir.join("out"), vec![30.0])).expect_err("refused").to_string();
     assert!(e.contains("place the sun by elevation_deg and azimuth_deg") && e.contains("d.toml:"), "{e}");
-    let no_sun = scene_text("10.0").replace("type = \"sun\"", "type = \"directional\"").replace(
+    let no_sun = scene_text(10.0).replace("type = \"sun\"", "type = \"directional\"").replace(
         "elevation_deg = 10.0\nazimuth_deg = 90.0\nangular_diameter_deg = 0.0\n",
         "direction = [0.0, -1.0, 0.0]\n",
     );
     std::fs::write(dir.join("n.toml"), no_sun).expect("scene");
     let e = run(&args(dir.join("n.toml"), dir.join("out"), vec![30.0])).expect_err("refused").to_string();
     assert!(e.contains("has 0 [[light]] of type \"sun\""), "{e}");
-    std::fs::write(dir.join("z.toml"), scene_text("10.0")).expect("scene");
+    std::fs::write(dir.join("z.toml"), scene_text(10.0)).expect("scene");
     let e = run(&args(dir.join("z.toml"), dir.join("out"), vec![30.0, 200.0])).expect_err("refused").to_string();
     assert!(e.contains("--sun-zenith-deg 200"), "{e}");
     assert!(!dir.join("out/sun_zenith_30").exists(), "nothing rendered before the bad angle was found");

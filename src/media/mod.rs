@@ -3,9 +3,11 @@
 //! ([`tracking`]), refractive-index fields ([`refractive_index`]), inelastic scattering —
 //! fluorescence and Raman — ([`inelastic`]), Rayleigh scattering by air ([`rayleigh_air`]),
 //! ozone ([`ozone`]) and aerosols ([`aerosol`]) as constituents of an atmosphere
-//! ([`constituents`]), and a medium at one point ([`MediumAt`]).
+//! ([`constituents`]), where an atmosphere's bending is negligible ([`bending`]), and a medium at
+//! one point ([`MediumAt`]).
 
 pub mod aerosol;
+pub mod bending;
 pub mod constituents;
 pub mod density;
 pub mod inelastic;

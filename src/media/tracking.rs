@@ -144,6 +144,16 @@ pub fn transmittance(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f6
     }
 }
 
+/// The optical depth ∫₀ᵗ σ_t ds along `o + s·dir` where it can be computed without sampling
+/// (homogeneous media, height profiles, atmospheres); `None` where only ratio tracking can.
+pub fn optical_depth_exact(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
+    let field = Extinction::of(m, wavelength_nm);
+    if field.is_zero() || t <= 0.0 {
+        return Some(0.0);
+    }
+    field.optical_depth_exact(o, dir, t)
+}
+
 /// Ratio tracking estimate of the transmittance of a medium with extinction `sigma_t` at
 /// density 1: T̂ = Π (1 − σ_t(x_i)/σ̄) over the tentative collisions.
 pub fn ratio_tracking(m: &Medium, sigma_t: f64, o: DVec3, dir: DVec3, t_max: f64, rng: &mut Rng) -> f64 {

@@ -18,6 +18,7 @@ mod refractive_index;
 mod sensors;
 mod settings;
 mod shapes;
+mod sight;
 mod spectrum_spec;
 mod tone;
 
@@ -92,7 +93,7 @@ impl Scene {
         if let Some(s) = seed {
             self.integrator.seed = s;
         }
-        self.plan = decide_plan(&self.world, &self.integrator, &self.sensors, self.sampling, &self.bands);
+        self.plan = decide_plan(&self.world, &self.camera, &self.integrator, &self.sensors, self.sampling, &self.bands);
     }
 
     /// Applies a front end's stopping rules (`morgana render`'s flags, the Python package's
@@ -290,7 +291,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     world.light_media = world.lights.iter().map(|l| world.medium_at(l.representative_point())).collect();
     ground::check_ground_closes_the_air(ctx, raw, &world)?;
     check_march_work(ctx, raw, &world, &integrator)?;
-    let plan = decide_plan(&world, &integrator, &sensors, sampling, &bands);
+    let plan = decide_plan(&world, &camera, &integrator, &sensors, sampling, &bands);
     let camera_medium = world.medium_at(camera.position);
     let mut scene = Scene {
         world,
@@ -668,6 +669,7 @@ impl Names<'_> {
 
 fn decide_plan(
     world: &World,
+    camera: &Camera,
     integrator: &IntegratorSettings,
     sensors: &[crate::sensor::NamedSensor],
     sampling: WavelengthSampling,
@@ -689,7 +691,9 @@ fn decide_plan(
         used_media,
         sampling,
         bands: bands.count,
+        min_nm: bands.min_nm,
         photon_sensors: !sensors.is_empty(),
+        lowest_sight_deg: sight::lowest_elevation_deg(camera, sensors, &world.lights),
     };
     EffectPlan::decide(&facts, integrator)
 }

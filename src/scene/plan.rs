@@ -59,8 +59,13 @@ pub struct SceneFacts<'a> {
     pub used_media: Vec<&'a Medium>,
     pub sampling: WavelengthSampling,
     pub bands: usize,
+    /// The short end of the simulated wavelengths, nm.
+    pub min_nm: f64,
     /// The scene has sensors that count photons at every interaction (ocean profiles).
     pub photon_sensors: bool,
+    /// The lowest elevation (degrees above the horizontal) of any direction the scene measures
+    /// light along or receives it from (camera field, sky sensors, suns).
+    pub lowest_sight_deg: f64,
 }
 
 impl EffectPlan {
@@ -131,7 +136,7 @@ impl EffectPlan {
             dispersion_splitting,
             participating_media: media_decision(&facts.used_media),
             volume_map: volume_map_decision(&facts.used_media, facts.photon_sensors, s),
-            curved_paths: curved_decision(&facts.used_media, s),
+            curved_paths: curved_decision(facts, s),
             inelastic_scattering: inelastic_decision(&facts.used_media),
             progressive_passes: Self::progressive_decision(s),
         }
@@ -197,7 +202,7 @@ impl EffectPlan {
             }),
             participating_media: media_decision(&facts.used_media),
             volume_map: off(),
-            curved_paths: curved_decision(&facts.used_media, s),
+            curved_paths: curved_decision(facts, s),
             inelastic_scattering: inelastic_decision(&facts.used_media),
             progressive_passes: Self::progressive_decision(s),
         }
@@ -243,7 +248,8 @@ fn lit_by_shadow_rays(diffuse: Option<&str>, medium: Option<&str>, surface_words
 }
 
 /// Curved paths where a used medium's index field has a gradient; straight lines elsewhere.
-fn curved_decision(media: &[&Medium], s: &IntegratorSettings) -> Decision {
+fn curved_decision(facts: &SceneFacts, s: &IntegratorSettings) -> Decision {
+    let media = &facts.used_media;
     let bending: Vec<&str> = media.iter().filter(|m| m.bends_light()).map(|m| m.name.as_str()).collect();
     if bending.is_empty() {
         let constant = media.iter().find(|m| m.index.is_some());
@@ -257,10 +263,38 @@ fn curved_decision(media: &[&Medium], s: &IntegratorSettings) -> Decision {
         "dopri5" => format!("Dormand–Prince RK5(4)7M, rtol {:e}, atol {:e}", c.rtol, c.atol),
         other => format!("{other} with a fixed step of {} m", c.step_m),
     };
+    let atmospheres: String = media.iter().filter_map(|m| atmosphere_bending(m, facts)).collect();
     Decision::on(format!(
-        "the refractive index of \"{}\" varies: light follows Fermat's ray equation there ({method}; chords within {} m of the arc), straight lines elsewhere",
+        "the refractive index of \"{}\" varies: light follows Fermat's ray equation there ({method}; chords within {} m of the arc), straight lines elsewhere{atmospheres}",
         bending.join("\", \""),
         c.arc_tolerance_m
+    ))
+}
+
+/// For an atmosphere medium that bends light and scatters or absorbs it: how much switching its
+/// bending off would turn and change the light along the scene's lowest line of sight,
+/// R = (n₀ − 1) tan z and B = (n₀ − 1) tan² z τ sec z at the shortest wavelength
+/// ([`crate::media::bending`]), and whether B is negligible.
+fn atmosphere_bending(m: &Medium, facts: &SceneFacts) -> Option<String> {
+    let e = facts.lowest_sight_deg;
+    let nm = facts.min_nm;
+    let z = (90.0 - e).to_radians();
+    if !m.bends_light() || m.is_clear() {
+        return None;
+    }
+    let ground = glam::DVec3::ZERO;
+    let turn_deg = crate::media::bending::refraction_bound_rad(m, nm, ground, z).map_or(0.0, f64::to_degrees);
+    let Some(bound) = crate::media::bending::radiance_bound(m, nm, ground, z) else {
+        return matches!(m.index, Some(crate::media::refractive_index::IndexField::Atmosphere(_))).then(|| {
+            format!("; in \"{}\" the scene looks or is lit {e:.1}° from the horizontal: bending matters", m.name)
+        });
+    };
+    let verdict = if bound < crate::media::bending::NEGLIGIBLE { "negligible" } else { "not negligible" };
+    Some(format!(
+        "; in \"{}\" the lowest line of sight or sun is {e:.1}° up: bending turns it by at most {turn_deg:.3}° ((n₀ − 1) tan z) and changes the light along it by at most {:.2} % at {nm} nm ((n₀ − 1) tan² z τ sec z), {verdict} against {} %",
+        m.name,
+        100.0 * bound,
+        100.0 * crate::media::bending::NEGLIGIBLE
     ))
 }
 

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod shared;
+pub mod sky;
 
 use morgana::render::{RenderOptions, Rendered, render};
 use morgana::scene::{Scene, load_scene_str};
@@ -82,21 +83,25 @@ pub fn black_sphere(radius_m: f64) -> String {
     black_sphere_at([0.0, 0.0, 0.0], radius_m)
 }
 
+/// The material "black": Lambertian of reflectance 0.
+const BLACK: &str = "\n[[material]]\nname = \"black\"\ntype = \"lambertian\"\nreflectance = 0.0\n";
+
 /// A black Lambertian sphere of `radius_m` about `centre` (e.g. a black Earth under the air).
 pub fn black_sphere_at(centre: [f64; 3], radius_m: f64) -> String {
-    let [x, y, z] = centre;
     format!(
-        r#"
-[[material]]
-name = "black"
-type = "lambertian"
-reflectance = 0.0
-
-[[shape]]
-type = "sphere"
-center = [{x:?}, {y:?}, {z:?}]
-radius = {radius_m:?}
-material = "black"
-"#
+        "{BLACK}\n[[shape]]\ntype = \"sphere\"\ncenter = {}\nradius = {radius_m:?}\nmaterial = \"black\"\n",
+        toml_vec(centre)
     )
+}
+
+/// A black Lambertian quad at `origin` spanned by `u` and `v` (m): a ground or a wall that
+/// absorbs all it receives.
+pub fn black_quad(origin: [f64; 3], u: [f64; 3], v: [f64; 3]) -> String {
+    let [o, u, v] = [origin, u, v].map(toml_vec);
+    format!("{BLACK}\n[[shape]]\ntype = \"quad\"\norigin = {o}\nu = {u}\nv = {v}\nmaterial = \"black\"\n")
+}
+
+/// A 3-vector as a TOML array of floats.
+fn toml_vec([x, y, z]: [f64; 3]) -> String {
+    format!("[{x:?}, {y:?}, {z:?}]")
 }
