@@ -143,7 +143,7 @@ impl Controller {
     /// (W the Lambert function), solved by Newton's method. Where the density does not grow the
     /// proposal stands; the step is only ever shortened, so the error bound is the controller's.
     /// Measured on `mirage_hot_road` (100 000 photons): rejected steps in the photon pass 18.0 %
-    /// → 9.2 %, field samples −8.6 % (the book's curved-paths page).
+    /// → 9.1 %, field samples −9.0 % (the book's curved-paths page).
     pub fn follow_trend(&mut self, h: f64, err_sq: f64, h_next: f64, cut: bool) -> f64 {
         let prev = self.density_sq_prev.take();
         if cut || !self.trend || h.is_nan() || h <= 0.0 {
