@@ -112,17 +112,20 @@ pub fn run(args: &RenderArgs) -> Result<String> {
     let dist = distributed::Options { map_memory, schedule: args.schedule };
     let comm = Comm::start()?;
     let result = render_and_write(&comm, args, &dist, start);
-    if let Err(e) = &result
-        && comm.size() > 1
-    {
-        // `mpirun` ends the whole job as soon as one rank exits non-zero, so rank 0 prints
-        // before any rank may leave: the all-gather after the message is the barrier.
-        if comm.is_root() {
+    if comm.size() > 1 {
+        // `mpirun` ends the whole job as soon as one rank exits non-zero, so no rank may leave
+        // before rank 0 has printed: an error every rank shares (from a collective check) or
+        // rank 0's own (writing the outputs, while the others succeeded). Every rank meets at
+        // the all-gather, after rank 0's message, whatever its result.
+        if let (true, Err(e)) = (comm.is_root(), &result) {
             eprintln!("morgana: {e}");
         }
         comm.all_gather(&[]);
         drop(comm); // MPI_Finalize on every rank
-        std::process::exit(e.exit_code());
+        if let Err(e) = &result {
+            std::process::exit(e.exit_code());
+        }
+        return result;
     }
     drop(comm); // MPI_Finalize
     result
