@@ -441,6 +441,13 @@ fn a_march_step_far_below_the_medium_it_crosses_is_refused_naming_the_key() {
     let camera_line = far.lines().position(|l| l.starts_with("position = [1e12")).expect("camera") + 1;
     let e = common::scene_error(&far);
     assert!(e.contains(&format!("test.toml:{camera_line}:")) && e.contains("the default march_step"), "{e}");
+    // A scattering medium that no shape bounds (named, never used) is never marched: no refusal.
+    let unused = "\n[[medium]]\nname = \"unused fog\"\nsigma_t = 0.5\nalbedo = 0.8\n";
+    common::scene(&format!("{}{unused}", common::lit_plate(4, 4, "")));
+    common::scene(&format!(
+        "{}{unused}",
+        common::lit_plate(4, 4, "").replace("[integrator]\n", "[integrator]\nmarch_step = 0.01\n")
+    ));
 }
 
 #[test]

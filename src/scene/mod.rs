@@ -505,7 +505,9 @@ fn check_march_work(ctx: &Ctx, raw: &RawScene, world: &World, integrator: &Integ
             let bounding = world.shapes.iter().zip(&world.prims).filter(|(_, p)| p.interior == id || p.exterior == id);
             (bounding.fold(Aabb::EMPTY, |b, (s, _)| b.union(s.bounds())).diagonal().length(), "its shapes' extent")
         };
-        if extent / step <= MAX_MARCH_STEPS_ACROSS {
+        // A medium no shape bounds (named but unused) is never marched: its empty box has an
+        // infinite diagonal.
+        if !extent.is_finite() || extent / step <= MAX_MARCH_STEPS_ACROSS {
             continue;
         }
         let given = raw.integrator.as_ref().and_then(|i| i.get_ref().march_step.as_ref());
