@@ -15,26 +15,23 @@ pub fn gauss_legendre(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> 
     panel_sum(f, a, (b - a) / panels as f64, 0..panels)
 }
 
-/// [`gauss_legendre`] of several integrands at once: `f(x, values)` writes each integrand's
-/// value at x into `values`, and `out[k]` receives the k-th integral, summed over the same panels
-/// and nodes in the same order as [`gauss_legendre`] (so each equals what it would return for
-/// that integrand alone, to the bit). `out` has at most 8 integrands.
-pub fn gauss_legendre_many(f: &mut dyn FnMut(f64, &mut [f64]), a: f64, b: f64, panels: usize, out: &mut [f64]) {
+/// The 16-point rule over the one panel [a, b] of several integrands at once, added into
+/// `sums`: `f(x, values)` writes each integrand's value at x into `values`, and `sums[k]` gains
+/// (b − a)/2 Σᵢ wᵢ fₖ(xᵢ). A composite rule on unequal panels is these calls in turn; the
+/// integrands share every node. `sums` has at most 8 integrands.
+pub fn gauss_legendre_panel_many(f: &mut dyn FnMut(f64, &mut [f64]), a: f64, b: f64, sums: &mut [f64]) {
     let (nodes, weights) = gauss_legendre_16();
-    let h = (b - a) / panels as f64;
-    let k = out.len().min(8);
-    let (mut sums, mut values) = ([0.0f64; 8], [0.0f64; 8]);
-    for p in 0..panels {
-        let mid = a + (p as f64 + 0.5) * h;
-        for (x, w) in nodes.iter().zip(weights.iter()) {
-            f(mid + 0.5 * h * x, &mut values[..k]);
-            for (s, v) in sums.iter_mut().zip(&values[..k]) {
-                *s += w * v;
-            }
+    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    let k = sums.len().min(8);
+    let (mut panel, mut values) = ([0.0f64; 8], [0.0f64; 8]);
+    for (x, w) in nodes.iter().zip(weights.iter()) {
+        f(mid + half * x, &mut values[..k]);
+        for (s, v) in panel.iter_mut().zip(&values[..k]) {
+            *s += w * v;
         }
     }
-    for (o, s) in out.iter_mut().zip(&sums[..k]) {
-        *o = s * 0.5 * h;
+    for (s, p) in sums.iter_mut().zip(&panel[..k]) {
+        *s += p * half;
     }
 }
 

@@ -34,6 +34,7 @@ use glam::DVec3;
 
 /// The most constituents an atmosphere holds (air, ozone, aerosols).
 pub const MAX_CONSTITUENTS: usize = 3;
+const _: () = assert!(MAX_CONSTITUENTS <= crate::media::density::MAX_TABLES);
 
 /// One value per constituent, in the atmosphere's order (unused slots 0).
 pub type PerConstituent = [f64; MAX_CONSTITUENTS];
@@ -193,6 +194,12 @@ impl Constituents {
 
     /// The optical depth Σ_c σ_c ∫₀ᵗ d_c ds along `o + s·dir`.
     pub fn optical_depth(&self, sigma: &PerConstituent, o: DVec3, dir: DVec3, t: f64) -> f64 {
+        Constituents::dot(sigma, &self.columns(o, dir, t))
+    }
+
+    /// The columns ∫₀ᵗ d_c ds of every constituent along `o + s·dir`, which do not depend on
+    /// the wavelength: the optical depth at any λ is their dot product with σ_c(λ).
+    pub fn columns(&self, o: DVec3, dir: DVec3, t: f64) -> PerConstituent {
         let first = &self.list[0].profile;
         let mut tables = [first; MAX_CONSTITUENTS];
         for (slot, c) in tables.iter_mut().zip(&self.list) {
@@ -201,7 +208,7 @@ impl Constituents {
         let n = self.list.len();
         let mut integrals = [0.0; MAX_CONSTITUENTS];
         AirProfile::integrals(&tables[..n], o, dir, t, &mut integrals[..n]);
-        Constituents::dot(sigma, &integrals)
+        integrals
     }
 
     /// The scattering weights w_c = ω_c σ_c(λ) d_c at densities `d`.

@@ -144,6 +144,36 @@ pub fn transmittance(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f6
     }
 }
 
+/// [`transmittance`] at each of `wavelengths_nm` in turn, multiplied into `tr` (to the bit, with
+/// the same random numbers), but the density's integral along the segment, which does not
+/// depend on the wavelength, is found once for all of them where it is exact: a shadow ray
+/// through an atmosphere costs one quadrature, not one per band.
+#[allow(clippy::too_many_arguments)]
+pub fn transmittances(m: &Medium, wavelengths_nm: &[f64], o: DVec3, dir: DVec3, t: f64, rng: &mut Rng, tr: &mut [f64]) {
+    if t <= 0.0 {
+        return;
+    }
+    let (mut density_column, mut columns) = (None, None);
+    for (x, l) in tr.iter_mut().zip(wavelengths_nm) {
+        let field = Extinction::of(m, *l);
+        if field.is_zero() {
+            continue;
+        }
+        let depth = match &field {
+            Extinction::Scaled { sigma_t, density } => {
+                (*density_column.get_or_insert_with(|| density.integral_exact(o, dir, t))).map(|d| sigma_t * d)
+            }
+            Extinction::Constituents { c, sigma } => {
+                Some(Constituents::dot(sigma, columns.get_or_insert_with(|| c.columns(o, dir, t))))
+            }
+        };
+        *x *= match depth {
+            Some(depth) => (-depth).exp(),
+            None => ratio_tracking_field(&field, o, dir, t, rng),
+        };
+    }
+}
+
 /// The optical depth ∫₀ᵗ σ_t ds along `o + s·dir` where it can be computed without sampling
 /// (homogeneous media, height profiles, atmospheres); `None` where only ratio tracking can.
 pub fn optical_depth_exact(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {

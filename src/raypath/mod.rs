@@ -345,9 +345,7 @@ impl<'a> Propagator<'a> {
             let hit = self.world.bvh.intersect(&self.world.shapes, &Ray::new(origin, dir), f64::INFINITY);
             let seg = hit.map_or_else(|| self.world_exit(origin, dir), |h| h.t);
             if let Some(m) = self.world.medium(medium) {
-                for (t, l) in tr.iter_mut().zip(wavelengths_nm) {
-                    *t *= tracking::transmittance(m, *l, origin, dir, seg, rng);
-                }
+                tracking::transmittances(m, wavelengths_nm, origin, dir, seg, rng, &mut tr);
             }
             let Some(mut h) = hit else { return Some((None, tr)) };
             travelled += h.t;
@@ -389,9 +387,7 @@ impl<'a> Propagator<'a> {
             let hit = self.world.bvh.intersect(&self.world.shapes, &Ray::new(origin, wi), left);
             let seg = hit.map_or_else(|| left.min(self.world_exit(origin, wi)), |h| h.t);
             if let Some(m) = self.world.medium(medium) {
-                for (t, l) in tr.iter_mut().zip(wavelengths_nm) {
-                    *t *= tracking::transmittance(m, *l, origin, wi, seg, rng);
-                }
+                tracking::transmittances(m, wavelengths_nm, origin, wi, seg, rng, &mut tr);
             }
             let Some(h) = hit else { return Some(tr) };
             let p = &self.world.prims[h.prim as usize];

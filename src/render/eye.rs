@@ -739,9 +739,7 @@ impl<'a> EyeTracer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn attenuate(&self, m: &Medium, c: &Chord, a: f64, b: f64, lanes: &Lanes, along: &mut Along, rng: &mut Rng) {
         let o = c.origin + a * c.dir;
-        for i in 0..lanes.len {
-            along.tr[i] *= tracking::transmittance(m, lanes.nm[i], o, c.dir, b - a, rng);
-        }
+        tracking::transmittances(m, &lanes.nm[..lanes.len], o, c.dir, b - a, rng, &mut along.tr[..lanes.len]);
     }
 
     /// Russian roulette on negligible transmittance: continue with probability 1/2 and double

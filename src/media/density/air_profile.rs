@@ -10,22 +10,43 @@
 //! H = −N/(dN/dh) is at least 5.8 km (USA76 below 86 km: 5.9 km at its coldest), linear
 //! interpolation changes N by at most Δh² |N''|/8 ≈ Δh²/(8H²) N < 10⁻⁷ N.
 //!
-//! # Optical depth and majorants
+//! # Optical depth
 //! Along a straight chord the integral ∫ d ds is computed by 16-point Gauss–Legendre quadrature
-//! on pieces of at most 1 km of the part of the chord below the top. Each piece is bounded by the
-//! largest tabulated value at or above its lowest height (a running maximum from the top down),
-//! which bounds the interpolant anywhere on the piece whether or not N decreases with height (it
-//! may not, under a strong inversion).
+//! on panels of the part of the chord below the top that each span at most a panel height Δp of
+//! height: 1 km, halved for a table whose vertical column needs it (chosen when the table is
+//! built; USA76's density keeps 1 km, the AFGL ozone shape takes 500 m). The height along a
+//! chord is monotone on either side of its lowest point (its closest approach to the Earth's
+//! centre, at distance p), so the panel ends are where the chord crosses the levels hₖ = k Δp, at
+//! t = t_low ± √((rₖ − p)(rₖ + p)) with rₖ = R + hₖ. A chord that grazes the Earth thus takes
+//! about as many panels as a vertical one (86 rather than 1,050 for a horizon ray through USA76's
+//! 86 km), the integrand d(h(t)) is smooth on each, and a kink of the profile at a level falls on
+//! a panel's end, as it does up a vertical column.
+
+//! # Majorants
+//! Free-flight sampling splits the chord into pieces of at most 1 km of length instead. Each
+//! piece is bounded by the largest tabulated value at or above its lowest height (a running
+//! maximum from the top down), which bounds the interpolant anywhere on the piece whether or not
+//! N decreases with height (it may not, under a strong inversion).
 
 use crate::atmosphere::{Atmosphere, Earth, gas};
-use crate::quadrature::gauss_legendre;
 use glam::DVec3;
 use std::sync::Arc;
 
 /// Longest height step of the table, m.
 const MAX_STEP_M: f64 = 5.0;
-/// Longest piece of a chord for quadrature and majorants, m.
+/// Longest piece of a chord for majorants, m.
 const PIECE_M: f64 = 1_000.0;
+/// Largest height span of one quadrature panel, m; a table whose shape needs finer panels
+/// halves it (see [`calibrated_panel_m`]).
+const PANEL_HEIGHT_M: f64 = 1_000.0;
+/// Halvings of [`PANEL_HEIGHT_M`] a table may ask for (down to 31.25 m).
+const MAX_PANEL_HALVINGS: u32 = 5;
+/// What the panels may lose up a vertical column, relative to the exact integral of the table:
+/// a third of the table's own accuracy (10⁻⁷, module docs) and above the ~5 × 10⁻⁹ at which 16
+/// nodes per panel stop resolving the 5 m cells of the interpolant.
+const PANEL_TOLERANCE: f64 = 3e-8;
+/// The most tables [`AirProfile::integrals`] takes in one call (the quadrature's lane count).
+pub const MAX_TABLES: usize = 8;
 
 /// d(x) = N(h)/N_ref tabulated in height (see the module docs).
 #[derive(Clone, Debug)]
@@ -35,6 +56,7 @@ pub struct AirProfile {
     step_m: f64,
     values: Arc<[f64]>,
     max_above: Arc<[f64]>,
+    panel_m: f64,
 }
 
 impl AirProfile {
@@ -71,7 +93,10 @@ impl AirProfile {
         for i in (0..cells).rev() {
             max_above[i] = max_above[i].max(max_above[i + 1]);
         }
-        AirProfile { earth, top_m, step_m, values: values.into(), max_above: max_above.into() }
+        let mut table =
+            AirProfile { earth, top_m, step_m, values: values.into(), max_above: max_above.into(), panel_m: 0.0 };
+        table.panel_m = calibrated_panel_m(&table);
+        table
     }
 
     /// The atmosphere's top, m: d = 0 at and above it.
@@ -103,20 +128,18 @@ impl AirProfile {
         self.earth.height(p)
     }
 
-    /// ∫₀ᵗ d(o + s·dir) ds by piecewise Gauss–Legendre quadrature below the top.
+    /// ∫₀ᵗ d(o + s·dir) ds by piecewise Gauss–Legendre quadrature below the top (`dir` a unit
+    /// vector).
     pub fn integral(&self, o: DVec3, dir: DVec3, t: f64) -> f64 {
-        let Some((a, b)) = self.below_top(o, dir, t) else { return 0.0 };
-        if b.is_infinite() {
-            // Down or level for ever under a flat Earth's top (never, in a scene with ground).
-            return if self.values[0] > 0.0 { f64::INFINITY } else { 0.0 };
-        }
-        let n = pieces(b - a);
-        gauss_legendre(&|s: f64| self.at(o + s * dir), a, b, n)
+        let mut out = [0.0];
+        AirProfile::integrals(&[self], o, dir, t, &mut out);
+        out[0]
     }
 
     /// ∫₀ᵗ dₖ(o + s·dir) ds of several tables of one atmosphere (same Earth and top) into
-    /// `out[k]`: the heights are found once per node, and each integral equals
-    /// [`AirProfile::integral`] of that table to the bit.
+    /// `out[k]` (`dir` a unit vector, at most [`MAX_TABLES`] tables): tables calibrated to the
+    /// same panel height share one quadrature (the height found once per node), and each
+    /// integral equals [`AirProfile::integral`] of that table to the bit.
     pub fn integrals(tables: &[&AirProfile], o: DVec3, dir: DVec3, t: f64, out: &mut [f64]) {
         out.iter_mut().for_each(|v| *v = 0.0);
         let Some(first) = tables.first() else { return };
@@ -127,14 +150,62 @@ impl AirProfile {
             }
             return;
         }
-        let n = pieces(b - a);
-        let mut f = |s: f64, values: &mut [f64]| {
-            let h = first.earth.height(o + s * dir);
-            for (v, table) in values.iter_mut().zip(tables) {
-                *v = table.at_height(h);
+        // One quadrature per distinct panel height, over the tables calibrated to it, so that a
+        // table's integral never depends on which other tables share the call.
+        for (first_k, lead) in tables.iter().enumerate() {
+            let panel_m = lead.panel_m;
+            if tables[..first_k].iter().any(|t| t.panel_m == panel_m) {
+                continue;
             }
-        };
-        crate::quadrature::gauss_legendre_many(&mut f, a, b, n, &mut out[..tables.len()]);
+            let group = |k: &usize| tables[*k].panel_m == panel_m;
+            let mut f = |s: f64, values: &mut [f64]| {
+                let h = first.earth.height(o + s * dir);
+                for k in (0..tables.len()).filter(group) {
+                    values[k] = tables[k].at_height(h);
+                }
+            };
+            let mut sums = [0.0; MAX_TABLES];
+            let sums = &mut sums[..tables.len()];
+            first.height_panels(o, dir, a, b, panel_m, &mut |t0, t1| {
+                crate::quadrature::gauss_legendre_panel_many(&mut f, t0, t1, sums)
+            });
+            for k in (0..tables.len()).filter(group) {
+                out[k] = sums[k];
+            }
+        }
+    }
+
+    /// Calls `panel(t0, t1)` for consecutive panels covering [a, b] (finite) of the ray
+    /// o + t·dir, split where the ray crosses the heights k·`panel_m` (see the module docs).
+    fn height_panels(&self, o: DVec3, dir: DVec3, a: f64, b: f64, panel_m: f64, panel: &mut dyn FnMut(f64, f64)) {
+        match &self.earth {
+            Earth::Flat { up } => {
+                let (h0, rate) = (o.dot(*up), dir.dot(*up));
+                let at = |h: f64| (h - h0) / rate;
+                split_at_levels(h0 + a * rate, h0 + b * rate, panel_m, &at, (a, b), panel);
+            }
+            Earth::Spherical(s) => {
+                let q = o - s.centre;
+                let t_low = -q.dot(dir);
+                let p = (q + t_low * dir).length();
+                let height = |t: f64| (q + t * dir).length() - s.radius_m;
+                let mut side = |t0: f64, t1: f64| {
+                    let rising = t1 > t_low;
+                    let at = |h: f64| {
+                        let r = s.radius_m + h;
+                        let u = ((r - p) * (r + p)).max(0.0).sqrt();
+                        if rising { t_low + u } else { t_low - u }
+                    };
+                    split_at_levels(height(t0), height(t1), panel_m, &at, (t0, t1), panel);
+                };
+                if a < t_low && t_low < b {
+                    side(a, t_low);
+                    side(t_low, b);
+                } else {
+                    side(a, b);
+                }
+            }
+        }
     }
 
     /// Pieces of at most 1 km below the top, each bounded by the running maximum at its lowest
@@ -230,6 +301,69 @@ fn pieces(length: f64) -> usize {
     ((length / PIECE_M).ceil() as usize).max(1)
 }
 
+/// Calls `panel` for consecutive panels covering [t0, t1], a stretch of a ray along which the
+/// height runs monotonically from `h0` to `h1`, split at the parameters `at(h)` where it crosses
+/// the levels k·`panel_m` strictly between them: each panel spans at most that much height, and
+/// a kink of the profile at a level falls on a panel's end, as it does up a vertical column.
+fn split_at_levels(
+    h0: f64,
+    h1: f64,
+    panel_m: f64,
+    at: &dyn Fn(f64) -> f64,
+    (t0, t1): (f64, f64),
+    panel: &mut dyn FnMut(f64, f64),
+) {
+    let (lo, hi) = (h0.min(h1) / panel_m, h0.max(h1) / panel_m);
+    let (first, last) = (lo.floor() as i64 + 1, hi.ceil() as i64 - 1);
+    let mut start = t0;
+    let mut cross = |k: i64| {
+        let end = at(k as f64 * panel_m).clamp(start, t1);
+        panel(start, end);
+        start = end;
+    };
+    if h1 >= h0 {
+        (first..=last).for_each(&mut cross);
+    } else {
+        (first..=last).rev().for_each(&mut cross);
+    }
+    panel(start, t1);
+}
+
+/// The panel height for `table`: the largest of [`PANEL_HEIGHT_M`] halved 0 to
+/// [`MAX_PANEL_HALVINGS`] times at which 16-point Gauss–Legendre panels between its multiples
+/// integrate the table up a vertical column with Σ |panel error| ≤ [`PANEL_TOLERANCE`] × the
+/// column. The exact integral of the linear interpolant is the trapezoid sum over its nodes.
+/// A smooth profile (USA76's density) keeps 1 km; one with kinks between the levels (the AFGL
+/// ozone shape, log-linear between levels 2.5–5 km apart) gets finer panels.
+fn calibrated_panel_m(table: &AirProfile) -> f64 {
+    let v = &table.values;
+    let mut cumulative = vec![0.0; v.len()];
+    for i in 1..v.len() {
+        cumulative[i] = cumulative[i - 1] + 0.5 * table.step_m * (v[i - 1] + v[i]);
+    }
+    let exact_to = |h: f64| {
+        let x = (h / table.step_m).clamp(0.0, (v.len() - 1) as f64);
+        let i = (x as usize).min(v.len() - 2);
+        let f = x - i as f64;
+        cumulative[i] + 0.5 * f * table.step_m * (2.0 * v[i] + f * (v[i + 1] - v[i]))
+    };
+    let column = exact_to(table.top_m);
+    let mut panel_m = PANEL_HEIGHT_M;
+    for _ in 0..MAX_PANEL_HALVINGS {
+        let mut error = 0.0;
+        split_at_levels(0.0, table.top_m, panel_m, &|h| h, (0.0, table.top_m), &mut |a, b| {
+            let mut got = [0.0];
+            crate::quadrature::gauss_legendre_panel_many(&mut |h, out| out[0] = table.at_height(h), a, b, &mut got);
+            error += (got[0] - (exact_to(b) - exact_to(a))).abs();
+        });
+        if error <= PANEL_TOLERANCE * column {
+            break;
+        }
+        panel_m *= 0.5;
+    }
+    panel_m
+}
+
 /// A point at height `h` above the ground point under the scene origin.
 fn point_at_height(earth: &Earth, h: f64) -> DVec3 {
     match earth {
@@ -307,5 +441,91 @@ mod tests {
             })
             .sum();
         assert!((got / simpson - 1.0).abs() < 1e-7, "{got} vs {simpson}");
+    }
+
+    /// ∫ of the exact standard along o + s·dir over [0, t] by Simpson's rule in ~2 m steps.
+    fn exact_chord(p: &AirProfile, o: DVec3, dir: DVec3, t: f64) -> f64 {
+        let n = 2 * ((t / 4.0).ceil() as usize);
+        let f = |s: f64| {
+            let h = p.height(o + s * dir);
+            if h >= 86_000.0 { 0.0 } else { exact(h.max(0.0)) }
+        };
+        crate::quadrature::simpson(&f, 0.0, t, n)
+    }
+
+    #[test]
+    fn grazing_and_slanted_chords_integrate_the_standard_to_1e_7() {
+        // The panels follow the height, not the length: a chord that grazes the ground spends
+        // ~1,000 km below the top but crosses only 86 km of height. Against Simpson's rule on
+        // the exact standard along the same chord (the test above, for slanted paths).
+        let p = usa76_profile();
+        let r = crate::atmosphere::EARTH_RADIUS_M;
+        let horizon = (2.0 * r * 86_000.0 + 86_000.0f64.powi(2)).sqrt();
+        let slant = DVec3::new(1.0, 0.2, 0.0).normalize();
+        for (what, o, d, t) in [
+            ("from the ground along the horizon", DVec3::ZERO, DVec3::X, 1.2e6),
+            ("through its lowest point at 2 km", DVec3::new(-horizon, 2000.0, 0.0), DVec3::X, 2.0 * horizon),
+            ("a 300 km piece ending before its lowest point", DVec3::new(-4e5, 500.0, 0.0), DVec3::X, 3e5),
+            ("slanted up from 3 km", DVec3::new(0.0, 3000.0, 0.0), slant, 4e5),
+        ] {
+            let (got, want) = (p.integral(o, d, t), exact_chord(&p, o, d, t));
+            assert!((got / want - 1.0).abs() < 1e-7, "{what}: {got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn quadrature_panels_cover_the_chord_and_span_at_most_1_km_of_height() {
+        let p = usa76_profile();
+        let r = crate::atmosphere::EARTH_RADIUS_M;
+        for (o, d, a, b) in [
+            (DVec3::ZERO, DVec3::X, 0.0, 1.05e6),
+            (DVec3::new(-1e6, 2000.0, 0.0), DVec3::X, 1.0, 2.0e6),
+            (DVec3::new(0.0, 10.0, 0.0), DVec3::Y, 0.0, 85_000.0),
+            (DVec3::new(0.0, 40_000.0, 0.0), DVec3::new(1.0, -0.3, 0.1).normalize(), 5.0, 2.0e5),
+        ] {
+            assert_eq!(p.panel_m, PANEL_HEIGHT_M, "USA76's smooth density keeps 1 km panels");
+            let (mut covered, mut count) = (a, 0);
+            p.height_panels(o, d, a, b, p.panel_m, &mut |t0, t1| {
+                assert_eq!(t0, covered, "panels are consecutive");
+                assert!(t1 >= t0);
+                let heights: Vec<f64> =
+                    (0..=50).map(|k| p.height(o + (t0 + (t1 - t0) * k as f64 / 50.0) * d)).collect();
+                let span =
+                    heights.iter().cloned().fold(f64::MIN, f64::max) - heights.iter().cloned().fold(f64::MAX, f64::min);
+                assert!(span <= 1000.0 * (1.0 + 1e-9), "a panel spans {span} m of height");
+                covered = t1;
+                count += 1;
+            });
+            assert_eq!(covered, b);
+            // At most one panel per km of height crossed on either side of the lowest point, +2.
+            let crossed = |t0: f64, t1: f64| (p.height(o + t1 * d) - p.height(o + t0 * d)).abs();
+            let t_low = (-(o - DVec3::new(0.0, -r, 0.0)).dot(d)).clamp(a, b);
+            let bound = (crossed(a, t_low) / 1000.0).ceil() + (crossed(t_low, b) / 1000.0).ceil() + 2.0;
+            assert!(count as f64 <= bound, "{count} panels for a bound of {bound}");
+        }
+    }
+
+    #[test]
+    fn grazing_chords_through_the_ozone_layer_integrate_its_profile_to_1e_7() {
+        // The AFGL ozone shape is log-linear between levels 1 km apart up to 25 km and 2.5–5 km
+        // apart above (kinks off the whole-km panel ends): against Simpson's rule on the exact
+        // profile along the same chord.
+        let shape = crate::media::ozone::profile(300.0, 86_000.0);
+        let p = AirProfile::from_heights(Earth::standard(), 86_000.0, &shape);
+        let slant = DVec3::new(1.0, 0.05, 0.0).normalize();
+        for (what, o, d, t) in [
+            ("from the ground along the horizon", DVec3::ZERO, DVec3::X, 1.2e6),
+            ("grazing at 20 km", DVec3::new(-1.1e6, 20_000.0, 0.0), DVec3::X, 2.2e6),
+            ("slanted up from 12 km", DVec3::new(0.0, 12_000.0, 0.0), slant, 1e6f64),
+        ] {
+            let n = 2 * ((t / 4.0).ceil() as usize);
+            let f = |s: f64| {
+                let h = p.height(o + s * d);
+                if h >= 86_000.0 { 0.0 } else { shape(h.max(0.0)) }
+            };
+            let want = crate::quadrature::simpson(&f, 0.0, t, n);
+            let got = p.integral(o, d, t);
+            assert!((got / want - 1.0).abs() < 1e-7, "{what}: {got} vs {want}");
+        }
     }
 }

@@ -11,7 +11,7 @@ mod fbm;
 mod grid;
 mod spherical_exponential;
 
-pub use air_profile::AirProfile;
+pub use air_profile::{AirProfile, MAX_TABLES};
 pub use exponential::ExponentialHeight;
 pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
