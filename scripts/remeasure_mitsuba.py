@@ -58,6 +58,33 @@ def load_image(path: Path) -> np.ndarray:
     return np.load(path) if path.suffix == ".npy" else pm.read_exr_rgb(path)
 
 
+def own_standard_error(path: Path, rgb: np.ndarray) -> np.ndarray | None:
+    """morgana's own standard error of each pixel's linear sRGB, from the EXR's `stderr.` layer
+    with the bands taken as fully correlated (as a glint's coverage error is): each channel times
+    the pixel's sum of band standard errors over its sum of band values. None for a .npy."""
+    if path.suffix == ".npy":
+        return None
+    import OpenEXR
+
+    ch = OpenEXR.File(str(path), separate_channels=True).channels()
+    bands = sorted(k for k in ch if k.startswith("S0."))
+    if not bands or f"stderr.{bands[0]}" not in ch:
+        return None
+    total = sum(np.asarray(ch[k].pixels, dtype=np.float64) for k in bands)
+    se = sum(np.asarray(ch[f"stderr.{k}"].pixels, dtype=np.float64) for k in bands)
+    return rgb * (se / np.maximum(total, 1e-300))[..., None]
+
+
+def blocks_z(img: np.ndarray, ref, size: int = 8) -> np.ndarray:
+    """(morgana's block mean - the reference's) / the reference's standard error of it, per
+    size x size block of luminance-like channel sums."""
+    h, w = img.shape[:2]
+    shape = (h // size, size, w // size, size)
+    mean = lambda x: x.sum(-1)[: shape[0] * size, : shape[2] * size].reshape(shape).mean(axis=(1, 3))  # noqa: E731
+    var = ref.variance.sum(-1)[: shape[0] * size, : shape[2] * size].reshape(shape).sum(axis=(1, 3)) / size**4
+    return (mean(img) - mean(ref.rgb)) / np.sqrt(var)
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("scene", choices=list(pm.SCENES))
@@ -124,6 +151,15 @@ def main(argv=None) -> int:
             print(f"    without rows {y0}..{y1 - 1}, columns {x0}..{x1 - 1}: corrected {pc(corr_r, rest.mean)}, "
                   f"split reference {pc(cross_r, rest.mean)} (its square ± {100 * cross_r_se / cross_r**2:.0f}%), "
                   f"Mitsuba {pc(mi_r, rest.mean)}: ratio {corr_r / mi_r:.3f} (split {cross_r / mi_r:.3f})")
+        own = own_standard_error(Path(path), img)
+        if own is not None:
+            for what, sel in (("the glint pixels", glints), ("the other pixels", ~glints)):
+                mse = float(np.mean(((img - a) * (img - b))[sel]))
+                print(f"    {what}: split-reference squared error / morgana's own variance "
+                      f"(stderr layer, bands correlated) = {mse / float(np.mean(own[sel] ** 2)):.1f}")
+        z = blocks_z(img, ref)
+        print(f"    8 x 8-pixel blocks: {int((abs(z) > 3).sum())} of {z.size} differ from the reference by more than 3 "
+              f"of its standard errors ({int((z > 3).sum())} morgana-brighter); largest |z| {abs(z).max():.1f}")
         print(f"    masked, split reference: {pc(cross_m, masked.mean)} (ratio {cross_m / mi_m:.3f}); the glint pixels "
               f"hold {100 * glint_share:.0f}% of the split-reference squared error")
     return 0
