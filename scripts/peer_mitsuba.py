@@ -422,19 +422,85 @@ class Reference:
     variance: np.ndarray  # per pixel and channel, of the mean
     spp: int
     seconds: float
+    # Two independent halves of the reference (each an unbiased image), when its chunks'
+    # images were kept: what the split-reference error (`Metric.cross`) needs.
+    halves: tuple[np.ndarray, np.ndarray] | None = None
 
 
-def render_reference(runner: MitsubaRunner, spp: int, chunks: int, log) -> Reference:
+@dataclass
+class ChunkSums:
+    """Independent reference chunks of `per` spp each: their count, the per-pixel sums of their
+    images and of their squares (float64), and the images of the chunks rendered one by one
+    (`images`; the first n - len(images) chunks may be known by their sums alone). Two sets of
+    chunks with different seeds combine exactly by adding the sums (Chan, Golub & LeVeque 1979),
+    so a reference can be extended, or resumed after a kill, without rendering its chunks again;
+    the images let the reference be split into independent halves (`halves`)."""
+
+    n: int
+    per: int
+    total: np.ndarray
+    squares: np.ndarray
+    seconds: float
+    cpu_seconds: float = 0.0
+    images: list = field(default_factory=list)
+
+    def add(self, img: np.ndarray, seconds: float, cpu: float) -> None:
+        self.n += 1
+        self.total = self.total + img
+        self.squares = self.squares + img * img
+        self.seconds += seconds
+        self.cpu_seconds += cpu
+        self.images.append(img)
+
+    def reference(self) -> Reference:
+        """The mean of the chunks; the variance of that mean, the chunks' sample variance / n."""
+        mean = self.total / self.n
+        var = np.maximum(self.squares - self.n * mean * mean, 0.0) / (self.n - 1) / self.n
+        return Reference(mean, var, self.per * self.n, self.seconds, self.halves() if len(self.images) > 1 else None)
+
+    @staticmethod
+    def from_reference(ref: Reference, chunks: int) -> "ChunkSums":
+        """Back from a reference of `chunks` chunks: sum = n mean, sum of squares =
+        (n - 1) n var + n mean^2 (its variance is that of the mean, s^2 / n)."""
+        n = chunks
+        return ChunkSums(n, ref.spp // n, n * ref.rgb, (n - 1) * n * ref.variance + n * ref.rgb**2, ref.seconds)
+
+    def arrays(self) -> dict:
+        return {"n": self.n, "per": self.per, "total": self.total, "squares": self.squares,
+                "seconds": self.seconds, "cpu_seconds": self.cpu_seconds,
+                "images": np.stack(self.images) if self.images else np.zeros((0,))}
+
+    @staticmethod
+    def from_arrays(z) -> "ChunkSums":
+        images = list(z["images"]) if z["images"].ndim == 4 else []
+        return ChunkSums(int(z["n"]), int(z["per"]), z["total"], z["squares"], float(z["seconds"]),
+                         float(z["cpu_seconds"]), images)
+
+    def halves(self) -> tuple[np.ndarray, np.ndarray]:
+        """Two independent unbiased references: the mean of the chunks known by their sums alone
+        with the first half of the single images, and the mean of the other images."""
+        m = len(self.images)
+        prior = self.n - m
+        k = max(0, (self.n + 1) // 2 - prior)
+        first = self.total - sum(self.images[k:], np.zeros_like(self.total))
+        second = sum(self.images[k:], np.zeros_like(self.total))
+        return first / (prior + k), second / (m - k)
+
+
+def render_reference(runner_factory, spp: int, chunks: int, log, sums: ChunkSums | None, save) -> ChunkSums:
+    """Chunk i has seed 1_000_000 + i, so the first chunks of a larger reference with the same
+    spp per chunk are those of a smaller one; `sums` holds the chunks already rendered and
+    `save(sums)` is called after each new one."""
     per = max(1, spp // chunks)
-    imgs, seconds = [], 0.0
-    for i in range(chunks):
-        img, s, _ = runner.render(per, seed=1_000_000 + i)
-        imgs.append(img)
-        seconds += s
-        log(f"  reference chunk {i + 1}/{chunks}: {per} spp, {s:.1f} s")
-    stack = np.stack(imgs)
-    var = stack.var(axis=0, ddof=1) / chunks
-    return Reference(stack.mean(axis=0), var, per * chunks, seconds)
+    if sums is None or sums.per != per:
+        sums = ChunkSums(0, per, 0.0, 0.0, 0.0)
+    for i in range(sums.n, chunks):
+        img, s, cpu = runner_factory().render(per, seed=1_000_000 + i)
+        sums.add(img, s, cpu)
+        save(sums)
+        log(f"  reference chunk {i + 1}/{chunks}: {per} spp, {s:.1f} s, CPU {cpu:.1f} s "
+            f"(load {os.getloadavg()[0]:.1f})")
+    return sums
 
 
 def scene_digest(mi_dict: dict, version: str) -> str:
@@ -443,13 +509,38 @@ def scene_digest(mi_dict: dict, version: str) -> str:
 
 
 def load_or_render_reference(path: Path, digest: str, runner_factory, spp: int, chunks: int, log) -> Reference:
+    """The reference at `path` if it has this digest and spp; otherwise rendered, continuing
+    from the chunks of `path`.partial.npz (saved after each chunk) or of a smaller reference at
+    `path` with the same spp per chunk (whose chunk count the file holds; 8 if it predates that)."""
+    partial = path.with_suffix(".partial.npz")
+    sums = None
     if path.exists():
         z = np.load(path)
-        if str(z["digest"]) == digest and int(z["spp"]) == spp:
-            log(f"  reusing {path} ({spp} spp)")
-            return Reference(z["rgb"], z["variance"], int(z["spp"]), float(z["seconds"]))
-    ref = render_reference(runner_factory(), spp, chunks, log)
-    np.savez_compressed(path, rgb=ref.rgb, variance=ref.variance, spp=ref.spp, seconds=ref.seconds, digest=digest)
+        if str(z["digest"]) == digest:
+            old = Reference(z["rgb"], z["variance"], int(z["spp"]), float(z["seconds"]))
+            old_chunks = int(z["chunks"]) if "chunks" in z else 8
+            if old.spp == spp:
+                log(f"  reusing {path} ({spp} spp)")
+                return ChunkSums.from_arrays(z).reference() if "images" in z else old
+            if old.spp % old_chunks == 0 and old.spp // old_chunks == spp // chunks and old_chunks < chunks:
+                sums = ChunkSums.from_arrays(z) if "images" in z else ChunkSums.from_reference(old, old_chunks)
+                log(f"  extending {path}: its {old_chunks} chunks of {sums.per} spp are the first")
+    if partial.exists():
+        z = np.load(partial)
+        if str(z["digest"]) == digest and int(z["per"]) == spp // chunks and int(z["n"]) > (sums.n if sums else 0):
+            sums = ChunkSums.from_arrays(z)
+            log(f"  resuming from {partial}: {sums.n} chunks of {sums.per} spp")
+
+    def save(s: ChunkSums):
+        tmp = partial.with_suffix(".tmp.npz")
+        np.savez_compressed(tmp, **s.arrays(), digest=digest)
+        os.replace(tmp, partial)
+
+    sums = render_reference(runner_factory, spp, chunks, log, sums, save)
+    ref = sums.reference()
+    np.savez_compressed(path, rgb=ref.rgb, variance=ref.variance, spp=ref.spp, seconds=ref.seconds,
+                        chunks=chunks, digest=digest, **{k: v for k, v in sums.arrays().items() if k != "seconds"})
+    partial.unlink(missing_ok=True)
     return ref
 
 
@@ -461,10 +552,28 @@ class Metric:
     ref_rgb: np.ndarray
     noise: float  # the reference's own RMSE noise over these pixels
     mean: float  # the reference's mean over these pixels
+    halves: tuple[np.ndarray, np.ndarray] | None = None
 
     @staticmethod
     def over(ref: Reference, pixels: np.ndarray) -> "Metric":
-        return Metric(pixels, ref.rgb, float(np.sqrt(ref.variance[pixels].mean())), float(ref.rgb[pixels].mean()))
+        return Metric(pixels, ref.rgb, float(np.sqrt(ref.variance[pixels].mean())), float(ref.rgb[pixels].mean()),
+                      ref.halves)
+
+    def cross(self, img: np.ndarray) -> tuple[float, float]:
+        """The split-reference error: with A and B the two independent halves of the reference,
+        each unbiased and independent of the image x, E[(x - A)(x - B)] = (x - truth)^2 per
+        pixel and channel, so the mean of the products over pixels is an unbiased estimate of
+        x's squared error that needs no estimate of the reference's variance (the corrected
+        RMSE needs one, from the chunks' spread, which heavy-tailed noise makes unreliable).
+        Returns (RMSE, the standard error of the mean square given x, from the products'
+        spread over pixels, whose reference noise is independent). NaN without halves."""
+        if self.halves is None:
+            return NAN, NAN
+        a, b = (h[self.pixels] for h in self.halves)
+        x = img[self.pixels]
+        prod = ((x - a) * (x - b)).ravel()
+        mse = float(prod.mean())
+        return math.sqrt(max(mse, 0.0)), float(prod.std(ddof=1) / math.sqrt(prod.size))
 
     def errors(self, img: np.ndarray) -> tuple[float, float]:
         """(raw RMSE, RMSE with the reference's noise removed in quadrature). The raw value
@@ -513,6 +622,8 @@ class Run:
     rel: float
     raw_m: float = NAN
     rmse_m: float = NAN
+    rmse_x: float = NAN  # the split-reference RMSE (`Metric.cross`), all pixels
+    mse_x_se: float = NAN  # the standard error of its square
     ratio: float = NAN  # rmse / Mitsuba's rmse at the same wall time
     ratio_cpu: float = NAN  # ... at the same CPU time
     bound: float = NAN  # raw / Mitsuba's rmse at the same wall time: an upper bound on ratio
@@ -579,6 +690,7 @@ def write_png(path: Path, rgb: np.ndarray, white: float):
 
 
 RUN_FIELDS = ["scene", "method", "settings", "seconds", "cpu_seconds", "raw", "rmse", "rel", "raw_m", "rmse_m",
+              "rmse_x", "mse_x_se",
               "ratio", "ratio_cpu", "bound", "ratio_m", "bound_m", "photon_memory_mb", "photon_build_s",
               "photon_trace_s"]
 
@@ -900,14 +1012,21 @@ def bench_scene_progressive(name: str, spec: SceneSpec, args, log) -> tuple[list
     out = args.out / name
     full, masked = scene_metrics(spec, tomllib.loads(base), ref, out, log)
     runs: list[Run] = []
+    stops = out / "stops"  # every image measured, as linear sRGB .npy, to measure again later
+    stops.mkdir(exist_ok=True)
 
     def add(method, label, img, seconds, cpu):
         raw, corr = full.errors(img)
         raw_m, corr_m = masked.errors(img) if masked else (NAN, NAN)
-        runs.append(Run(name, method, label, seconds, cpu, raw, corr, corr / full.mean, raw_m, corr_m, rgb=img))
+        cross, cross_se = full.cross(img)
+        runs.append(Run(name, method, label, seconds, cpu, raw, corr, corr / full.mean, raw_m, corr_m, cross, cross_se,
+                        rgb=img))
         log(f"  {method:26s} {label:40s} {seconds:7.2f} s (CPU {cpu:7.2f} s, load {os.getloadavg()[0]:4.1f})  "
             f"RMSE {corr:.4g} ({100 * corr / full.mean:.2f}%), raw {raw:.4g}"
-            + (f", masked {corr_m:.4g}" if masked else ""))
+            + (f", masked {corr_m:.4g}" if masked else "")
+            + (f", split-reference {cross:.4g} ({100 * cross / full.mean:.2f}%; its square {cross**2:.4g} "
+               f"± {cross_se:.2g})" if math.isfinite(cross) else ""))
+        np.save(stops / f"{method.replace(' ', '_')}_{label.replace('=', '_')}.npy", img)
 
     for i, spp in enumerate(args.mitsuba_spp):
         img, seconds, cpu = get_runner().render(spp, seed=1 + i)
@@ -917,6 +1036,8 @@ def bench_scene_progressive(name: str, spec: SceneSpec, args, log) -> tuple[list
     variants = [(PROGRESSIVE, [])] + ([(ADAPTIVE, ["--adaptive"])] if spec.progressive_adaptive else [])
     if args.no_adaptive:
         variants = variants[:1]
+    if args.no_uniform:
+        variants = variants[1:]
     for method, extra in variants:
         work = out / method.replace(" ", "_")
         work.mkdir(parents=True, exist_ok=True)
@@ -927,7 +1048,7 @@ def bench_scene_progressive(name: str, spec: SceneSpec, args, log) -> tuple[list
             add(method, f"passes={step.passes}", read_exr_rgb(work / f"{name}.exr"), step.phase_s, step.cpu_s)
     set_ratios(runs)
     previews(out, ref, runs, spec.regions, log)
-    means = {"rmse": full.mean, "rmse_m": masked.mean if masked else NAN}
+    means = {"rmse": full.mean, "rmse_m": masked.mean if masked else NAN, "rmse_x": full.mean}
     return runs, progressive_summary(name, runs, means, args, log)
 
 
@@ -951,7 +1072,7 @@ def progressive_summary(name: str, runs: list[Run], means: dict, args, log) -> l
     for method in (PROGRESSIVE, ADAPTIVE):
         if not any(r.method == method for r in runs):
             continue
-        for key, label in (("rmse", "all pixels"), ("rmse_m", "masked")):
+        for key, label in (("rmse", "all pixels"), ("rmse_m", "masked"), ("rmse_x", "all pixels, split reference")):
             t, e = curve(runs, method, key, cpu=True)
             if not all(math.isfinite(x) for x in e):
                 continue
@@ -1096,6 +1217,8 @@ def parse_args(argv):
     p.add_argument("--fit-from", type=float, default=10.0, help="--progressive: slopes fitted from this CPU time")
     p.add_argument("--fit-to", type=float, default=300.0, help="--progressive: ... to this CPU time")
     p.add_argument("--no-adaptive", action="store_true", help="--progressive: the uniform passes only")
+    p.add_argument("--no-uniform", action="store_true",
+                   help="--progressive: the adaptive passes only (where a scene has them)")
     p.add_argument("--mitsuba-spp", type=int, nargs="+", default=PROGRESSIVE_MITSUBA_SPP,
                    help="--progressive: Mitsuba's budgets (its RMSE beyond the largest by the 1/sqrt(t) law)")
     return p.parse_args(argv)
