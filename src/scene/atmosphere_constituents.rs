@@ -11,6 +11,11 @@
 //!             albedo = 0.95,          # single-scattering albedo, 0–1
 //!             g = 0.7 }               # Henyey–Greenstein asymmetry, −1 < g < 1
 //! ```
+//!
+//! Instead of `g`, `phase = { type = "two_term_hg", w = 0.9, g1 = 0.8, g2 = -0.3 }` gives the
+//! aerosols a two-term Henyey–Greenstein phase function w HG(g₁) + (1 − w) HG(g₂) (Kattawar
+//! 1975), a forward lobe and a backward one; `phase = { type = "hg", g = 0.7 }` is the same as
+//! `g = 0.7`.
 
 use super::media::Table;
 use super::raw::RawMedium;
@@ -91,7 +96,8 @@ fn aerosols(
     (earth, top_m): (crate::atmosphere::Earth, f64),
     rayleigh_550: f64,
 ) -> R<Constituent> {
-    const KEYS: &[&str] = &["angstrom_alpha", "angstrom_beta", "visibility_km", "scale_height_m", "albedo", "g"];
+    const KEYS: &[&str] =
+        &["angstrom_alpha", "angstrom_beta", "visibility_km", "scale_height_m", "albedo", "g", "phase"];
     let t = Table::new(ctx, v, what.to_string(), KEYS)?;
     let span = v.span();
     let in_range = |key: &str, x: f64, lo: f64, hi: f64, open: bool| -> R<f64> {
@@ -105,7 +111,6 @@ fn aerosols(
     let alpha = in_range("angstrom_alpha", t.num("angstrom_alpha", Some(1.3))?, 0.0, 4.0, false)?;
     let scale_height_m = in_range("scale_height_m", t.num("scale_height_m", None)?, 100.0, 20_000.0, false)?;
     let albedo = in_range("albedo", t.num("albedo", None)?, 0.0, 1.0, false)?;
-    let g = in_range("g", t.num("g", None)?, -1.0, 1.0, true)?;
     let beta = match (t.t.contains_key("angstrom_beta"), t.t.contains_key("visibility_km")) {
         (true, false) => in_range("angstrom_beta", t.num("angstrom_beta", None)?, 0.0, 10.0, false)?,
         (false, true) => {
@@ -127,7 +132,19 @@ fn aerosols(
             ));
         }
     };
-    let phase = PhaseFunction::henyey_greenstein(g).map_err(|e| ctx.err(&span, format!("{what}: {e}")))?;
+    let phase = match (t.t.get("g"), t.t.get("phase")) {
+        (Some(_), None) => {
+            let g = in_range("g", t.num("g", None)?, -1.0, 1.0, true)?;
+            PhaseFunction::henyey_greenstein(g).map_err(|e| ctx.err(&span, format!("{what}: {e}")))?
+        }
+        (None, Some(p)) => aerosol_phase(ctx, &Spanned::new(span.clone(), p.clone()), what)?,
+        _ => {
+            return Err(ctx.err(
+                &span,
+                format!("{what}: give either g (Henyey–Greenstein asymmetry) or phase = {{ type = \"two_term_hg\", w, g1, g2 }}, not both or neither"),
+            ));
+        }
+    };
     Ok(Constituent {
         name: "aerosol",
         extinction: Extinction::Angstrom { alpha, beta },
@@ -135,4 +152,27 @@ fn aerosols(
         phase,
         profile: AirProfile::from_heights(earth, top_m, aerosol::profile(scale_height_m, top_m)),
     })
+}
+
+/// An aerosol's `phase`: `{ type = "hg", g }` or `{ type = "two_term_hg", w, g1, g2 }`.
+fn aerosol_phase(ctx: &Ctx, v: &Spanned<toml::Value>, what: &str) -> R<PhaseFunction> {
+    let pwhat = format!("{what}: phase");
+    let kind = v.get_ref().get("type").and_then(toml::Value::as_str).unwrap_or("");
+    let built = match kind {
+        "hg" => {
+            let t = Table::new(ctx, v, pwhat.clone(), &["type", "g"])?;
+            PhaseFunction::henyey_greenstein(t.num("g", None)?)
+        }
+        "two_term_hg" => {
+            let t = Table::new(ctx, v, pwhat.clone(), &["type", "w", "g1", "g2"])?;
+            PhaseFunction::two_term_hg(t.num("w", None)?, t.num("g1", None)?, t.num("g2", None)?)
+        }
+        _ => {
+            return Err(ctx.err(
+                &v.span(),
+                format!("{pwhat}: expected a table with type = \"hg\" (g) or \"two_term_hg\" (w, g1, g2)"),
+            ));
+        }
+    };
+    built.map_err(|e| ctx.err(&v.span(), format!("{pwhat}: {e}")))
 }
