@@ -255,6 +255,14 @@ impl Integrator {
         self
     }
 
+    /// Whether Dormand–Prince shortens its proposals where the error density grows along the
+    /// path ([`Controller::follow_trend`]; on by default). Off: plain PI control, as before
+    /// issue 18 — for comparisons.
+    pub fn with_trend(mut self, on: bool) -> Integrator {
+        self.controller.trend = on;
+        self
+    }
+
     /// The budget of steps (accepted + rejected) between [`Integrator::restart`]s.
     pub fn with_max_steps(mut self, max_steps: u64) -> Integrator {
         self.max_steps = max_steps;
@@ -290,6 +298,7 @@ impl Integrator {
     /// the controller last proposed, a better first step than a fresh guess where the field
     /// varies on the same scale.
     pub fn resume(&mut self) {
+        self.controller.forget_trend();
         self.end = None;
         self.steps_since_restart = 0;
     }
@@ -437,6 +446,7 @@ impl Integrator {
                             } else {
                                 h.min(self.controller.predicted_step(h_try, err_sq))
                             };
+                            let h_next = self.controller.follow_trend(h_try, err_sq, h_next, capped);
                             self.h_next = Some(if capped && h_next >= h_try { h_next.max(keep) } else { h_next });
                             self.counters.accepted += 1;
                             return Ok((t.y1, t.f1, t.n1, h_try, t.c5));
