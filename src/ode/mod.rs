@@ -31,6 +31,7 @@ pub mod dense;
 pub mod dopri5;
 pub mod error;
 pub mod euler;
+pub mod kink;
 pub mod rk4;
 mod settings;
 pub mod system;
@@ -89,6 +90,16 @@ impl Method {
             Method::DormandPrince { .. } => "dopri5",
             Method::Rk4 { .. } => "rk4",
             Method::Euler { .. } => "euler",
+        }
+    }
+
+    /// The error Dormand–Prince allows in the ray vector v per step where |v| = `n`, as kink
+    /// cuts ([`kink::KinkSpheres::next_cut`]) judge a straddle by: atol + rtol·n/√3 (a
+    /// component's share of |v|); `None` for the fixed-step methods, which reject nothing.
+    pub fn kink_tolerance(&self, n: f64) -> Option<f64> {
+        match *self {
+            Method::DormandPrince { rtol, atol, .. } => Some(atol + rtol * n / 3f64.sqrt()),
+            Method::Rk4 { .. } | Method::Euler { .. } => None,
         }
     }
 
