@@ -46,7 +46,7 @@ def work(c):
         return "-"
     tot = c["ode_steps"] + c["ode_rejected"]
     rej = c["ode_rejected"] / tot if tot else 0.0
-    return f'steps {c["ode_steps"]} rejected {c["ode_rejected"]} ({100*rej:.1f} %) chords {c["chords"]}'
+    return f'steps {c["ode_steps"]} rejected {c["ode_rejected"]} ({100*rej:.1f} %) field samples {c["rhs_evals"]} chords {c["chords"]}'
 for m in r.get("maps", []):
     print(f'{sys.argv[2]:<20} {m["map"]:<8} photon pass {m["trace_seconds"]:8.2f} s  {work(m["stats"].get("curved"))}')
 eye = ph.get("eye pass", {})

@@ -45,6 +45,8 @@ const FLOOR: f64 = 1e-6;
 /// The floor of the bound on q′, relative to q₀/H₀: where q′ crosses zero (the top of a hot
 /// road's layer, where n stops falling with height) its relative error means nothing.
 const FLOOR_DQ: f64 = 1e-3;
+/// Cells of the interval index per interval (`RadialTable::interval`).
+const CELLS_PER_INTERVAL: usize = 4;
 /// Check points of the refinement: where the Hermite errors of q′ and q peak.
 const CHECKS: [f64; 3] = [0.211_324_865_405_187_1, 0.5, 0.788_675_134_594_812_9];
 
@@ -67,6 +69,11 @@ pub struct RadialTable {
     /// Start of each interval, ascending; the last entry is the top (the end of the last one).
     lo: Vec<f64>,
     pieces: Vec<Piece>,
+    /// The index of the intervals: the table's heights cut into equal cells, and for each cell
+    /// boundary the interval it lies in (one more entry than cells).
+    first: Vec<u32>,
+    /// Cells per metre of height.
+    inv_cell: f64,
     /// Relative bound ε.
     epsilon: f64,
     /// The floors of the bound: 10⁻⁶·q₀ and 10⁻³·q₀/H₀.
@@ -89,6 +96,8 @@ impl RadialTable {
             atmosphere: atmosphere.clone(),
             lo: Vec::new(),
             pieces: Vec::new(),
+            first: Vec::new(),
+            inv_cell: 0.0,
             epsilon,
             floor_q: FLOOR * q0,
             floor_dq: FLOOR_DQ * q0 / H0_M,
@@ -102,7 +111,11 @@ impl RadialTable {
         for w in breaks.windows(2) {
             t.piece(w[0], w[1])?;
         }
+        if t.pieces.is_empty() {
+            return None;
+        }
         t.lo.push(top);
+        t.index();
         Some(t)
     }
 
@@ -133,8 +146,37 @@ impl RadialTable {
         if h.is_nan() || h < self.lo[0] {
             return None;
         }
-        let i = self.lo.partition_point(|x| *x <= h) - 1;
+        let i = self.interval(h);
         Some(self.pieces[i].eval((h - self.lo[i]) * self.pieces[i].inv_w))
+    }
+
+    /// The interval i with lo[i] ≤ `h` < lo[i + 1], for lo[0] ≤ h < top: searched among the
+    /// intervals of h's cell of the index (one or two for USA76, where a binary search over all
+    /// ~4 700 took 13 dependent loads, 40 % of a field sample in `sunset_sea`'s eye pass), or
+    /// over all of them should rounding have put h in a neighbouring cell. Either way the same
+    /// interval as a binary search over all, so the table's values do not change.
+    #[inline]
+    fn interval(&self, h: f64) -> usize {
+        let cells = self.first.len() - 1;
+        let j = (((h - self.lo[0]) * self.inv_cell) as usize).min(cells - 1);
+        let (a, b) = (self.first[j] as usize, self.first[j + 1] as usize);
+        let i = a + self.lo[a + 1..=b].partition_point(|x| *x <= h);
+        if self.lo[i] <= h && h < self.lo[i + 1] { i } else { self.lo.partition_point(|x| *x <= h) - 1 }
+    }
+
+    /// Builds the index of the intervals: `CELLS_PER_INTERVAL` equal cells of height per
+    /// interval over the table, each boundary with the interval it lies in.
+    fn index(&mut self) {
+        let (bottom, top) = (self.lo[0], self.lo[self.lo.len() - 1]);
+        let cells = CELLS_PER_INTERVAL * self.pieces.len();
+        self.inv_cell = cells as f64 / (top - bottom);
+        let last = self.pieces.len() - 1;
+        self.first = (0..=cells)
+            .map(|j| {
+                let h = bottom + j as f64 * (top - bottom) / cells as f64;
+                (self.lo.partition_point(|x| *x <= h).saturating_sub(1)).min(last) as u32
+            })
+            .collect();
     }
 
     /// Number of intervals.
@@ -223,5 +265,52 @@ impl Piece {
     fn eval(&self, t: f64) -> (f64, f64) {
         let ([c0, c1, c2, c3], [d0, d1, d2, d3]) = (self.c, self.d);
         (c0 + t * (c1 + t * (c2 + t * c3)), d0 + t * (d1 + t * (d2 + t * d3)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atmosphere::edit::{Edit, HotSurface};
+
+    /// The index finds the interval a binary search over all of them finds — at every knot, just
+    /// below and above it, at every cell boundary and at 10⁵ random heights — for USA76 and for
+    /// a hot road, whose millimetre intervals crowd many into one cell at the ground.
+    #[test]
+    fn the_index_finds_the_interval_a_full_search_finds() {
+        let usa76 = Atmosphere::usa76();
+        let hot = HotSurface::new(30.0, 6.667).expect("valid edit");
+        let road = Atmosphere::new(
+            "hot road",
+            usa76.earth,
+            usa76.base.clone(),
+            vec![Edit::HotSurface(hot)],
+            usa76.dispersion,
+            usa76.top_m(),
+        )
+        .expect("valid");
+        for atm in [usa76, road] {
+            let t = RadialTable::new(&atm, 1e-9).expect("tabulated");
+            let (bottom, top) = (t.lo[0], t.lo[t.lo.len() - 1]);
+            let full = |h: f64| t.lo.partition_point(|x| *x <= h) - 1;
+            let cells = t.first.len() - 1;
+            let mut heights: Vec<f64> = Vec::new();
+            for &k in &t.lo[..t.lo.len() - 1] {
+                heights.extend([k, k.next_up(), k.next_down()]);
+            }
+            heights.extend((0..cells).map(|j| bottom + j as f64 * (top - bottom) / cells as f64));
+            let mut x = 0x9e37_79b9_7f4a_7c15u64;
+            for _ in 0..100_000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let u = (x >> 11) as f64 / (1u64 << 53) as f64;
+                // Half uniform over the table, half within 10 m of the ground.
+                heights.push(if x & 1 == 0 { bottom + u * (top - bottom) } else { 10.0 * u });
+            }
+            for h in heights.into_iter().filter(|h| (bottom..top).contains(h)) {
+                assert_eq!(t.interval(h), full(h), "{}: h = {h}", atm.name);
+            }
+        }
     }
 }

@@ -31,6 +31,7 @@ pub mod dense;
 pub mod dopri5;
 pub mod error;
 pub mod euler;
+pub mod kink;
 pub mod rk4;
 mod settings;
 pub mod system;
@@ -89,6 +90,16 @@ impl Method {
             Method::DormandPrince { .. } => "dopri5",
             Method::Rk4 { .. } => "rk4",
             Method::Euler { .. } => "euler",
+        }
+    }
+
+    /// The error Dormand–Prince allows in the ray vector v per step where |v| = `n`, as kink
+    /// cuts ([`kink::KinkSpheres::next_cut`]) judge a straddle by: atol + rtol·n/√3 (a
+    /// component's share of |v|); `None` for the fixed-step methods, which reject nothing.
+    pub fn kink_tolerance(&self, n: f64) -> Option<f64> {
+        match *self {
+            Method::DormandPrince { rtol, atol, .. } => Some(atol + rtol * n / 3f64.sqrt()),
+            Method::Rk4 { .. } | Method::Euler { .. } => None,
         }
     }
 
@@ -255,6 +266,14 @@ impl Integrator {
         self
     }
 
+    /// Whether Dormand–Prince shortens its proposals where the error density grows along the
+    /// path ([`Controller::follow_trend`]; on by default). Off: plain PI control, as before
+    /// issue 18 — for comparisons.
+    pub fn with_trend(mut self, on: bool) -> Integrator {
+        self.controller.trend = on;
+        self
+    }
+
     /// The budget of steps (accepted + rejected) between [`Integrator::restart`]s.
     pub fn with_max_steps(mut self, max_steps: u64) -> Integrator {
         self.max_steps = max_steps;
@@ -290,6 +309,7 @@ impl Integrator {
     /// the controller last proposed, a better first step than a fresh guess where the field
     /// varies on the same scale.
     pub fn resume(&mut self) {
+        self.controller.forget_trend();
         self.end = None;
         self.steps_since_restart = 0;
     }
@@ -437,6 +457,7 @@ impl Integrator {
                             } else {
                                 h.min(self.controller.predicted_step(h_try, err_sq))
                             };
+                            let h_next = self.controller.follow_trend(h_try, err_sq, h_next, capped);
                             self.h_next = Some(if capped && h_next >= h_try { h_next.max(keep) } else { h_next });
                             self.counters.accepted += 1;
                             return Ok((t.y1, t.f1, t.n1, h_try, t.c5));

@@ -28,10 +28,7 @@ impl CurvedSettings {
     /// propagator's kink cuts judge a straddle by: atol + rtol·n/√3 (a component's
     /// share of |v|); `None` for the fixed-step methods, which reject nothing.
     pub fn kink_tolerance(&self, n: f64) -> Option<f64> {
-        match self.method {
-            super::Method::DormandPrince { rtol, atol, .. } => Some(atol + rtol * n / 3f64.sqrt()),
-            super::Method::Rk4 { .. } | super::Method::Euler { .. } => None,
-        }
+        self.method.kink_tolerance(n)
     }
 }
 

@@ -70,6 +70,14 @@ impl RayY {
         self.v.normalize_or_zero()
     }
 
+    /// The curvature vector of the path here where the gradient is `grad`:
+    /// a = (∇n − (∇n·d)d)/n, d = v/|v| and n = |v| (what kink cuts predict a crossing with).
+    pub fn curvature(&self, grad: DVec3) -> DVec3 {
+        let n = self.v.length();
+        let d = self.v / n;
+        (grad - grad.dot(d) * d) / n
+    }
+
     /// All six components finite.
     #[inline]
     pub fn is_finite(&self) -> bool {

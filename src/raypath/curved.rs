@@ -169,7 +169,7 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     let mut grad = f0.v;
     loop {
         let tol_v = settings.kink_tolerance(state.y.v.length());
-        let cut = kinks.and_then(|k| k.next_cut(w.position, w.dir, bend(grad, &state), KINK_MIN_M, tol_v));
+        let cut = kinks.and_then(|k| k.next_cut(w.position, w.dir, state.y.curvature(grad), KINK_MIN_M, tol_v));
         let h_limit = cut.map_or(h_cap, |t| t.min(h_cap));
         if grad == DVec3::ZERO && cut.is_some() {
             // Entering where ∇n = 0 (the top of an atmosphere, where n − 1 tapers to 0 with
@@ -199,14 +199,6 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
             return Leg::Done(Event::Escape { dir: w.dir });
         }
     }
-}
-
-/// The curvature vector of the path at `state` where the gradient is `grad`:
-/// (∇n − (∇n·d)d)/n, d = v/|v| and n = |v|.
-fn bend(grad: DVec3, state: &OdeState) -> DVec3 {
-    let n = state.y.v.length();
-    let d = state.y.v / n;
-    (grad - grad.dot(d) * d) / n
 }
 
 /// Hands the chords of one step to the scene and the visitor; the event, if one happens on

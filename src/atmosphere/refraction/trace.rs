@@ -1,9 +1,13 @@
 //! The ray from the observer out of the atmosphere (see the module notes of
 //! [`super`]): one Dormand–Prince step at a time, watching for the top, the ground and turning
-//! points.
+//! points. Steps end on the spheres where ∇n is not smooth (the profile's layer boundaries, the
+//! taper's start and the top; [`KinkSpheres`]): a step straddling a jump of ∇n can pass the
+//! error test with ~100 times the tolerated error (tests/refraction.rs), which made the traced
+//! refraction depend on where the step-size rule happened to put the step ends (issue 18).
 
 use crate::atmosphere::{Atmosphere, Earth};
 use crate::error::{Error, Result};
+use crate::ode::kink::KinkSpheres;
 use crate::ode::{Integrator, Method, OdeState, RayY, Step};
 use glam::DVec3;
 
@@ -95,7 +99,13 @@ pub struct Tracer<'a> {
     up: DVec3,
     horizontal: DVec3,
     settings: Settings,
+    /// The spheres where ∇n is not smooth (USA76's layer boundaries, the start and the end of
+    /// the taper at the top), where steps end ([`KinkSpheres`]).
+    kinks: KinkSpheres,
 }
+
+/// A kink crossing closer than this is the one the path is on, m (as for scene paths).
+const KINK_MIN_M: f64 = 1e-6;
 
 impl<'a> Tracer<'a> {
     /// An observer `observer_height_m` (0 ≤ h₀ < top) above the ground of `atmosphere`, which
@@ -118,6 +128,12 @@ impl<'a> Tracer<'a> {
         check_inputs(atmosphere, wavelength_nm, observer_height_m, &settings)?;
         let up = (-sphere.centre).try_normalize().unwrap_or(DVec3::Y);
         let horizontal = (DVec3::X - up * up.x).try_normalize().unwrap_or_else(|| up.any_orthonormal_vector());
+        // The top too: there n − 1 tapers to 0 with zero slope but not zero curvature, and the
+        // trace ends on the first step past it.
+        let heights = atmosphere.kink_heights_m().into_iter().chain([atmosphere.top_m()]);
+        let radii: Vec<f64> = heights.map(|h| sphere.radius_m + h).collect();
+        let sample = |p: DVec3| atmosphere.n_grad(wavelength_nm, p);
+        let kinks = KinkSpheres::new(&sample, sphere.centre, &radii);
         Ok(Tracer {
             atmosphere,
             wavelength_nm,
@@ -127,6 +143,7 @@ impl<'a> Tracer<'a> {
             up,
             horizontal,
             settings,
+            kinks,
         })
     }
 
@@ -172,12 +189,18 @@ impl<'a> Tracer<'a> {
         let s = &self.settings;
         let mut ode = Integrator::new(method(s))?;
         let mut climb = Climb::new(self.height(state.y.r), self.radial(&state.y));
+        // ∇n where the next step starts (the first step's slope, sampled once): the path's
+        // curvature, which predicts where it meets a kink.
+        let mut grad = ode.prime(&field, &state.y)?.v;
         let outcome = loop {
             let left = s.max_path_m - state.s;
             if left <= 0.0 {
                 break Outcome::Trapped { max_height_m: climb.max_height_m, ground_distance_m: None };
             }
-            let step = ode.step(&field, &mut state, left)?;
+            let tol_v = method(s).kink_tolerance(state.y.v.length());
+            let cut = self.kinks.next_cut(state.y.r, state.y.direction(), state.y.curvature(grad), KINK_MIN_M, tol_v);
+            let step = ode.step(&field, &mut state, cut.map_or(left, |t| t.min(left)))?;
+            grad = step.dense.f1.v;
             if let Some(theta) = self.ground_crossing(&step) {
                 let hit = step.state_at(theta);
                 state = hit;
