@@ -7,22 +7,31 @@
 # inside the image circle). Noise falls as 1/√spp, so the samples and time for 2 % are
 # spp·(σ/L / 0.02)² and t·(σ/L / 0.02)². Run from the repository root:
 #
-#   scripts/bench_sky.sh [SPP] [MORGANA_BINARY] [OUT_DIR]
+#   scripts/bench_sky.sh [SPP] [MORGANA_BINARY] [OUT_DIR] [INTEGRATOR]
 #
-# Defaults: 8, target/release/morgana, /tmp/bench_sky. Wall times on the shared 2-vCPU machines
+# Defaults: 8, target/release/morgana, /tmp/bench_sky, and the example's path tracer. INTEGRATOR
+# replaces the example's `method = "path"` line with other [integrator] lines (\n between them),
+# e.g. 'method = "photon_map"\nphotons = 0' (ray-marched single scattering by shadow rays) or
+# 'method = "photon_map"\nphotons = 200000' (the same plus the volume photon map's multiple
+# scattering). Wall times on the shared 2-vCPU machines
 # vary by up to 2× with other work: the script prints user + sys CPU time too.
 set -euo pipefail
 SPP=${1:-8}
 BIN=${2:-target/release/morgana}
 OUT=${3:-/tmp/bench_sky}
+INTEGRATOR=${4:-method = \"path\"}
 mkdir -p "$OUT"
 SCENE="$OUT/sky_bench.toml"
 sed -e 's/^width = 128$/width = 256/' -e 's/^height = 128$/height = 256/' \
     -e "s/^spp = 32$/spp = $SPP/" -e 's/^elevation_deg = 60.0$/elevation_deg = 30.0/' \
     -e 's/^\[output\]$/[output]\ncsv = true\nexr = false\npng = false/' \
+    -e "s/^method = \"path\"$/$INTEGRATOR/" \
     examples/sky_noon.toml > "$SCENE"
 grep -q "^width = 256" "$SCENE" && grep -q "^spp = $SPP" "$SCENE" && grep -q "^elevation_deg = 30.0" "$SCENE" \
+  && grep -q "^method = " "$SCENE" \
   || { echo "bench_sky.sh: examples/sky_noon.toml no longer has the lines this script edits" >&2; exit 2; }
+sed -n '/^\[integrator\]/,/^$/p' "$SCENE"
+uptime
 for seed in 1 2; do
   /usr/bin/time -f "seed $seed: %e s wall, %U s user, %S s sys" \
     "$BIN" render "$SCENE" --seed "$seed" --out "$OUT/seed$seed" --quiet > /dev/null
@@ -42,6 +51,8 @@ inside = [k for k in a if math.hypot(abs(k[0] + 0.5 - R) + 0.5, abs(k[1] + 0.5 -
 rel = [((a[k] - b[k]) / ((a[k] + b[k]) / 2)) ** 2 / 2 for k in inside if a[k] + b[k] > 0]
 sigma = math.sqrt(sum(rel) / len(rel))
 print(f"{len(inside)} pixels inside the circle; per-pixel relative noise at {spp} spp: {sigma:.4f}")
+mean = [sum(img[k] for k in inside) / len(inside) for img in (a, b)]
+print(f"mean radiance over the circle (band mean, W m^-2 sr^-1 nm^-1): seed 1 {mean[0]:.5e}, seed 2 {mean[1]:.5e}")
 k = (sigma / 0.02) ** 2
 print(f"for 2 %: {spp * k:.0f} spp, {k:.2f} × the time of one render above")
 PY

@@ -19,8 +19,9 @@
 //! β = τ(550 nm) × 0.55^α.
 //!
 //! # Scattering
-//! A single-scattering albedo ω (constant in λ) and a Henyey–Greenstein phase function, or a
-//! two-term Henyey–Greenstein one (the scene chooses; [`super::phase::TwoTermHg`]).
+//! A single-scattering albedo ω(λ) — one number, or a table in wavelength
+//! ([`super::albedo::Albedo`]) — and a Henyey–Greenstein phase function, or a two-term
+//! Henyey–Greenstein one (the scene chooses; [`super::phase::TwoTermHg`]).
 //!
 //! # References
 //! - A. Ångström, "On the atmospheric transmission of Sun radiation and on dust in the air",

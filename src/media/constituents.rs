@@ -4,13 +4,14 @@
 //!
 //! # Extinction, albedo and phase at a point
 //! Constituent c has an extinction σ_c(λ) per unit of its profile d_c(h) (a table in height over
-//! the atmosphere's Earth, [`AirProfile`]), a single-scattering albedo ω_c and a phase function
-//! p_c. At a point x at height h:
+//! the atmosphere's Earth, [`AirProfile`]), a single-scattering albedo ω_c(λ) ([`Albedo`]: one
+//! number, or a table in wavelength) and a phase function p_c. At a point x at height h:
 //!
-//! σ_t(λ, x) = Σ_c σ_c(λ) d_c(h),  σ_s(λ, x) = Σ_c ω_c σ_c(λ) d_c(h),
+//! σ_t(λ, x) = Σ_c σ_c(λ) d_c(h),  σ_s(λ, x) = Σ_c ω_c(λ) σ_c(λ) d_c(h),
 //!
-//! the albedo is σ_s/σ_t and the phase function is the mixture weighted by each constituent's
-//! scattering, p(λ, x, μ) = Σ_c w_c p_c(μ) / Σ_c w_c with w_c = ω_c σ_c(λ) d_c(h) — as
+//! so constituent c absorbs (1 − ω_c(λ)) σ_c(λ) d_c(h). The albedo is σ_s/σ_t and the phase
+//! function is the mixture weighted by each constituent's scattering,
+//! p(λ, x, μ) = Σ_c w_c p_c(μ) / Σ_c w_c with w_c = ω_c(λ) σ_c(λ) d_c(h) — as
 //! [`super::phase::Mixture`] weights by σ_s,i(λ), but with weights that vary with height too, so
 //! albedo and phase change from the ozone layer to the aerosol haze. A collision's scattering
 //! constituent is chosen with probability w_c / Σ w; with one scatterer no choice is drawn.
@@ -27,6 +28,7 @@
 //!   by several kinds of particles adds); Novák et al., "Monte Carlo methods for physically
 //!   based volume rendering", SIGGRAPH course (2018), §4 (majorants).
 
+use super::albedo::Albedo;
 use super::density::AirProfile;
 use super::phase::PhaseFunction;
 use crate::spectrum::Spectrum;
@@ -80,9 +82,9 @@ pub struct Constituent {
     pub name: &'static str,
     /// σ_c(λ) per unit of the profile.
     pub extinction: Extinction,
-    /// Single-scattering albedo ω_c in [0, 1].
-    pub albedo: f64,
-    /// Phase function of its scattering (unused when ω_c = 0).
+    /// Single-scattering albedo ω_c(λ) in [0, 1].
+    pub albedo: Albedo,
+    /// Phase function of its scattering (unused when ω_c ≡ 0).
     pub phase: PhaseFunction,
     /// d_c(h), tabulated on the atmosphere's heights.
     pub profile: AirProfile,
@@ -110,10 +112,10 @@ impl Constituents {
                 c.profile.top_m()
             ));
         }
-        if let Some(c) = list.iter().find(|c| !(0.0..=1.0).contains(&c.albedo)) {
+        if let Some(c) = list.iter().find(|c| !c.albedo.is_valid()) {
             return Err(format!("constituent \"{}\": albedo {} is outside [0, 1]", c.name, c.albedo));
         }
-        let scatterers = list.iter().filter(|c| c.albedo > 0.0).count();
+        let scatterers = list.iter().filter(|c| c.albedo.scatters()).count();
         Ok(Constituents { list, scatterers })
     }
 
@@ -122,7 +124,7 @@ impl Constituents {
         &self.list
     }
 
-    /// How many constituents scatter (ω_c > 0).
+    /// How many constituents scatter (ω_c > 0 at some wavelength).
     pub fn scatterers(&self) -> usize {
         self.scatterers
     }
@@ -211,12 +213,13 @@ impl Constituents {
         integrals
     }
 
-    /// The scattering weights w_c = ω_c σ_c(λ) d_c at densities `d`.
+    /// The scattering weights w_c = ω_c(λ) σ_c(λ) d_c at densities `d`.
     pub fn scattering(&self, wavelength_nm: f64, d: &PerConstituent) -> PerConstituent {
         let mut w = [0.0; MAX_CONSTITUENTS];
         for ((v, c), dc) in w.iter_mut().zip(&self.list).zip(d) {
-            if c.albedo > 0.0 && *dc != 0.0 {
-                *v = c.albedo * c.extinction.at(wavelength_nm) * dc;
+            let albedo = c.albedo.at(wavelength_nm);
+            if albedo > 0.0 && *dc != 0.0 {
+                *v = albedo * c.extinction.at(wavelength_nm) * dc;
             }
         }
         w

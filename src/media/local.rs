@@ -129,7 +129,7 @@ impl<'a> MediumAt<'a> {
             Local::Constituents { c, d } => {
                 let list = c.list();
                 if c.scatterers() <= 1 {
-                    let k = list.iter().position(|k| k.albedo > 0.0).unwrap_or(0);
+                    let k = list.iter().position(|k| k.albedo.scatters()).unwrap_or(0);
                     return &list[k].phase;
                 }
                 let w = c.scattering(wavelength_nm, d);

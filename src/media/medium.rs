@@ -99,7 +99,8 @@ impl Medium {
                 super::rayleigh_air::cross_section_m2(wavelength_nm, *co2_ppm) * super::rayleigh_air::N_STANDARD_PER_M3
             }
             Coefficients::Constituents(c) => {
-                let bound = c.list().iter().map(|k| k.albedo * k.profile.bound_from(f64::NEG_INFINITY));
+                let bound =
+                    c.list().iter().map(|k| k.albedo.at(wavelength_nm) * k.profile.bound_from(f64::NEG_INFINITY));
                 let mut w = [0.0; super::constituents::MAX_CONSTITUENTS];
                 w.iter_mut().zip(bound).for_each(|(w, b)| *w = b);
                 super::constituents::Constituents::dot(&c.extinction(wavelength_nm), &w)

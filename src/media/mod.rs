@@ -3,10 +3,11 @@
 //! ([`tracking`]), refractive-index fields ([`refractive_index`]), inelastic scattering —
 //! fluorescence and Raman — ([`inelastic`]), Rayleigh scattering by air ([`rayleigh_air`]),
 //! ozone ([`ozone`]) and aerosols ([`aerosol`]) as constituents of an atmosphere
-//! ([`constituents`]), where an atmosphere's bending is negligible ([`bending`]), and a medium at
+//! ([`constituents`]) with their single-scattering albedos ([`albedo`]), where an atmosphere's bending is negligible ([`bending`]), and a medium at
 //! one point ([`MediumAt`]).
 
 pub mod aerosol;
+pub mod albedo;
 pub mod bending;
 pub mod constituents;
 pub mod density;

@@ -8,7 +8,7 @@
 //! aerosol = { angstrom_beta = 0.05,   # optical depth at 1 µm (or visibility_km, Koschmieder)
 //!             angstrom_alpha = 1.3,   # Ångström exponent, 0–4 (default 1.3, Ångström 1929)
 //!             scale_height_m = 1200,  # exponential profile, 100–20 000 m
-//!             albedo = 0.95,          # single-scattering albedo, 0–1
+//!             albedo = 0.95,          # single-scattering albedo, 0–1, or a table (below)
 //!             g = 0.7 }               # Henyey–Greenstein asymmetry, −1 < g < 1
 //! ```
 //!
@@ -16,10 +16,15 @@
 //! aerosols a two-term Henyey–Greenstein phase function w HG(g₁) + (1 − w) HG(g₂) (Kattawar
 //! 1975), a forward lobe and a backward one; `phase = { type = "hg", g = 0.7 }` is the same as
 //! `g = 0.7`.
+//!
+//! `albedo = { wavelength_nm = [400, 550, 700], value = [0.93, 0.91, 0.89] }` gives ω(λ) as a
+//! table: at least two samples, wavelengths strictly increasing, values in [0, 1]; linear
+//! between the samples and constant beyond the ends ([`crate::media::albedo`]).
 
 use super::media::Table;
 use super::raw::RawMedium;
 use crate::atmosphere::Atmosphere;
+use crate::media::albedo::Albedo;
 use crate::media::constituents::{Constituent, Constituents, Extinction};
 use crate::media::density::AirProfile;
 use crate::media::phase::PhaseFunction;
@@ -59,7 +64,7 @@ pub fn constituents(ctx: &Ctx, m: &RawMedium, air: &Air, what: &str) -> R<(Const
         list.push(Constituent {
             name: "air",
             extinction: Extinction::Rayleigh { co2_ppm: air.co2_ppm },
-            albedo: 1.0,
+            albedo: Albedo::Constant(1.0),
             phase,
             profile: air_profile.clone(),
         });
@@ -69,7 +74,7 @@ pub fn constituents(ctx: &Ctx, m: &RawMedium, air: &Air, what: &str) -> R<(Const
         list.push(Constituent {
             name: "ozone",
             extinction: Extinction::CrossSection(ozone::cross_section_m2()),
-            albedo: 0.0,
+            albedo: Albedo::Constant(0.0),
             phase: PhaseFunction::isotropic(),
             profile: AirProfile::from_heights(earth, top_m, ozone::profile(du, top_m)),
         });
@@ -82,7 +87,7 @@ pub fn constituents(ctx: &Ctx, m: &RawMedium, air: &Air, what: &str) -> R<(Const
         };
         list.push(aerosols(ctx, v, &format!("{what}: aerosol"), (earth, top_m), rayleigh_550)?);
     }
-    let phase = list.iter().find(|c| c.albedo > 0.0).map_or(PhaseFunction::isotropic(), |c| c.phase.clone());
+    let phase = list.iter().find(|c| c.albedo.scatters()).map_or(PhaseFunction::isotropic(), |c| c.phase.clone());
     let constituents = Constituents::new(list).map_err(|e| ctx.err(&air.kind.span(), format!("{what}: {e}")))?;
     Ok((constituents, phase))
 }
@@ -110,7 +115,21 @@ fn aerosols(
     };
     let alpha = in_range("angstrom_alpha", t.num("angstrom_alpha", Some(1.3))?, 0.0, 4.0, false)?;
     let scale_height_m = in_range("scale_height_m", t.num("scale_height_m", None)?, 100.0, 20_000.0, false)?;
-    let albedo = in_range("albedo", t.num("albedo", None)?, 0.0, 1.0, false)?;
+    let albedo = match t.t.get("albedo") {
+        Some(toml::Value::Table(_)) => albedo_table(&t, what)?,
+        Some(toml::Value::Float(_) | toml::Value::Integer(_)) | None => {
+            Albedo::Constant(in_range("albedo", t.num("albedo", None)?, 0.0, 1.0, false)?)
+        }
+        Some(other) => {
+            return Err(ctx.err(
+                &span,
+                format!(
+                    "{what}: albedo must be a number in [0, 1] or a table {{ wavelength_nm = [...], value = [...] }}, not {}",
+                    other.type_str()
+                ),
+            ));
+        }
+    };
     let beta = match (t.t.contains_key("angstrom_beta"), t.t.contains_key("visibility_km")) {
         (true, false) => in_range("angstrom_beta", t.num("angstrom_beta", None)?, 0.0, 10.0, false)?,
         (false, true) => {
@@ -152,6 +171,32 @@ fn aerosols(
         phase,
         profile: AirProfile::from_heights(earth, top_m, aerosol::profile(scale_height_m, top_m)),
     })
+}
+
+/// `albedo = { wavelength_nm = [...], value = [...] }` of the aerosol table `t`: ω(λ) linear
+/// between the samples, constant beyond the ends ([`Albedo::spectral`]).
+fn albedo_table(t: &Table, what: &str) -> R<Albedo> {
+    let (ctx, span) = (t.ctx, &t.span);
+    let awhat = format!("{what}: albedo");
+    let Some(v) = t.t.get("albedo") else { return Err(ctx.err(span, format!("{what}: missing `albedo`"))) };
+    let v = Spanned::new(span.clone(), v.clone());
+    let table = Table::new(ctx, &v, awhat.clone(), &["wavelength_nm", "value"])?;
+    let list = |key: &str| -> R<Vec<f64>> {
+        let Some(x) = table.t.get(key) else {
+            return Err(ctx.err(
+                span,
+                format!(
+                    "{awhat}: missing `{key}`; give albedo = {{ wavelength_nm = [400, 700], value = [0.95, 0.9] }}"
+                ),
+            ));
+        };
+        let numbers: Option<Vec<f64>> = x
+            .as_array()
+            .and_then(|a| a.iter().map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64))).collect());
+        numbers.ok_or_else(|| ctx.err(span, format!("{awhat}: `{key}` must be an array of numbers")))
+    };
+    let (nm, value) = (list("wavelength_nm")?, list("value")?);
+    Albedo::spectral(nm, value).map_err(|e| ctx.err(span, format!("{awhat}: {e}")))
 }
 
 /// An aerosol's `phase`: `{ type = "hg", g }` or `{ type = "two_term_hg", w, g1, g2 }`.
