@@ -1,7 +1,7 @@
 //! Progressive passes (issue 17): the bias of photon mapping vanishes over passes while one pass
 //! with the same photons keeps it; the reported standard errors cover the exact answer as often
 //! as they claim; the result does not depend on the thread count; bad stopping rules are
-//! refused naming the flag or key.
+//! refused naming the flag or key; a picture's per-pixel target stops where it says.
 
 mod common;
 
@@ -210,6 +210,36 @@ fn one_pass_is_the_first_pass_of_many() {
     let mean = one.image.data.iter().map(|v| f64::from(*v)).sum::<f64>() / one.image.data.len() as f64;
     assert_eq!(three.stats.progressive.history[0].target_mean, mean);
     assert_ne!(one.image.data, three.image.data);
+}
+
+/// `target = "pixels"` stops when 95 % of the pixels' relative standard errors are within the
+/// target, each against the larger of the pixel's mean and a tenth of the image's mean. With
+/// one band a pixel's band mean is its band value, so the statistic is recomputed here from
+/// the image and its standard-error layer alone (sorted, the value of rank ⌈0.95 N⌉): it is
+/// what the report says, it is within the target, and the pass before was not (the run stopped
+/// at the first pass that met it). The image's mean, measured on the same renders, reaches the
+/// same target after two passes: a picture's error is not its mean's.
+#[test]
+fn a_pixels_target_stops_when_95_percent_of_the_pixels_are_within_it() {
+    let target = 0.08;
+    let one_band = furnace(60, 5).replace("bands = 2", "bands = 1");
+    let rules = |t: &str| format!("passes = 60\ntarget_rel_error = {target}\ntarget = \"{t}\"");
+    let r = render_with(&scene(&one_band.replace("passes = 60", &rules("pixels"))), 2);
+    let p = &r.stats.progressive;
+    assert_eq!(p.target, "pixels");
+    assert_eq!(p.stopped.as_ref().map(|s| s.rule), Some(morgana::render::progressive::Rule::TargetRelError), "{p:?}");
+    let (mean, se) = (&r.image.data, r.std_error.as_ref().expect("a standard-error layer"));
+    let image = mean.iter().map(|m| f64::from(*m)).sum::<f64>() / mean.len() as f64;
+    let mut e: Vec<f64> = mean.iter().zip(se).map(|(m, s)| f64::from(*s) / f64::from(*m).max(0.1 * image)).collect();
+    e.sort_by(f64::total_cmp);
+    let quantile = e[(0.95 * e.len() as f64).ceil() as usize - 1];
+    let reported = p.rel_error.expect("a relative error");
+    assert!((quantile / reported - 1.0).abs() < 1e-5, "recomputed {quantile} vs reported {reported}");
+    assert!(reported <= target, "{reported}");
+    let before = p.history[p.history.len() - 2].rel_error;
+    assert!(p.passes > 2 && before.is_some_and(|e| e > target), "{} passes, the one before: {before:?}", p.passes);
+    let whole = render_with(&scene(&one_band.replace("passes = 60", &rules("image"))), 2);
+    assert_eq!(whole.stats.progressive.passes, 2, "{:?}", whole.stats.progressive.history);
 }
 
 #[test]

@@ -118,8 +118,9 @@ class Scene:
           ``"1.5min"`` (``--time``).
         - ``target_rel_error``: stop when the relative standard error of the target's mean falls
           below it, e.g. 0.01 (``--target-rel-error``).
-        - ``target``: what that error is measured on: ``"image"``, a sensor's name or a pixel
-          region ``(x0, y0, x1, y1)``, x1 and y1 exclusive (``--target``).
+        - ``target``: what that error is measured on: ``"image"`` (its mean), ``"pixels"`` (95 %
+          of the pixels each, for a picture), a sensor's name or a pixel region
+          ``(x0, y0, x1, y1)``, x1 and y1 exclusive (``--target``).
         - ``adaptive``: from the second pass on, spend each pass's eye samples where the pixels'
           samples spread most (``--adaptive``; needs more than one pass).
 

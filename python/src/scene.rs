@@ -210,7 +210,7 @@ fn duration_text(v: &Bound<'_, PyAny>) -> Option<String> {
     v.extract::<f64>().ok().map(|x| x.to_string())
 }
 
-/// `target=`: `"image"`, a sensor's name, or a pixel region as four integers (as `--target`
+/// `target=`: `"image"`, `"pixels"`, a sensor's name, or a pixel region as four integers (as `--target`
 /// reads `x0,y0,x1,y1`).
 fn target_text(v: &Bound<'_, PyAny>) -> Option<String> {
     if let Ok(t) = v.extract::<String>() {

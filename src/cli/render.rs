@@ -70,8 +70,9 @@ pub struct StopArgs {
     /// Stop when the relative standard error of the target's mean falls below this, e.g. 0.01.
     #[arg(long, allow_negative_numbers = true)]
     pub target_rel_error: Option<f64>,
-    /// What --target-rel-error is measured on: "image" (default), a sensor's name, or a pixel
-    /// region x0,y0,x1,y1 (x1, y1 exclusive).
+    /// What --target-rel-error is measured on: "image" (default: the image's mean), "pixels"
+    /// (95 % of the pixels each, for a picture), a sensor's name, or a pixel region
+    /// x0,y0,x1,y1 (x1, y1 exclusive).
     #[arg(long)]
     pub target: Option<String>,
     /// From the second pass on, spend each pass's eye samples (spp × pixels) where the pixels'

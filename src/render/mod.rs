@@ -26,6 +26,7 @@ use crate::distributed::{self, Comm, DistributedReport, Rank};
 use crate::error::Result;
 use crate::raypath::RayState;
 use crate::rng::{Rng, Stream};
+use crate::scene::progressive::Target;
 use crate::scene::{Method, Scene};
 use crate::spectrum::SpectralImage;
 use crate::spectrum::colour::BandsToColour;
@@ -111,7 +112,7 @@ pub fn render_on(
     // Rank 0 alone holds the checkpoint: it tells the others which pass comes first.
     let done = (run.report.history.len() as u32).to_le_bytes().to_vec();
     let first = u32::from_le_bytes(comm.broadcast(done).try_into().unwrap_or([0; 4]));
-    let mut stop = progressive::decide(p, first, 0.0, 0.0, run.target.rel_error()).filter(|_| first > 0);
+    let mut stop = progressive::decide(p, first, 0.0, 0.0, run.rel_error()).filter(|_| first > 0);
     let mut ranks = Vec::new();
     let mut pass = first;
     while comm.broadcast(vec![u8::from(stop.is_none())]).first() == Some(&1) {
@@ -144,18 +145,19 @@ pub fn render_on(
     if let Some(cut) = stop.as_ref().filter(|s| s.rule == progressive::Rule::MaxSeconds) {
         stats.warnings.push(cut.why.clone());
     }
+    let rel_error = run.rel_error();
     let mut report = run.report;
     report.passes = report.history.len() as u32;
     report.stopped = stop;
     report.checkpoint = opts.checkpoint.as_ref().map(|_| checkpoint::FILE_NAME.to_string());
-    let (outputs, target) = (run.outputs, run.target);
+    let outputs = run.outputs;
     stats.memory = est;
     stats.memory.measured_peak_bytes = crate::memory::peak_rss_bytes();
     if !comm.is_root() {
         return Ok(None);
     }
     stats.distributed = Some(DistributedReport::new(comm.kind(), dist.schedule, ranks));
-    report.rel_error = target.rel_error();
+    report.rel_error = rel_error;
     report.convergence_fit = progressive::fit(&report.history);
     let done = outputs.finish();
     report.image_mean_rel_error = done.image_se.as_ref().and_then(|se| progressive::mean_rel_error(&done.image, se));
@@ -216,10 +218,24 @@ impl<'a> Run<'a> {
         let image = (&out.data[..], scene.camera.width, scene.bands.count);
         let v = progressive::target_value(&self.p.target, image, &out.sensors, &out.profiles);
         self.target.add(v);
+        let pixels = (self.p.target == Target::Pixels).then(|| progressive::band_means(&out.data, scene.bands.count));
         self.outputs.add(out.data, out.sensors, out.profiles);
+        if let Some(means) = pixels {
+            self.outputs.add_pixels(means);
+        }
         let total = self.resumed_s + elapsed;
-        self.report.history.push(progressive::record(pass, s, (total, seconds), &self.target));
-        progressive::decide(self.p, pass + 1, elapsed, seconds, self.target.rel_error())
+        let rel = self.rel_error();
+        self.report.history.push(progressive::record(pass, s, (total, seconds), (&self.target, rel)));
+        progressive::decide(self.p, pass + 1, elapsed, seconds, rel)
+    }
+
+    /// The relative standard error the stopping rule sees: of the target's mean, or under
+    /// `target = "pixels"` the pixels' ([`progressive::pixel_rel_error`]).
+    fn rel_error(&self) -> Option<f64> {
+        match self.p.target {
+            Target::Pixels => self.outputs.pixel_rel_error(),
+            _ => self.target.rel_error(),
+        }
     }
 
     /// Writes the checkpoint of the `passes` done into the plan's directory (rank 0; the

@@ -200,7 +200,8 @@ pub struct PassRecord {
     pub max_radius_m: f64,
     /// The mean of the target over the passes so far.
     pub target_mean: f64,
-    /// The relative standard error of that mean (from the second pass).
+    /// The relative standard error the stopping rule saw after this pass (from the second
+    /// pass): of that mean, or under `target = "pixels"` the pixels' ([`pixel_rel_error`]).
     pub rel_error: Option<f64>,
 }
 
@@ -237,7 +238,7 @@ pub struct ProgressiveReport {
     pub passes: u32,
     /// Knaus & Zwicker's α.
     pub alpha: f64,
-    /// What the target error is measured on ("image", a sensor or a region).
+    /// What the target error is measured on ("image", "pixels", a sensor or a region).
     pub target: String,
     /// The rule that ended the run and why.
     pub stopped: Option<Stop>,
@@ -248,7 +249,9 @@ pub struct ProgressiveReport {
     /// The checkpoint file this run keeps in its output directory (progressive runs).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub checkpoint: Option<String>,
-    /// The relative standard error of the target's mean at the end (from two passes).
+    /// The relative standard error the stopping rule saw at the end (from two passes): of the
+    /// target's mean, or under `target = "pixels"` the 95 % quantile of the pixels'
+    /// ([`pixel_rel_error`]).
     pub rel_error: Option<f64>,
     /// The mean, over every pixel and band with a positive value, of its relative standard
     /// error (from two passes).
@@ -305,6 +308,8 @@ pub struct Outputs {
     profiles: Vec<Welford<f64>>,
     sensor_shapes: Vec<crate::sensor::Reading>,
     profile_shapes: Vec<crate::sensor::ProfileReading>,
+    /// Each pixel's mean over its bands, under `target = "pixels"` ([`pixel_rel_error`]).
+    pixels: Option<Welford<f64>>,
 }
 
 impl Outputs {
@@ -330,13 +335,27 @@ impl Outputs {
         self.profile_shapes = profiles;
     }
 
+    /// Adds one pass's per-pixel band means ([`band_means`]); called for every pass of a run
+    /// whose target is `pixels`, after [`Outputs::add`].
+    pub fn add_pixels(&mut self, means: Vec<f64>) {
+        self.pixels.get_or_insert_with(Welford::default).add(means);
+    }
+
+    /// [`pixel_rel_error`] of the pixels' band means so far (`None` before two passes, or
+    /// when the run does not track them).
+    pub fn pixel_rel_error(&self) -> Option<f64> {
+        let w = self.pixels.as_ref()?;
+        pixel_rel_error(&w.mean, &w.std_error()?)
+    }
+
     /// Passes added.
     pub fn passes(&self) -> u32 {
         self.image.passes()
     }
 
     /// Appends the state to a checkpoint: the image's, each sensor's and each profile's
-    /// running sums, and the readings' shapes (names, points, depths) of the last pass.
+    /// running sums, the readings' shapes (names, points, depths) of the last pass, and the
+    /// pixels' band means when the run tracks them.
     pub fn save(&self, w: &mut Writer) {
         self.image.save(w);
         w.usize(self.sensors.len());
@@ -348,6 +367,10 @@ impl Outputs {
         for (s, p) in self.profiles.iter().zip(&self.profile_shapes) {
             s.save(w);
             save_profile(w, p);
+        }
+        w.u32(u32::from(self.pixels.is_some()));
+        if let Some(p) = &self.pixels {
+            p.save(w);
         }
     }
 
@@ -361,6 +384,14 @@ impl Outputs {
         for _ in 0..r.len(8)? {
             o.profiles.push(Welford::load(r)?);
             o.profile_shapes.push(load_profile(r)?);
+        }
+        o.pixels = match r.u32()? {
+            0 => None,
+            1 => Some(Welford::load(r)?),
+            _ => return Err("its pixel statistics are neither absent nor present".into()),
+        };
+        if o.pixels.as_ref().is_some_and(|p| p.passes() != o.passes()) {
+            return Err("its pixel statistics hold another number of passes than its image".into());
         }
         Ok(o)
     }
@@ -557,7 +588,7 @@ pub fn target_value(
         if n == 0 { 0.0 } else { s / n as f64 }
     };
     match target {
-        Target::Image => mean(&mut data.iter().map(|v| f64::from(*v))),
+        Target::Image | Target::Pixels => mean(&mut data.iter().map(|v| f64::from(*v))),
         Target::Region([x0, y0, x1, y1]) => mean(
             &mut (*y0..*y1)
                 .flat_map(|y| (*x0..*x1).map(move |x| y * width + x))
@@ -572,8 +603,14 @@ pub fn target_value(
     }
 }
 
-/// The record of pass `pass` (0-based) run with settings `s`.
-pub fn record(pass: u32, s: &IntegratorSettings, (elapsed_s, seconds): (f64, f64), target: &Scalar) -> PassRecord {
+/// The record of pass `pass` (0-based) run with settings `s`, with the target's mean and the
+/// relative error the stopping rule sees (`rel_error`).
+pub fn record(
+    pass: u32,
+    s: &IntegratorSettings,
+    (elapsed_s, seconds): (f64, f64),
+    (target, rel_error): (&Scalar, Option<f64>),
+) -> PassRecord {
     PassRecord {
         pass: pass + 1,
         elapsed_s,
@@ -581,8 +618,54 @@ pub fn record(pass: u32, s: &IntegratorSettings, (elapsed_s, seconds): (f64, f64
         k: s.k,
         max_radius_m: s.max_radius_m,
         target_mean: target.mean(),
-        rel_error: target.rel_error(),
+        rel_error,
     }
+}
+
+/// Under `target = "pixels"`, the share of the pixels whose error must be at most the target.
+pub const PIXEL_SHARE: f64 = 0.95;
+
+/// Under `target = "pixels"`, a pixel darker than this fraction of the image's mean has its
+/// standard error taken relative to that fraction of the mean instead of its own value.
+pub const PIXEL_FLOOR: f64 = 0.1;
+
+/// Each pixel's mean over its `nb` bands, from one pass's band values.
+pub fn band_means(data: &[f32], nb: usize) -> Vec<f64> {
+    let nb = nb.max(1);
+    data.chunks(nb).map(|px| px.iter().map(|v| f64::from(*v)).sum::<f64>() / nb as f64).collect()
+}
+
+/// The error of a picture, which `target = "pixels"` stops on: with m_p the mean of pixel p's
+/// band means over the passes, s_p its standard error (from the passes' spread, like the
+/// image's error layer) and m̄ the mean of the m_p over the image, each pixel's relative error
+/// is
+///
+/// e_p = s_p / max(m_p, f m̄),  f = [`PIXEL_FLOOR`] = 0.1,
+///
+/// and the statistic is the nearest-rank [`PIXEL_SHARE`] quantile of the e_p: the smallest
+/// e such that at least 95 % of the pixels have e_p ≤ e (sorted ascending, the value of rank
+/// ⌈0.95 N⌉). A target is met when 95 % of the pixels are within it, so a few glints or
+/// edges that take far longer to converge do not hold up a picture, and a pixel much darker
+/// than the image is judged by its noise against a tenth of the image's mean, which is what
+/// an exposure set by the mean shows of it. `None` for an empty or black image (m̄ ≤ 0) or
+/// values that are not finite.
+///
+/// The band mean is the pixel's own quantity here, not a sum of the bands' errors: its spread
+/// over the passes carries the correlation of the bands (they share photons and paths), which
+/// the bands' standard errors alone would miss.
+pub fn pixel_rel_error(mean: &[f64], se: &[f64]) -> Option<f64> {
+    let image = mean.iter().sum::<f64>() / mean.len() as f64;
+    if mean.is_empty() || mean.len() != se.len() || !(image.is_finite() && image > 0.0) {
+        return None;
+    }
+    let floor = PIXEL_FLOOR * image;
+    let mut e: Vec<f64> = mean.iter().zip(se).map(|(m, s)| s / m.max(floor)).collect();
+    if e.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let rank = ((PIXEL_SHARE * e.len() as f64).ceil() as usize).clamp(1, e.len());
+    let (_, x, _) = e.select_nth_unstable_by(rank - 1, f64::total_cmp);
+    Some(*x)
 }
 
 /// The mean over values with a positive mean of SE/mean (`None` when there are none).
@@ -644,6 +727,35 @@ mod tests {
         assert_eq!(f.points, 5);
         assert!((f.slope + 1.0 / 3.0).abs() < 1e-12 && (f.intercept - 0.3f64.ln()).abs() < 1e-12, "{f:?}");
         assert!(fit(&history[..2]).is_none());
+    }
+
+    /// The pixel statistic against hand-counted cases: a nearest-rank quantile (the 95th of
+    /// 100 pixels is the 95th smallest error, not an interpolation), the floor at a tenth of the
+    /// image's mean for dark pixels, and no value for a black image or non-finite errors.
+    #[test]
+    fn the_pixel_error_is_the_95_percent_quantile_with_a_floor() {
+        // 100 equally bright pixels whose errors are 1 %, 2 %, …, 100 %, shuffled.
+        let mean = vec![2.0; 100];
+        let se: Vec<f64> = (0..100).map(|i| 2.0 * f64::from((i * 37) % 100 + 1) / 100.0).collect();
+        assert!((pixel_rel_error(&mean, &se).expect("a value") - 0.95).abs() < 1e-15);
+        // 20 pixels: ⌈0.95 × 20⌉ = 19, so one pixel may be as noisy as it likes.
+        let mut se = vec![0.01; 20];
+        se[7] = 1e9;
+        assert_eq!(pixel_rel_error(&[1.0; 20], &se), Some(0.01));
+        se[3] = 1e9;
+        assert_eq!(pixel_rel_error(&[1.0; 20], &se), Some(1e9));
+        // A dark pixel (mean 0.001 in an image of mean ≈ 1): its error counts against 0.1 of
+        // the image's mean, not its own value. One pixel alone sets the quantile.
+        let mean = [0.001, 1.999];
+        let image = (0.001 + 1.999) / 2.0;
+        let got = pixel_rel_error(&mean, &[0.005, 0.0]).expect("a value");
+        assert!((got - 0.005 / (0.1 * image)).abs() < 1e-15, "{got}");
+        let got = pixel_rel_error(&[0.5, 1.5], &[0.005, 0.0]).expect("a value");
+        assert!((got - 0.01).abs() < 1e-15, "above the floor a pixel's own mean: {got}");
+        assert_eq!(pixel_rel_error(&[0.0, 0.0], &[0.0, 0.0]), None, "a black image");
+        assert_eq!(pixel_rel_error(&[], &[]), None);
+        assert_eq!(pixel_rel_error(&[1.0, f64::NAN], &[0.1, 0.1]), None);
+        assert_eq!(band_means(&[1.0, 3.0, 5.0, 7.0], 2), vec![2.0, 6.0]);
     }
 
     #[test]

@@ -28,12 +28,16 @@ pub enum Target {
     Sensor(String),
     /// The mean of every band over the pixels x0 ≤ x < x1, y0 ≤ y < y1.
     Region([usize; 4]),
+    /// Every pixel on its own: the error of a picture, not of its mean (see
+    /// `render::progressive::pixel_rel_error`).
+    Pixels,
 }
 
 /// The target's name in words ("image", "sensor desk", "region 0,0,8,8").
 pub fn label(target: &Target) -> String {
     match target {
         Target::Image => "image".into(),
+        Target::Pixels => "pixels".into(),
         Target::Sensor(n) => format!("sensor {n}"),
         Target::Region([x0, y0, x1, y1]) => format!("region {x0},{y0},{x1},{y1}"),
     }
@@ -127,10 +131,10 @@ impl Progressive {
     /// `Err` says what is wrong and what would do.
     pub fn check_target(&self, sensors: &[String], width: usize, height: usize) -> Result<(), String> {
         match &self.target {
-            Target::Image => Ok(()),
+            Target::Image | Target::Pixels => Ok(()),
             Target::Sensor(name) if sensors.contains(name) => Ok(()),
             Target::Sensor(name) if sensors.is_empty() => Err(format!(
-                "names the sensor \"{name}\", but the scene has no sensors; use \"image\" or a pixel region x0,y0,x1,y1"
+                "names the sensor \"{name}\", but the scene has no sensors; use \"image\", \"pixels\" or a pixel region x0,y0,x1,y1"
             )),
             Target::Sensor(name) => Err(format!(
                 "names the sensor \"{name}\", which the scene does not have; its sensors are: {}",
@@ -154,7 +158,7 @@ pub struct Flags {
     pub time: Option<String>,
     /// `--target-rel-error 0.01`.
     pub target_rel_error: Option<f64>,
-    /// `--target SENSOR|x0,y0,x1,y1`.
+    /// `--target image|pixels|SENSOR|x0,y0,x1,y1`.
     pub target: Option<String>,
     /// `--adaptive` (given: on; not given: the scene's `adaptive`).
     pub adaptive: bool,
@@ -229,11 +233,14 @@ pub fn parse_duration(text: &str) -> Result<f64, String> {
     }
 }
 
-/// A target: `image`, a pixel region `x0,y0,x1,y1`, or a sensor's name.
+/// A target: `image`, `pixels`, a pixel region `x0,y0,x1,y1`, or a sensor's name (a sensor
+/// named `image` or `pixels` cannot be a target).
 pub fn parse_target(text: &str) -> Result<Target, String> {
     let t = text.trim();
-    if t == "image" {
-        return Ok(Target::Image);
+    match t {
+        "image" => return Ok(Target::Image),
+        "pixels" => return Ok(Target::Pixels),
+        _ => {}
     }
     let parts: Vec<&str> = t.split(',').map(str::trim).collect();
     if parts.len() == 4 {
@@ -244,7 +251,7 @@ pub fn parse_target(text: &str) -> Result<Target, String> {
         };
     }
     if t.is_empty() {
-        return Err("expected \"image\", a sensor's name or a pixel region x0,y0,x1,y1".into());
+        return Err("expected \"image\", \"pixels\", a sensor's name or a pixel region x0,y0,x1,y1".into());
     }
     Ok(Target::Sensor(t.to_string()))
 }
@@ -311,6 +318,7 @@ mod tests {
     #[test]
     fn targets_are_image_regions_or_sensor_names() {
         assert_eq!(parse_target("image"), Ok(Target::Image));
+        assert_eq!(parse_target(" pixels "), Ok(Target::Pixels));
         assert_eq!(parse_target("1, 2,30,40"), Ok(Target::Region([1, 2, 30, 40])));
         assert_eq!(parse_target("desk"), Ok(Target::Sensor("desk".into())));
         assert!(parse_target("1,2,x,4").is_err());

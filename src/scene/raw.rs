@@ -253,8 +253,8 @@ pub struct RawIntegrator {
     pub time: S<toml::Value>,
     /// `[integrator] target_rel_error`: stop when the relative standard error falls below this.
     pub target_rel_error: S<f64>,
-    /// `[integrator] target`: what `target_rel_error` is measured on: `"image"`, a sensor's name
-    /// or a pixel region `"x0,y0,x1,y1"`.
+    /// `[integrator] target`: what `target_rel_error` is measured on: `"image"`, `"pixels"`, a
+    /// sensor's name or a pixel region `"x0,y0,x1,y1"`.
     pub target: S<String>,
     /// `[integrator] alpha`: how fast progressive gather radii shrink (Knaus & Zwicker's α).
     pub alpha: S<f64>,

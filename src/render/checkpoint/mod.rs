@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 pub const FILE_NAME: &str = "progressive.checkpoint";
 
 /// The first bytes of a checkpoint file (with the layout's version).
-const MAGIC: &[u8] = b"morgana progressive checkpoint v1\n";
+const MAGIC: &[u8] = b"morgana progressive checkpoint v2\n";
 
 /// The state of a progressive run after some passes.
 #[derive(Clone, Debug)]
@@ -178,8 +178,15 @@ mod tests {
         for stored in [1, 3] {
             let mut run = Outputs::default();
             let mut target = Scalar::default();
+            // The three-pass run also tracks its pixels' band means (`target = "pixels"`).
+            let pixels = |run: &mut Outputs, d: &[f32]| {
+                if stored == 3 {
+                    run.add_pixels(crate::render::progressive::band_means(d, 1));
+                }
+            };
             for i in 0..stored {
                 let (d, s, p) = pass(i);
+                pixels(&mut run, &d);
                 run.add(d, s, p);
                 target.add(f64::from(i).exp());
             }
@@ -215,9 +222,13 @@ mod tests {
             let (mut a, mut b) = (run, back.outputs);
             for i in stored..stored + 2 {
                 let (d, s, p) = pass(i);
+                pixels(&mut a, &d);
+                pixels(&mut b, &d);
                 a.add(d.clone(), s.clone(), p.clone());
                 b.add(d, s, p);
             }
+            assert_eq!(a.pixel_rel_error().map(f64::to_bits), b.pixel_rel_error().map(f64::to_bits));
+            assert_eq!(a.pixel_rel_error().is_some(), stored == 3);
             let (a, b) = (a.finish(), b.finish());
             assert_eq!(
                 a.image.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
