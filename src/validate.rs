@@ -94,6 +94,20 @@ impl<'a> Ctx<'a> {
         Error::input(Some(self.loc(span)), message)
     }
 
+    /// An input error found inside a file that the field `what` at `span` names (a `kind`
+    /// file: "luminaire", "atmosphere", …): it stays located in that file, and its message
+    /// says which field of this file named it and where, e.g. `data.toml:1:17: key with no
+    /// value (atmosphere file of medium[0]: index, scene.toml:58:9)`. Other errors pass.
+    pub fn in_named_file(&self, e: Error, span: &Range<usize>, what: &str, kind: &str) -> Error {
+        match e {
+            Error::Input(mut i) => {
+                i.message = format!("{} ({kind} file of {what}, {})", i.message, self.loc(span));
+                Error::Input(i)
+            }
+            other => other,
+        }
+    }
+
     /// The value of a required field, or an error at the owner's span.
     pub fn require<'v, T>(
         &self,

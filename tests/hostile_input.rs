@@ -164,6 +164,20 @@ fn a_missing_atmosphere_file_names_the_scene_line_and_field() {
 }
 
 #[test]
+fn an_atmosphere_file_that_is_not_one_names_its_own_line_and_the_scenes() {
+    // The fuzzer (render, seed 6, case 35506) pointed a medium's `index.file` at a luminaire
+    // file: refused at that file's line only, without the scene's line and field that name it.
+    let d = scratch("atmosphere-not-toml");
+    std::fs::write(d.join("lamp.ies"), "IESNA:LM-63-2002\nTILT=NONE\n").unwrap();
+    let scene = format!(
+        "{SCENE}\n[world]\nmedium = \"air\"\n\n[[medium]]\nname = \"air\"\nsigma_a = 0.0\nsigma_s = 0.0\nindex = {{ type = \"atmosphere\", file = \"lamp.ies\" }}\n",
+        SCENE = *SCENE
+    );
+    std::fs::write(d.join("s.toml"), scene).unwrap();
+    refused(&d, &["check", "s.toml"], &["lamp.ies:1", "atmosphere file of", "index", "s.toml:"]);
+}
+
+#[test]
 fn a_bad_spectrum_file_names_the_scene_line_and_its_own() {
     // The fuzzer found a light's spectrum = { file = … } pointed at a luminaire file refused at
     // that file's line only, without the scene's line that names it.

@@ -28,7 +28,6 @@
 
 use super::raw::RawLight;
 use super::spectrum_spec::{SpectrumLibrary, Use};
-use crate::error::Error;
 use crate::light::{Light, LightSpectrum, LuminaireLight};
 use crate::luminaire::{self, Opening, Photometry, Placement, WebSampler, luminous_fraction_in, per_candela};
 use crate::spectrum::{Bands, Spectrum};
@@ -117,13 +116,8 @@ fn read_file(ctx: &Ctx, file: &Spanned<String>, variant: Option<&Spanned<String>
             ),
         ));
     }
-    luminaire::load_file_variant(&path, variant.map(|v| v.get_ref().as_str())).map_err(|e| match e {
-        Error::Input(mut i) => {
-            i.message = format!("{} (luminaire file of {what}, {})", i.message, ctx.loc(&file.span()));
-            Error::Input(i)
-        }
-        other => other,
-    })
+    luminaire::load_file_variant(&path, variant.map(|v| v.get_ref().as_str()))
+        .map_err(|e| ctx.in_named_file(e, &file.span(), what, "luminaire"))
 }
 
 fn placement(ctx: &Ctx, l: &RawLight, span: &Range<usize>, what: &str, position: glam::DVec3) -> R<Placement> {

@@ -126,7 +126,7 @@ pub(super) fn atmosphere(
             if let Err(e) = std::fs::metadata(&path) {
                 return Err(ctx.err(span, format!("{what}: cannot read the atmosphere file {}: {e}", path.display())));
             }
-            crate::atmosphere::load(&path)
+            crate::atmosphere::load(&path).map_err(|e| ctx.in_named_file(e, span, what, "atmosphere"))
         }
         (None, Some(n)) => crate::atmosphere::Atmosphere::builtin(n).map_err(|e| ctx.err(span, format!("{what}: {e}"))),
         _ => Err(ctx.err(
@@ -214,7 +214,7 @@ fn temperature_grid(
         }
     };
     let path = ctx.dir.join(file_key(&t)?);
-    let (quantity, lattice) = grid_file::read(&path)?;
+    let (quantity, lattice) = grid_file::read(&path).map_err(|e| ctx.in_named_file(e, &span, iwhat, "grid"))?;
     if quantity != grid_file::Quantity::TemperatureK {
         return Err(Error::input(
             Some(Location { file: path.clone(), line: Some(2), column: None }),
