@@ -124,17 +124,7 @@ impl KinkSpheres {
         let r = q.length();
         let b = q.dot(dir);
         let a2 = 1.0 + q.dot(bend);
-        let mut best: Option<(f64, &Kink)> = None;
-        for k in &self.kinks {
-            // (1 + q·a)t² + 2bt + c = 0 with c = (r − R)(r + R), roots in the stable form.
-            let c = (r - k.radius_m) * (r + k.radius_m);
-            if let Some(t) = first_root(a2, b, c, min_m)
-                && best.is_none_or(|(tb, _)| t < tb)
-            {
-                best = Some((t, k));
-            }
-        }
-        let (t, k) = best?;
+        let (t, k) = first_crossing(self.candidates(r, a2), r, a2, b, min_m)?;
         let across = t * (1.0 + BEYOND) + BEYOND_M;
         let Some(tol) = tol_v else { return Some(across) };
         // The longest step across whose straddle error stays within half the tolerance.
@@ -148,6 +138,43 @@ impl KinkSpheres {
         let short = (4.0 * spread).max((0.5 * reach).min(SHORT_MAX_M)).min(0.5 * t);
         Some(t - short)
     }
+}
+
+impl KinkSpheres {
+    /// The kinks the model path from radius `r` can meet first: all of them, or where
+    /// 1 + q·a = `a2` > 0 only the [`WINDOW`] on either side of `r`. There the squared radius
+    /// along the model path, ρ²(t) = r² + 2bt + a2·t², is convex in t, so before it reaches a
+    /// kink's level it passes every level between that and ρ(min_m) (intermediate values): the
+    /// first crossing is of a kink next to ρ(min_m), which is within min_m (1 µm) of `r`, and
+    /// kinks closer than 1 µm are merged ([`KinkSpheres::new`]). Two on each side leave a
+    /// margin; `tests::the_window_finds_the_crossing_all_kinks_find` checks it against all.
+    fn candidates(&self, r: f64, a2: f64) -> &[Kink] {
+        if !(a2 > 0.0 && r.is_finite()) {
+            return &self.kinks;
+        }
+        let j = self.kinks.partition_point(|k| k.radius_m < r);
+        &self.kinks[j.saturating_sub(WINDOW)..(j + WINDOW).min(self.kinks.len())]
+    }
+}
+
+/// Kinks on each side of the path's radius that [`KinkSpheres::next_cut`] tries where the model
+/// path is convex in ρ².
+const WINDOW: usize = 2;
+
+/// The nearest crossing beyond `min_m` of the model path from radius `r` (slope `b` = q·d,
+/// curvature term `a2` = 1 + q·a) with one of `kinks`, and that kink.
+fn first_crossing(kinks: &[Kink], r: f64, a2: f64, b: f64, min_m: f64) -> Option<(f64, &Kink)> {
+    let mut best: Option<(f64, &Kink)> = None;
+    for k in kinks {
+        // (1 + q·a)t² + 2bt + c = 0 with c = (r − R)(r + R), roots in the stable form.
+        let c = (r - k.radius_m) * (r + k.radius_m);
+        if let Some(t) = first_root(a2, b, c, min_m)
+            && best.is_none_or(|(tb, _)| t < tb)
+        {
+            best = Some((t, k));
+        }
+    }
+    best
 }
 
 /// The smallest root t > `min_m` of a·t² + 2b·t + c = 0, if any.
@@ -239,5 +266,42 @@ mod tests {
         let k = KinkSpheres { centre: DVec3::ZERO, kinks: vec![Kink { radius_m: 1000.0, jump: 1e-15, scale_m: 10.0 }] };
         let t = k.next_cut(DVec3::new(0.0, 900.0, 0.0), DVec3::Y, DVec3::ZERO, 1e-9, Some(1e-9)).unwrap();
         assert!(t > 100.0 && t < 100.0 + 2e-4, "{t}");
+    }
+    /// Where 1 + q·a > 0 the kinks next to the path's radius give the crossing all of them give
+    /// (the same t, the same kink), at random points — on a kink, within a micrometre of one, and
+    /// anywhere — going any way, with curvatures up to twice the spheres' (so 1 + q·a takes both
+    /// signs; where it is ≤ 0 all are tried). Twelve kinks, two of them 2 µm apart.
+    #[test]
+    fn the_window_finds_the_crossing_all_kinks_find() {
+        let mut rng = crate::rng::Rng::for_task(18, crate::rng::Stream::Eye, 6);
+        let mut radii: Vec<f64> = (0..10).map(|i| 1000.0 + 10.0 * i as f64 + 3.0 * (i % 3) as f64).collect();
+        radii.extend([1_040.000_002, 1_040.000_004]);
+        let k = KinkSpheres::new(&|_| (1.0, DVec3::ZERO), DVec3::ZERO, &radii);
+        assert_eq!(k.kinks.len(), 12, "kinks 2 µm apart are kept");
+        let (mut found, mut windowed) = (0, 0);
+        for i in 0..20_000 {
+            let [u, v] = rng.uniform2();
+            let [w, z] = rng.uniform2();
+            let on = k.kinks[(u * 12.0) as usize % 12].radius_m;
+            let r = match i % 3 {
+                0 => on,
+                1 => on + (2.0 * v - 1.0) * 1e-6,
+                _ => 990.0 + 120.0 * v,
+            };
+            let up = DVec3::new((2.0 * w - 1.0) * 0.3, 1.0, 0.0).normalize();
+            let p = up * r;
+            let (y, phi) = (2.0 * z - 1.0, std::f64::consts::TAU * w);
+            let dir = DVec3::new((1.0 - y * y).sqrt() * phi.cos(), y, (1.0 - y * y).sqrt() * phi.sin());
+            let side = dir.cross(up).normalize_or_zero();
+            let bend = (side * (2.0 * v - 1.0) + up * (2.0 * u - 1.0)) * (0.25 / 1000.0) * z * 8.0;
+            let (b, a2) = (p.dot(dir), 1.0 + p.dot(bend));
+            let all = first_crossing(&k.kinks, r, a2, b, 1e-6).map(|(t, k)| (t, k.radius_m));
+            let window = k.candidates(r, a2);
+            windowed += usize::from(window.len() < k.kinks.len());
+            let got = first_crossing(window, r, a2, b, 1e-6).map(|(t, k)| (t, k.radius_m));
+            assert_eq!(got, all, "r {r}, dir {dir}, bend {bend}, a2 {a2}");
+            found += usize::from(all.is_some());
+        }
+        assert!(windowed > 10_000 && found > 10_000, "windowed {windowed}, found {found}");
     }
 }

@@ -217,6 +217,7 @@ fn chords_of(
         // length, not the chord's).
         count = 1;
     }
+    let surfaces = count == 1 || chords_may_hit(prop, step, count);
     for i in 0..count {
         let c = ChordOnArc::new(step, i, count);
         let d = c.to - c.from;
@@ -225,7 +226,7 @@ fn chords_of(
             continue;
         }
         let u = d / len;
-        let hit = prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(c.from, u), len);
+        let hit = if surfaces { prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(c.from, u), len) } else { None };
         let seg = hit.map_or(len, |h| h.t);
         w.chords += 1;
         let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium) };
@@ -259,6 +260,30 @@ fn geometry_near(prop: &Propagator, step: &Step, tol_m: f64) -> bool {
     let max = a.max(b).max(m) + DVec3::splat(pad);
     prop.world.bvh.may_touch_box(&prop.world.shapes, &crate::geometry::Aabb { min, max })
 }
+
+/// Whether any of the `count` chords of `step` may meet a surface: false when the box around
+/// their end points touches none ([`crate::geometry::Bvh::may_touch_box`], exact for spheres).
+/// A chord is the segment between two of those points, so it lies inside their box (which is
+/// convex): one box test per step stands in for `count` intersections, and says "no" only where
+/// each of them would have found nothing. (Unlike [`geometry_near`] it assumes nothing about
+/// the arc between the points.) Steps of more than [`BOXED_CHORDS`] chords are tested chord by
+/// chord.
+fn chords_may_hit(prop: &Propagator, step: &Step, count: usize) -> bool {
+    if count > BOXED_CHORDS {
+        return true;
+    }
+    let (a, b) = (step.y0().r, step.y1().r);
+    let (mut min, mut max) = (a.min(b), a.max(b));
+    for i in 1..count {
+        let p = step.position_at(i as f64 / count as f64);
+        (min, max) = (min.min(p), max.max(p));
+    }
+    let finite = min.is_finite() && max.is_finite();
+    !finite || prop.world.bvh.may_touch_box(&prop.world.shapes, &crate::geometry::Aabb { min, max })
+}
+
+/// Most chords of one step whose end points [`chords_may_hit`] boxes.
+const BOXED_CHORDS: usize = 16;
 
 /// Sub-chords per refinement round and rounds: each round shrinks the sagitta of the chord
 /// that crosses the surface by 8² = 64.

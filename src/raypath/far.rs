@@ -81,14 +81,22 @@ impl FarCone {
         (alpha <= MAX_HALF_ANGLE_RAD).then_some(FarCone { centre, axis, cos_half_angle: alpha.cos() })
     }
 
-    /// Whether a path at `p` going along unit `dir` is outside the cone and turning away from it.
+    /// Whether a path at `p` going along unit `dir` is outside the cone and turning away from it:
+    /// with q = p − C, q·axis < cos α·|q|, and the angular motion (q × d) × q points away from
+    /// the axis. (Neither vector needs normalising for the signs: one square root per call, not
+    /// two and two divisions; it is called after every integrator step.)
     pub fn receding(&self, p: DVec3, dir: DVec3) -> bool {
-        let Some(u) = (p - self.centre).try_normalize() else { return false };
-        if u.dot(self.axis) >= self.cos_half_angle {
+        let q = p - self.centre;
+        let len = q.length();
+        if !(len > 0.0 && len.is_finite()) || q.dot(self.axis) >= self.cos_half_angle * len {
             return false;
         }
-        let Some(l) = u.cross(dir).try_normalize() else { return false };
-        l.cross(u).dot(self.axis) < 0.0
+        let l = q.cross(dir);
+        let l2 = l.length_squared();
+        if !(l2 > 0.0 && l2.is_finite()) {
+            return false;
+        }
+        l.cross(q).dot(self.axis) < 0.0
     }
 
     /// The sign of dr/ds at `p` going along `dir`: whether the path climbs away from the centre.
