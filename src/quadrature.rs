@@ -140,7 +140,7 @@ const GAUSS_7_W: [f64; 4] =
     [0.129_484_966_168_869_7, 0.279_705_391_489_276_7, 0.381_830_050_505_118_9, 0.417_959_183_673_469_4];
 
 /// The 7-point Gauss–Legendre rule on the one panel [a, b] (the Gauss nodes and weights of
-/// QUADPACK's QK15, [`KRONROD_15_X`] 1, 3, 5, 7 and [`GAUSS_7_W`]). For f = e^{αx} on [−1, 1] its
+/// QUADPACK's QK15, `KRONROD_15_X` 1, 3, 5, 7 and `GAUSS_7_W`). For f = e^{αx} on [−1, 1] its
 /// error is 2¹⁵(7!)⁴/(15·(14!)³)·f⁽¹⁴⁾(ξ) = 2.1·10⁻¹⁵·α¹⁴e^{αξ} (the Gauss–Legendre remainder; Abramowitz & Stegun §25.4),
 /// relative 10⁻¹⁹ at α = 1/2. Generic in `f` so that the integrand inlines into the rule.
 pub fn gauss_legendre_7(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {

@@ -60,7 +60,7 @@ impl SphericalExponential {
 
     /// ∫₀ᵗ d(o + s·dir) ds by 7-point Gauss–Legendre quadrature on pieces over which the height
     /// changes by at most H (see the module docs), over the chord's part below
-    /// [`EMPTY_SCALE_HEIGHTS`] (above it d is 0 in f64).
+    /// 750 scale heights (above them d is 0 in f64).
     pub fn integral(&self, o: DVec3, dir: DVec3, t: f64) -> f64 {
         if t <= 0.0 {
             return 0.0;
@@ -88,7 +88,7 @@ impl SphericalExponential {
 
     /// Pieces of at most H/2, each bounded by d at its point closest to the centre; see
     /// [`super::Density::majorant_intervals`]. The parts of the chord above
-    /// [`EMPTY_SCALE_HEIGHTS`] are one piece each (their bound is 0 in f64), so a chord of
+    /// 750 scale heights are one piece each (their bound is 0 in f64), so a chord of
     /// 10⁹ m out of the air takes as many pieces as its part in the air.
     pub fn majorant_intervals(&self, o: DVec3, dir: DVec3, t_max: f64, visit: &mut dyn FnMut(f64, f64, f64) -> bool) {
         let mut whole = |t0: f64, t1: f64| visit(t0, t1, self.at_height(self.closest_height(o, dir, t0, t1)));
