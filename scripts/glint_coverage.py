@@ -81,14 +81,7 @@ def main(argv=None) -> int:
 
     mi.set_variant("scalar_spectral")
     scene = tomllib.loads((pm.ROOT / pm.SCENES[args.scene].toml).read_text())
-    geo = {k: v for k, v in pm.to_mitsuba(scene, mi).items() if not k.startswith("medium_")}
-    geo.pop("sensor")
-    for v in geo.values():
-        if isinstance(v, dict):
-            v.pop("exterior", None)
-    mi_scene = mi.load_dict(geo)
-    iors = {f"shape_{i}": float(m["ior"]) for i, s in enumerate(scene.get("shape", []))
-            for m in scene.get("material", []) if m["name"] == s.get("material") and m["type"] == "dielectric"}
+    mi_scene, iors = pm.surfaces_only(scene, mi)
     cam = scene["camera"]
     o = np.asarray(cam["position"], float)
     rays = (lambda x, y: ((o, d) for d in pm.camera_dirs(cam, x, y, args.sub)))

@@ -887,6 +887,20 @@ def scene_metrics(spec: SceneSpec, scene: dict, ref: Reference, out: Path, log) 
     return full, masked
 
 
+def surfaces_only(scene: dict, mi):
+    """The scene's surfaces and emitters as a Mitsuba scene (media, the sensor and the shapes'
+    exterior media dropped), and the index of refraction of each dielectric shape by its
+    Mitsuba id (`shape_<i>`)."""
+    geo = {k: v for k, v in to_mitsuba(scene, mi).items() if not k.startswith("medium_")}
+    geo.pop("sensor")
+    for v in geo.values():
+        if isinstance(v, dict):
+            v.pop("exterior", None)
+    iors = {f"shape_{i}": float(m["ior"]) for i, s in enumerate(scene.get("shape", []))
+            for m in scene.get("material", []) if m["name"] == s.get("material") and m["type"] == "dielectric"}
+    return mi.load_dict(geo), iors
+
+
 def specular_light_mask(scene: dict, dilate: int, sub: int = 4, max_depth: int = 6) -> np.ndarray:
     """Pixels where some of `sub` x `sub` camera rays reach an emitter through dielectric surfaces
     alone (every reflection/refraction branch followed, media ignored), grown by `dilate` pixels:
@@ -894,14 +908,7 @@ def specular_light_mask(scene: dict, dilate: int, sub: int = 4, max_depth: int =
     branch that sees a small bright light, not its light transport in the fog."""
     import mitsuba as mi
 
-    geo = {k: v for k, v in to_mitsuba(scene, mi).items() if not k.startswith("medium_")}
-    geo.pop("sensor")
-    for v in geo.values():
-        if isinstance(v, dict):
-            v.pop("exterior", None)
-    mi_scene = mi.load_dict(geo)
-    iors = {f"shape_{i}": float(m["ior"]) for i, s in enumerate(scene.get("shape", []))
-            for m in scene.get("material", []) if m["name"] == s.get("material") and m["type"] == "dielectric"}
+    mi_scene, iors = surfaces_only(scene, mi)
     cam = scene["camera"]
     w, h = int(cam["width"]), int(cam["height"])
     mask = np.zeros((h, w), dtype=bool)
