@@ -289,13 +289,7 @@ fn single_scattered_aerosol_sky(
         sun = common::sky::point_sun(90.0 - want.sun_zenith),
         sensors = common::sky::ground_and_space_sensors(up, down, 32),
     );
-    let mut s = scene(&toml);
-    let runs: Vec<Vec<morgana::sensor::Reading>> = (1..=8)
-        .map(|seed| {
-            s.apply_overrides(None, Some(seed));
-            common::render_with(&s, 2).sensors
-        })
-        .collect();
+    let runs = common::sky::readings_over_seeds(&mut scene(&toml), 8);
     let mut means = Vec::new();
     for (r, dirs) in [up, down].into_iter().enumerate() {
         for (k, [z, a]) in dirs.iter().enumerate() {

@@ -261,13 +261,7 @@ fn a_sky_radiance_sensor_reads_the_single_scattered_sky() {
         sun = common::sky::point_sun(90.0 - sun_zenith),
         sensors = common::sky::ground_and_space_sensors(&up, &down, 32),
     );
-    let mut s = scene(&toml);
-    let runs: Vec<Vec<morgana::sensor::Reading>> = (1..=8)
-        .map(|seed| {
-            s.apply_overrides(None, Some(seed));
-            common::render_with(&s, 2).sensors
-        })
-        .collect();
+    let runs = common::sky::readings_over_seeds(&mut scene(&toml), 8);
     let sun = -morgana::sensor::sky_radiance::view_direction(sun_zenith, 90.0);
     let column = column_per_m2(0.0);
     let mu0 = sun_zenith.to_radians().cos();

@@ -86,6 +86,17 @@ pub fn ground_and_space_sensors(up: &[[f64; 2]], down: &[[f64; 2]], samples: usi
     sensor("ground", 1.0, up) + &sensor("space", 100_000.0, down)
 }
 
+/// The sensor readings of `s` rendered on 2 threads with each seed 1 ..= `seeds`: independent
+/// estimates whose spread gives the standard error of their mean.
+pub fn readings_over_seeds(s: &mut morgana::scene::Scene, seeds: u64) -> Vec<Vec<morgana::sensor::Reading>> {
+    (1..=seeds)
+        .map(|seed| {
+            s.apply_overrides(None, Some(seed));
+            super::render_with(s, 2).sensors
+        })
+        .collect()
+}
+
 /// A collimated beam from the zenith (scenes need a light to load).
 pub const ZENITH_BEAM: &str =
     "[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 1.0\n";
