@@ -533,6 +533,30 @@ fn a_projection_map_aims_a_bent_beam_at_its_target_without_changing_the_light_it
 }
 
 #[test]
+fn a_shared_projection_map_is_the_one_each_light_would_get_alone() {
+    // Three more copies of the bent beam's light: one with another spectrum (same map), one
+    // with another target (its own map). Sharing must not hand a light another light's cells.
+    let target = "target_min = [49.9, -0.5, -0.5]\ntarget_max = [50.1, 0.5, 0.5]";
+    let light = |spectrum: f64, t: &str| {
+        format!(
+            "\n[[light]]\ntype = \"directional\"\ndirection = [1.0, 0.0, 0.0]\nspectrum = {spectrum}\nirradiance_w_m2 = 1.0\n{t}\n"
+        )
+    };
+    let moved = "target_min = [49.9, 0.5, -0.5]\ntarget_max = [50.1, 1.5, 0.5]";
+    let text = bent_beam(target) + &light(2.0, target) + &light(1.0, moved);
+    let s = scene(&text);
+    let cells = |i: usize| {
+        let morgana::light::Light::Directional(d) = &s.world.lights[i] else { panic!("directional") };
+        d.cells.as_ref().map(|c| (**c).clone()).expect("a projection map")
+    };
+    assert_eq!(cells(0), cells(1), "same geometry, another spectrum: the same map");
+    assert_ne!(cells(0), cells(2), "another target: another map");
+    let alone = scene(&bent_beam(moved));
+    let morgana::light::Light::Directional(d) = &alone.world.lights[0] else { panic!("directional") };
+    assert_eq!(d.cells.as_ref().map(|c| (**c).clone()), Some(cells(2)), "the moved target's map, traced alone");
+}
+
+#[test]
 fn a_low_suns_disc_photons_reach_the_sea_in_front_of_the_camera() {
     // examples/sunset_sea.toml in clear air with the sun's centre at true altitude 0.35°: its
     // light reaches the sea 0.5–6 km in front of the camera along paths bent by ~0.4°, and the

@@ -344,21 +344,30 @@ fn check_output_names(ctx: &Ctx, raw: &RawScene, scene: &Scene) -> Result<()> {
 }
 
 /// Where paths curve, lights at infinity aimed at a target get a projection map (see
-/// [`crate::raypath::projection`]), so their photons reach the target along bent paths.
+/// [`crate::raypath::projection`]), so their photons reach the target along bent paths. Lights
+/// of the same geometry (direction, beam, disc, target, medium: the map does not depend on the
+/// spectrum) share one map, traced once.
 fn aim_beams(scene: &mut Scene) {
     let Some(curved) = scene.curved() else { return };
     let world = &scene.world;
-    let maps: Vec<(usize, Option<crate::light::BeamCells>)> = world
-        .lights
-        .iter()
-        .enumerate()
-        .filter_map(|(i, l)| match l {
-            Light::Directional(d) if d.target.is_some() => {
-                Some((i, crate::raypath::projection::build(world, curved, d, world.light_media[i])))
+    let mut traced: Vec<(BeamGeometry, Option<crate::light::BeamCells>)> = Vec::new();
+    let mut maps: Vec<(usize, Option<crate::light::BeamCells>)> = Vec::new();
+    for (i, l) in world.lights.iter().enumerate() {
+        let Light::Directional(d) = l else { continue };
+        if d.target.is_none() {
+            continue;
+        }
+        let key = BeamGeometry::of(d, world.light_media[i]);
+        let cells = match traced.iter().find(|(k, _)| *k == key) {
+            Some((_, cells)) => cells.clone(),
+            None => {
+                let cells = crate::raypath::projection::build(world, curved, d, world.light_media[i]);
+                traced.push((key, cells.clone()));
+                cells
             }
-            _ => None,
-        })
-        .collect();
+        };
+        maps.push((i, cells));
+    }
     for (i, cells) in maps {
         let name = scene.world.names.lights[i].clone();
         if let Light::Directional(d) = &mut scene.world.lights[i] {
@@ -369,6 +378,26 @@ fn aim_beams(scene: &mut Scene) {
                 )),
             }
         }
+    }
+}
+
+/// What a directional light's projection map depends on: two lights equal in all of it get the
+/// same map.
+#[derive(PartialEq)]
+struct BeamGeometry {
+    dir: DVec3,
+    frame: crate::geometry::Frame,
+    beam: [[f64; 2]; 2],
+    sin_max: f64,
+    target: Option<Aabb>,
+    scene: (DVec3, f64),
+    medium: Option<u32>,
+}
+
+impl BeamGeometry {
+    fn of(d: &crate::light::DirectionalLight, medium: Option<u32>) -> Self {
+        let (dir, frame, beam, sin_max, target) = (d.dir, d.frame, d.beam, d.sin_max, d.target);
+        BeamGeometry { dir, frame, beam, sin_max, target, scene: (d.scene_centre, d.scene_radius), medium }
     }
 }
 
