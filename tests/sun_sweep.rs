@@ -98,3 +98,25 @@ fn a_sweep_needs_one_sun_placed_by_elevation() {
     assert!(!dir.join("out/sun_zenith_30").exists(), "nothing rendered before the bad angle was found");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_sweep_without_a_sky_sensor_writes_each_angles_image_and_no_csv() {
+    // A sequence of images (e.g. a setting sun) needs no sensor: each angle's image is the
+    // result, the one an ordinary render of the scene with the sun at that angle writes.
+    let dir = std::env::temp_dir().join(format!("morgana_sweep_frames_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let text = scene_text(10.0).replace("[output]\n", "[output]\ncsv = true\n");
+    let frames = &text[..text.find("[[sensor]]").expect("the sensor")];
+    assert!(frames.contains("csv = true"), "{frames}");
+    std::fs::write(dir.join("frames.toml"), frames).expect("scene");
+    std::fs::write(dir.join("one.toml"), frames.replace("elevation_deg = 10.0", "elevation_deg = 15.0"))
+        .expect("scene");
+    let said = run(&args(dir.join("frames.toml"), dir.join("out"), vec![30.0, 75.0])).expect("sweep");
+    assert!(!said.contains("sun_sweep.csv") && !dir.join("out/frames_sun_sweep.csv").exists(), "{said}");
+    run(&args(dir.join("one.toml"), dir.join("one"), vec![])).expect("an ordinary render");
+    let csv = |p: &str| std::fs::read_to_string(dir.join(p)).expect(p);
+    assert_eq!(csv("out/sun_zenith_75/frames.csv"), csv("one/one.csv"), "the 75° frame is the render at elevation 15°");
+    assert!(dir.join("out/sun_zenith_30/frames.csv").exists(), "the 30° frame");
+    let _ = std::fs::remove_dir_all(&dir);
+}

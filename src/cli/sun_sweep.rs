@@ -1,6 +1,7 @@
 //! `morgana render SCENE --sun-zenith-deg 0,30,60,85,90`: the scene rendered once per solar
 //! zenith angle, its sun moved to each in turn (elevation 90° − zenith, azimuth kept), with one
-//! CSV gathering every `sky_radiance` sensor's reading at every angle.
+//! CSV gathering every `sky_radiance` sensor's reading at every angle (none without such a
+//! sensor: the frames, e.g. a setting sun's images, are then the whole result).
 //!
 //! Each angle is a whole run (photon and eye passes, with the command's stopping rules), whose
 //! outputs go to `OUT/sun_zenith_<angle>/` as a single render's would. `OUT/<name>_sun_sweep.csv`
@@ -57,9 +58,12 @@ pub fn run(
         )?);
         rows.push((z, sky_readings(&rendered)));
     }
-    let csv_path = out.join(format!("{name}_sun_sweep.csv"));
-    write_atomically(&csv_path, &sweep_csv(&rows)?)?;
-    written.push(csv_path);
+    // Without a sky_radiance sensor the frames are the result (a sequence of images): no CSV.
+    if let Some(text) = sweep_csv(&rows) {
+        let csv_path = out.join(format!("{name}_sun_sweep.csv"));
+        write_atomically(&csv_path, &text)?;
+        written.push(csv_path);
+    }
     Ok(written)
 }
 
@@ -68,15 +72,10 @@ fn sky_readings(r: &Rendered) -> Vec<Reading> {
     r.sensors.iter().filter(|s| s.columns.iter().any(|(c, _)| c == "view_zenith_deg")).cloned().collect()
 }
 
-/// The sweep's CSV text (module docs); the band columns of every reading must agree (they do:
-/// one scene).
-fn sweep_csv(rows: &[(f64, Vec<Reading>)]) -> Result<String> {
-    let Some(first) = rows.iter().flat_map(|(_, r)| r.first()).next() else {
-        return Err(Error::input(
-            None,
-            "--sun-zenith-deg: the scene has no sky_radiance sensor; add one listing the directions to measure",
-        ));
-    };
+/// The sweep's CSV text (module docs), `None` when no reading has view directions (the scene
+/// has no `sky_radiance` sensor); the band columns of every reading agree (one scene).
+fn sweep_csv(rows: &[(f64, Vec<Reading>)]) -> Option<String> {
+    let first = rows.iter().flat_map(|(_, r)| r.first()).next()?;
     let bands: Vec<&str> =
         first.columns.iter().map(|(c, _)| c.as_str()).filter(|c| c.starts_with("L_") && *c != "L_mean").collect();
     let mut text = format!("sun_zenith_deg,sensor,view_zenith_deg,view_azimuth_deg,L_mean,{}\n", bands.join(","));
@@ -96,7 +95,7 @@ fn sweep_csv(rows: &[(f64, Vec<Reading>)]) -> Result<String> {
             }
         }
     }
-    Ok(text)
+    Some(text)
 }
 
 /// Writes `text` to `path` through a temporary file renamed into place ([`crate::atomic`]).
