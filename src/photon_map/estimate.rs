@@ -148,7 +148,8 @@ impl Estimator<'_> {
             out[b] += at.albedo(l) * at.phase_eval(l, p.dir.dot(wo)) * p.power_w;
         }
         let r = r2.sqrt();
-        let scale = 1.0 / (super::stratified::gather_volume(medium, x, r) * self.bands.width_nm());
+        let mid_nm = 0.5 * (self.bands.min_nm + self.bands.max_nm);
+        let scale = 1.0 / (super::stratified::gather_volume(medium, x, r, mid_nm) * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         (out, r)
     }

@@ -21,7 +21,9 @@
 //!
 //! ∫_B d dy = ∫ π (r² − t²) (1 + t/D) d(h_x + t) dt over t ∈ [−r, r] (1 + t/D → 1 on a flat
 //! Earth), d = 0 below the ground and above the top. It is computed by 7-point Gauss–Legendre
-//! quadrature on panels of at most 1 km of height.
+//! quadrature on panels of at most 1 km of height. In an atmosphere of constituents (air, ozone,
+//! aerosols, each with its own profile) d is their extinction Σ_c σ_c(λ) d_c(h) at one
+//! wavelength, the middle of the simulated range.
 //!
 //! # References
 //! - H. W. Jensen & P. H. Christensen, "Efficient simulation of light transport in scenes with
@@ -32,8 +34,8 @@
 //!   outside it is accounted for.
 
 use crate::atmosphere::Earth;
-use crate::media::Medium;
-use crate::media::density::{AirProfile, Density};
+use crate::media::density::Density;
+use crate::media::{Coefficients, Medium};
 use crate::quadrature::gauss_legendre_7;
 use std::f64::consts::PI;
 
@@ -42,22 +44,33 @@ const PANEL_M: f64 = 1_000.0;
 
 /// The volume (m³) that the photons found within `r` of `x` in `medium` stand for: V_d of the
 /// module docs in air stratified in height, (4/3)π r³ elsewhere; infinite where the air has no
-/// density at `x` (nothing scatters there).
-pub fn gather_volume(medium: &Medium, x: glam::DVec3, r: f64) -> f64 {
-    match &medium.density {
-        Density::AirProfile(profile) => weighted_volume(profile, x, r),
+/// density at `x` (nothing scatters there). In an atmosphere of constituents (air, ozone,
+/// aerosols), d is their extinction Σ_c σ_c(λ) d_c(h) at `wavelength_nm` (one wavelength for
+/// all photons: their own would give one V_d per band; either tends to (4/3)π r³ as r → 0).
+pub fn gather_volume(medium: &Medium, x: glam::DVec3, r: f64, wavelength_nm: f64) -> f64 {
+    match (&medium.coefficients, &medium.density) {
+        (Coefficients::Constituents(c), _) => {
+            let list = c.list();
+            let sigma = c.extinction(wavelength_nm);
+            let d = |h: f64| list.iter().zip(&sigma).map(|(k, s)| s * k.profile.at_height(h)).sum::<f64>();
+            let first = &list[0].profile;
+            weighted_volume(first.earth(), first.top_m(), &d, first.height(x), x, r)
+        }
+        (_, Density::AirProfile(p)) => weighted_volume(p.earth(), p.top_m(), &|h| p.at_height(h), p.height(x), x, r),
         _ => 4.0 / 3.0 * PI * r * r * r,
     }
 }
 
-/// V_d = ∫_{B(x, r)} d dy / d(x) for the height profile `profile` (module docs).
-pub fn weighted_volume(profile: &AirProfile, x: glam::DVec3, r: f64) -> f64 {
-    let h = profile.height(x);
-    let here = density_at(profile, h);
+/// V_d = ∫_{B(x, r)} d dy / d(x) for a density `d(h)` of the height above `earth` (zero at and
+/// above `top_m`, taken as zero below the ground, where a table holds d(0) for paths a scene
+/// closes with a surface); `h` is the height of `x` (module docs).
+pub fn weighted_volume(earth: &Earth, top_m: f64, d: &dyn Fn(f64) -> f64, h: f64, x: glam::DVec3, r: f64) -> f64 {
+    let density_at = |h: f64| if h < 0.0 { 0.0 } else { d(h) };
+    let here = density_at(h);
     if here <= 0.0 || r <= 0.0 {
         return f64::INFINITY;
     }
-    let curvature = match profile.earth() {
+    let curvature = match earth {
         Earth::Flat { .. } => 0.0,
         Earth::Spherical(s) => 1.0 / (x - s.centre).length(),
     };
@@ -65,34 +78,36 @@ pub fn weighted_volume(profile: &AirProfile, x: glam::DVec3, r: f64) -> f64 {
         // A sphere around the Earth's centre: no longer a stratified neighbourhood.
         return 4.0 / 3.0 * PI * r * r * r;
     }
-    let (lo, hi) = ((-r).max(-h), r.min(profile.top_m() - h));
+    let (lo, hi) = ((-r).max(-h), r.min(top_m - h));
     let panels = ((hi - lo) / PANEL_M).ceil().max(1.0) as usize;
     let step = (hi - lo) / panels as f64;
-    let f = |t: f64| PI * (r * r - t * t) * (1.0 + t * curvature) * density_at(profile, h + t);
+    let f = |t: f64| PI * (r * r - t * t) * (1.0 + t * curvature) * density_at(h + t);
     let integral: f64 =
         (0..panels).map(|i| gauss_legendre_7(f, lo + i as f64 * step, lo + (i + 1) as f64 * step)).sum();
     if integral > 0.0 { integral / here } else { f64::INFINITY }
 }
 
-/// The profile's density at height `h`, zero below the ground (where the table holds d(0) for
-/// paths a scene closes with a surface).
-fn density_at(profile: &AirProfile, h: f64) -> f64 {
-    if h < 0.0 { 0.0 } else { profile.at_height(h) }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::media::constituents::{Constituent, Constituents, Extinction};
+    use crate::media::density::AirProfile;
+    use crate::media::phase::{Isotropic, PhaseFunction};
     use glam::DVec3;
 
     fn uniform(earth: Earth, top_m: f64) -> AirProfile {
         AirProfile::from_heights(earth, top_m, |_| 1.0)
     }
 
+    /// V_d of the profile `p` about `x`.
+    fn weighted(p: &AirProfile, x: DVec3, r: f64) -> f64 {
+        weighted_volume(p.earth(), p.top_m(), &|h| p.at_height(h), p.height(x), x, r)
+    }
+
     #[test]
     fn a_sphere_inside_uniform_air_has_its_own_volume() {
         let p = uniform(Earth::flat_y(), 100_000.0);
-        let v = weighted_volume(&p, DVec3::new(3.0, 50_000.0, -7.0), 20_000.0);
+        let v = weighted(&p, DVec3::new(3.0, 50_000.0, -7.0), 20_000.0);
         let want = 4.0 / 3.0 * PI * 20_000f64.powi(3);
         assert!((v / want - 1.0).abs() < 1e-9, "{v} vs {want}");
     }
@@ -105,7 +120,7 @@ mod tests {
         let (r, h) = (10_000.0, 2_500.0);
         let c = r - h;
         let want = 4.0 / 3.0 * PI * r * r * r - PI * c * c * (3.0 * r - c) / 3.0;
-        let v = weighted_volume(&p, DVec3::new(0.0, h, 0.0), r);
+        let v = weighted(&p, DVec3::new(0.0, h, 0.0), r);
         assert!((v / want - 1.0).abs() < 1e-9, "{v} vs {want}");
     }
 
@@ -123,7 +138,7 @@ mod tests {
             * (d * d + 2.0 * d * r - 3.0 * r * r + 2.0 * d * big_r + 6.0 * r * big_r - 3.0 * big_r * big_r)
             / (12.0 * d);
         let want = 4.0 / 3.0 * PI * r * r * r - lens;
-        let v = weighted_volume(&p, DVec3::new(0.0, h, 0.0), r);
+        let v = weighted(&p, DVec3::new(0.0, h, 0.0), r);
         assert!((v / want - 1.0).abs() < 1e-9, "{v} vs {want}");
     }
 
@@ -136,13 +151,45 @@ mod tests {
         let (r, h) = (16_000.0, 100_000.0);
         let a = r / hs;
         let want = 4.0 * PI * hs.powi(3) * (a * a.cosh() - a.sinh());
-        let v = weighted_volume(&p, DVec3::new(0.0, h, 0.0), r);
+        let v = weighted(&p, DVec3::new(0.0, h, 0.0), r);
+        assert!((v / want - 1.0).abs() < 1e-6, "{v} vs {want}");
+    }
+
+    #[test]
+    fn an_atmosphere_of_constituents_weights_the_sphere_by_their_extinction() {
+        // σ_t = 1 × 1 + 2 e^{−h/H} (two constituents of constant σ: Ångström α = 0), so
+        // V_d = ((4/3)π r³ + 2 e^{−h/H} 4π H³ (a cosh a − sinh a)) / (1 + 2 e^{−h/H}).
+        let (hs, top) = (8_000.0, 400_000.0);
+        let one = |beta: f64, profile: AirProfile| Constituent {
+            name: "air",
+            extinction: Extinction::Angstrom { alpha: 0.0, beta },
+            albedo: crate::media::albedo::Albedo::Constant(1.0),
+            phase: PhaseFunction::Isotropic(Isotropic),
+            profile,
+        };
+        let list = vec![
+            one(1.0, AirProfile::from_heights(Earth::flat_y(), top, |_| 1.0)),
+            one(2.0, AirProfile::from_heights(Earth::flat_y(), top, |h| (-h / hs).exp())),
+        ];
+        let medium = Medium {
+            name: "air".into(),
+            coefficients: Coefficients::Constituents(Constituents::new(list).expect("valid constituents")),
+            phase: PhaseFunction::Isotropic(Isotropic),
+            density: Density::Uniform,
+            index: None,
+            inelastic: crate::media::inelastic::Inelastic::none(),
+        };
+        let (r, h) = (16_000.0, 20_000.0);
+        let (a, e) = (r / hs, (-h / hs).exp());
+        let want = (4.0 / 3.0 * PI * r.powi(3) + 2.0 * e * 4.0 * PI * hs.powi(3) * (a * a.cosh() - a.sinh()))
+            / (1.0 + 2.0 * e);
+        let v = gather_volume(&medium, DVec3::new(0.0, h, 0.0), r, 550.0);
         assert!((v / want - 1.0).abs() < 1e-6, "{v} vs {want}");
     }
 
     #[test]
     fn nothing_scatters_above_the_top() {
         let p = uniform(Earth::flat_y(), 10_000.0);
-        assert_eq!(weighted_volume(&p, DVec3::new(0.0, 12_000.0, 0.0), 5_000.0), f64::INFINITY);
+        assert_eq!(weighted(&p, DVec3::new(0.0, 12_000.0, 0.0), 5_000.0), f64::INFINITY);
     }
 }
