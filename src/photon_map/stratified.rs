@@ -41,6 +41,9 @@ use std::f64::consts::PI;
 
 /// Largest height span of one quadrature panel, m (the air's scale height is ~8 km).
 const PANEL_M: f64 = 1_000.0;
+/// The most panels of one integral: an atmosphere taller than this many km gets longer panels,
+/// so a hostile top cannot make one estimate take millions of density evaluations.
+const MAX_PANELS: f64 = 1_000.0;
 
 /// The volume (m³) that the photons found within `r` of `x` in `medium` stand for: V_d of the
 /// module docs in air stratified in height, (4/3)π r³ elsewhere; infinite where the air has no
@@ -79,7 +82,7 @@ pub fn weighted_volume(earth: &Earth, top_m: f64, d: &dyn Fn(f64) -> f64, h: f64
         return 4.0 / 3.0 * PI * r * r * r;
     }
     let (lo, hi) = ((-r).max(-h), r.min(top_m - h));
-    let panels = ((hi - lo) / PANEL_M).ceil().max(1.0) as usize;
+    let panels = ((hi - lo) / PANEL_M).ceil().clamp(1.0, MAX_PANELS) as usize;
     let step = (hi - lo) / panels as f64;
     let f = |t: f64| PI * (r * r - t * t) * (1.0 + t * curvature) * density_at(h + t);
     let integral: f64 =
