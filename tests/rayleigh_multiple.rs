@@ -242,17 +242,27 @@ fn morgana_readings(
     samples: usize,
     seed: u64,
 ) -> Vec<Vec<f64>> {
+    let integrator = format!("method = \"path\"\nspp = 1\nmax_depth = 1000\nseed = {seed}");
+    readings_with(&integrator, "", sun_zenith, (up, down), samples)
+}
+
+/// The readings of [`morgana_readings`] with the `[integrator]` lines `integrator` and the lines
+/// `sun_lines` added to the sun's `[[light]]`.
+fn readings_with(
+    integrator: &str,
+    sun_lines: &str,
+    sun_zenith: f64,
+    (up, down): (&[[f64; 2]], &[[f64; 2]]),
+    samples: usize,
+) -> Vec<Vec<f64>> {
     let toml = format!(
         r#"
 {pixel}
 [integrator]
-method = "path"
-spp = 1
-max_depth = 1000
-seed = {seed}
+{integrator}
 
 {ground}
-{sun}
+{sun}{sun_lines}
 {sensors}"#,
         pixel = common::sky::zenith_pixel(1, MIN_NM, MAX_NM),
         ground = common::sky::flat_air_over_black_ground(),
@@ -399,5 +409,41 @@ fn the_path_tracer_adds_the_multiple_scattering_of_the_reference() {
         );
         assert!((mean - w).abs() < 0.02 * w + 3.0 * se, "{dir:?}: {mean} ± {se} vs {w}");
         assert!(mean - single > 10.0 * se, "{dir:?}: {mean} ± {se} is not above single scattering {single}");
+    }
+}
+
+/// The volume photon map's multiple scattering against the reference (issue 19): the photon map
+/// with 200 000 photons (single scattering alone is about half of these radiances), sun at 30°, in the views where the sphere of the volume estimate, large against
+/// the air's 8 km scale height, biased it most: from the ground at [80°, 0°] (near the horizon)
+/// and [60°, 270°], and from 100 km at [100°, 0°]. Dividing by the sphere's volume (4/3)π r³,
+/// these read −34 %, −21 % and +37 % of the reference (4 seeds, before
+/// `photon_map::stratified`): half of a sphere about a point near the ground lies below it, and
+/// above the air's top the estimate added light where nothing scatters. With the density-weighted
+/// volume each mean lies within 6 % + 3 s.e. of the reference; the 6 % allows for the residual
+/// measured in these views and five others (`morgana render` of this scene, seeds 1–4): −7 % to
+/// +2 % at 200 000 photons and +2 % to +6 % at 2 000 000, each ± 1–5 % (looking straight down
+/// from 100 km, −11 % and −3 %, ± 15 %). The sun's beam is aimed at a box 2000 km across about
+/// the sensors, so photons are not spent on the far ground and none wander past its edge; 4
+/// seeds × 64 samples: 16–22 s wall on the loaded 2-core machine.
+#[test]
+fn the_volume_photon_map_adds_the_multiple_scattering_of_the_reference() {
+    let (up, down) = ([[60.0, 270.0], [80.0, 0.0]], [[100.0, 0.0]]);
+    let want = reference_readings(30.0);
+    let target = "target_min = [-1.0e6, 0.0, -1.0e6]\ntarget_max = [1.0e6, 86000.0, 1.0e6]\n";
+    let runs: Vec<Vec<Vec<f64>>> = (1..=4)
+        .map(|seed| {
+            let integrator = format!("method = \"photon_map\"\nphotons = 200000\nspp = 1\nseed = {seed}");
+            readings_with(&integrator, target, 30.0, (&up, &down), 64)
+        })
+        .collect();
+    for (side, k, dir, w) in [(0, 0, up[0], want[0][3]), (0, 1, up[1], want[0][4]), (1, 0, down[0], want[1][4])] {
+        let values: Vec<f64> = runs.iter().map(|r| r[side][k]).collect();
+        let (mean, se) = common::mean_and_sem(&values);
+        let single = single_scattering(30.0, dir);
+        println!(
+            "{dir:?}: photon map {mean:.5e} ± {se:.1e}, reference {w:.5e} ({:+.2} %), single scattering {single:.5e}",
+            100.0 * (mean / w - 1.0)
+        );
+        assert!((mean - w).abs() < 0.06 * w + 3.0 * se, "{dir:?}: {mean} ± {se} vs {w}");
     }
 }

@@ -14,10 +14,13 @@
 //! every interaction, so their density is σ_t times the fluence, and the radiance scattered
 //! toward ω per unit length is
 //!
-//! σ_s L_i(x, ω, b) ≈ Σ_p α(λ_p) f(λ_p; ω_p·ω) ΔΦ_p / ((4/3)π r³ Δλ_b),
+//! σ_s L_i(x, ω, b) ≈ Σ_p α(λ_p) f(λ_p; ω_p·ω) ΔΦ_p / (V Δλ_b),
 //!
 //! with α = σ_s/σ_t the single-scattering albedo at the photon's own wavelength and f the phase
-//! function (ω_p the photon's direction of travel, ω the scattered light's). A medium with
+//! function (ω_p the photon's direction of travel, ω the scattered light's), and V the sphere's
+//! volume (4/3)π r³ — or, in air stratified in height, its volume weighted by the air's density
+//! relative to that at x ([`super::stratified`]), which keeps the ground and the air's steep
+//! profile from biasing a sphere far larger than the scale height. A medium with
 //! inelastic components adds the light they re-emit into band b from photons of every
 //! wavelength, Σ_p Σ_i p_i(ω_p·ω) T_i(λ_p, b) ΔΦ_p over the same volume (see
 //! [`crate::media::inelastic::BandTransfer`]); that term counts every photon, direct ones
@@ -145,7 +148,8 @@ impl Estimator<'_> {
             out[b] += at.albedo(l) * at.phase_eval(l, p.dir.dot(wo)) * p.power_w;
         }
         let r = r2.sqrt();
-        let scale = 1.0 / (4.0 / 3.0 * PI * r2 * r * self.bands.width_nm());
+        let mid_nm = 0.5 * (self.bands.min_nm + self.bands.max_nm);
+        let scale = 1.0 / (super::stratified::gather_volume(medium, x, r, mid_nm) * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         (out, r)
     }

@@ -21,6 +21,7 @@ mod irradiance;
 mod kdtree;
 mod photon;
 pub mod progressive;
+pub mod stratified;
 
 pub use crate::spectrum::BandValues;
 pub use beam::{BeamEstimator, BeamHit, BeamMap};
