@@ -39,8 +39,14 @@ use crate::media::{Coefficients, Medium};
 use crate::quadrature::gauss_legendre_7;
 use std::f64::consts::PI;
 
-/// Largest height span of one quadrature panel, m (the air's scale height is ~8 km).
-const PANEL_M: f64 = 1_000.0;
+/// Largest height span of one quadrature panel, m. The integrand is a cubic in t times the
+/// density, whose scale height is ~8 km in air (1.5 km for a typical aerosol layer): 7-point
+/// Gauss–Legendre panels of 4 km keep V_d within 5 × 10⁻⁴ of panels 40× finer on USA76 air and
+/// on a 1.5 km exponential (`panels_of_4_km_are_as_good_as_fine_ones`), far below the
+/// estimate's noise, at 1/4 of the 1 km panels' density evaluations (each a table lookup, summed over the
+/// constituents). The eye pass of a sunset through refracting air makes one estimate per
+/// march step, millions per image.
+const PANEL_M: f64 = 4_000.0;
 /// The most panels of one integral: an atmosphere taller than this many km gets longer panels,
 /// so a hostile top cannot make one estimate take millions of density evaluations.
 const MAX_PANELS: f64 = 1_000.0;
@@ -68,6 +74,19 @@ pub fn gather_volume(medium: &Medium, x: glam::DVec3, r: f64, wavelength_nm: f64
 /// above `top_m`, taken as zero below the ground, where a table holds d(0) for paths a scene
 /// closes with a surface); `h` is the height of `x` (module docs).
 pub fn weighted_volume(earth: &Earth, top_m: f64, d: &dyn Fn(f64) -> f64, h: f64, x: glam::DVec3, r: f64) -> f64 {
+    weighted_volume_in_panels(earth, top_m, d, h, x, r, PANEL_M)
+}
+
+/// [`weighted_volume`] with panels of at most `panel_m` of height.
+fn weighted_volume_in_panels(
+    earth: &Earth,
+    top_m: f64,
+    d: &dyn Fn(f64) -> f64,
+    h: f64,
+    x: glam::DVec3,
+    r: f64,
+    panel_m: f64,
+) -> f64 {
     let density_at = |h: f64| if h < 0.0 { 0.0 } else { d(h) };
     let here = density_at(h);
     if here <= 0.0 || r <= 0.0 {
@@ -82,7 +101,7 @@ pub fn weighted_volume(earth: &Earth, top_m: f64, d: &dyn Fn(f64) -> f64, h: f64
         return 4.0 / 3.0 * PI * r * r * r;
     }
     let (lo, hi) = ((-r).max(-h), r.min(top_m - h));
-    let panels = ((hi - lo) / PANEL_M).ceil().clamp(1.0, MAX_PANELS) as usize;
+    let panels = ((hi - lo) / panel_m).ceil().clamp(1.0, MAX_PANELS) as usize;
     let step = (hi - lo) / panels as f64;
     let f = |t: f64| PI * (r * r - t * t) * (1.0 + t * curvature) * density_at(h + t);
     let integral: f64 =
@@ -194,5 +213,35 @@ mod tests {
     fn nothing_scatters_above_the_top() {
         let p = uniform(Earth::flat_y(), 10_000.0);
         assert_eq!(weighted(&p, DVec3::new(0.0, 12_000.0, 0.0), 5_000.0), f64::INFINITY);
+    }
+
+    #[test]
+    fn panels_of_4_km_are_as_good_as_fine_ones() {
+        // The oracle: the same quadrature on panels of 100 m (the tables are piecewise linear
+        // on 5 m cells, so it converges to their exact integral), at 2 000 pseudo-random
+        // heights and radii from 100 m to 1 000 km, on USA76 air and on an aerosol-like
+        // exponential of scale height 1.5 km, over a round Earth.
+        let earth = Earth::standard();
+        let usa76 = AirProfile::new(&crate::atmosphere::Atmosphere::usa76(), earth, 2.5e25).expect("USA76");
+        let haze = AirProfile::from_heights(earth, usa76.top_m(), |h| (-h / 1_500.0).exp());
+        let mut rng = crate::rng::Rng::for_task(7, crate::rng::Stream::Test, 0);
+        let mut worst = 0.0f64;
+        for p in [&usa76, &haze] {
+            let d = |h: f64| p.at_height(h);
+            for _ in 0..1_000 {
+                let h = rng.uniform() * p.top_m();
+                let r = 100.0 * 10f64.powf(4.0 * rng.uniform());
+                let x = DVec3::new(0.0, h, 0.0);
+                let coarse = weighted_volume(&earth, p.top_m(), &d, h, x, r);
+                let fine = weighted_volume_in_panels(&earth, p.top_m(), &d, h, x, r, 100.0);
+                if fine.is_finite() {
+                    worst = worst.max((coarse / fine - 1.0).abs());
+                }
+            }
+        }
+        // Measured: 2.4e-4 (panels of 1 and 2 km: below 1e-4; 8 km: 4.8e-4). V_d's error is the
+        // multiply scattered radiance's relative error, 40× below the 2 % noise issue 19 asks of
+        // a sky image.
+        assert!(worst < 5e-4, "largest relative difference {worst:e}");
     }
 }
