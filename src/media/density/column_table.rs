@@ -351,4 +351,23 @@ mod tests {
         assert!((got[0] / exact - 1.0).abs() <= COLUMN_TOLERANCE.0, "{} vs {exact}", got[0]);
         assert_ne!(got[0], exact, "the air's column comes from its table");
     }
+
+    #[test]
+    fn a_medium_builds_its_tables_once_and_other_media_build_none() {
+        use crate::media::{Coefficients, Medium, density::Density, inelastic::Inelastic, phase::PhaseFunction};
+        let air = AirProfile::new(&Atmosphere::usa76(), Earth::standard(), 2.5e25).unwrap();
+        let medium = |density: Density| Medium {
+            name: "m".into(),
+            coefficients: Coefficients::RayleighAir { co2_ppm: 400.0 },
+            phase: PhaseFunction::isotropic(),
+            density,
+            index: None,
+            inelastic: Inelastic::none(),
+        };
+        let atmosphere = medium(Density::AirProfile(air.clone()));
+        assert!(atmosphere.build_column_tables(), "the first call builds the air's table");
+        assert!(!atmosphere.build_column_tables(), "and the second finds it built");
+        assert!(air.column_table().0.is_some(), "clones of the profile share it");
+        assert!(!medium(Density::Uniform).build_column_tables(), "a homogeneous medium has none to build");
+    }
 }
