@@ -194,14 +194,18 @@ impl Constituents {
         });
     }
 
-    /// The optical depth Σ_c σ_c ∫₀ᵗ d_c ds along `o + s·dir`.
-    pub fn optical_depth(&self, sigma: &PerConstituent, o: DVec3, dir: DVec3, t: f64) -> f64 {
-        Constituents::dot(sigma, &self.columns(o, dir, t))
+    /// The optical depth Σ_c σ_c ∫₀ᵗ d_c ds along `o + s·dir` (`tabulated`: see
+    /// [`Constituents::columns`]).
+    pub fn optical_depth(&self, sigma: &PerConstituent, o: DVec3, dir: DVec3, t: f64, tabulated: bool) -> f64 {
+        Constituents::dot(sigma, &self.columns(o, dir, t, tabulated))
     }
 
     /// The columns ∫₀ᵗ d_c ds of every constituent along `o + s·dir`, which do not depend on
-    /// the wavelength: the optical depth at any λ is their dot product with σ_c(λ).
-    pub fn columns(&self, o: DVec3, dir: DVec3, t: f64) -> PerConstituent {
+    /// the wavelength: the optical depth at any λ is their dot product with σ_c(λ). With
+    /// `tabulated`, a ray that leaves through the top reads them from the profiles' tables of
+    /// columns to the top ([`AirProfile::columns_to_top`], to
+    /// [`crate::media::density::COLUMN_TOLERANCE`]) instead of integrating.
+    pub fn columns(&self, o: DVec3, dir: DVec3, t: f64, tabulated: bool) -> PerConstituent {
         let first = &self.list[0].profile;
         let mut tables = [first; MAX_CONSTITUENTS];
         for (slot, c) in tables.iter_mut().zip(&self.list) {
@@ -209,7 +213,9 @@ impl Constituents {
         }
         let n = self.list.len();
         let mut integrals = [0.0; MAX_CONSTITUENTS];
-        AirProfile::integrals(&tables[..n], o, dir, t, &mut integrals[..n]);
+        if !(tabulated && AirProfile::columns_to_top(&tables[..n], o, dir, t, &mut integrals[..n])) {
+            AirProfile::integrals(&tables[..n], o, dir, t, &mut integrals[..n]);
+        }
         integrals
     }
 

@@ -123,6 +123,23 @@ impl Medium {
         }
     }
 
+    /// Builds the tables of columns to the top of an atmosphere over a spherical Earth
+    /// ([`super::density::ColumnTable`]) that are not built yet, so that a render pays for them
+    /// once, up front, rather than in its first shadow ray; whether it built any. Other media
+    /// have none and cost nothing.
+    pub fn build_column_tables(&self) -> bool {
+        let mut built = false;
+        if let Density::AirProfile(a) = &self.density {
+            built |= a.build_column_table();
+        }
+        if let Coefficients::Constituents(c) = &self.coefficients {
+            for k in c.list() {
+                built |= k.profile.build_column_table();
+            }
+        }
+        built
+    }
+
     /// True when the density is uniform (d ≡ 1) and the coefficients do not vary in space.
     pub fn is_homogeneous(&self) -> bool {
         self.density.is_uniform() && !matches!(self.coefficients, Coefficients::Constituents(_))

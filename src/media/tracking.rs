@@ -56,11 +56,16 @@ impl<'a> Extinction<'a> {
         }
     }
 
-    /// ∫₀ᵗ σ_t ds where it is known without sampling.
-    fn optical_depth_exact(&self, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
+    /// ∫₀ᵗ σ_t ds where it is known without sampling (`tabulated`: an atmosphere's columns to
+    /// the top read from its tables, [`Density::integral_tabulated`]).
+    fn optical_depth_exact(&self, o: DVec3, dir: DVec3, t: f64, tabulated: bool) -> Option<f64> {
         match self {
-            Extinction::Scaled { sigma_t, density } => density.integral_exact(o, dir, t).map(|d| sigma_t * d),
-            Extinction::Constituents { c, sigma } => Some(c.optical_depth(sigma, o, dir, t)),
+            Extinction::Scaled { sigma_t, density } => {
+                let d =
+                    if tabulated { density.integral_tabulated(o, dir, t) } else { density.integral_exact(o, dir, t) };
+                d.map(|d| sigma_t * d)
+            }
+            Extinction::Constituents { c, sigma } => Some(c.optical_depth(sigma, o, dir, t, tabulated)),
         }
     }
 }
@@ -132,13 +137,15 @@ fn delta_tracking_field(field: &Extinction, o: DVec3, dir: DVec3, t_max: f64, rn
     found
 }
 
-/// Transmittance exp(−∫₀ᵗ σ_t ds) along `o + s·dir`: exact where possible, else ratio tracking.
+/// Transmittance exp(−∫₀ᵗ σ_t ds) along `o + s·dir`: exact where possible (an atmosphere's
+/// columns to its top from its tables, [`crate::media::density::ColumnTable`]), else ratio
+/// tracking.
 pub fn transmittance(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f64, rng: &mut Rng) -> f64 {
     let field = Extinction::of(m, wavelength_nm);
     if field.is_zero() || t <= 0.0 {
         return 1.0;
     }
-    match field.optical_depth_exact(o, dir, t) {
+    match field.optical_depth_exact(o, dir, t, true) {
         Some(depth) => (-depth).exp(),
         None => ratio_tracking_field(&field, o, dir, t, rng),
     }
@@ -161,10 +168,10 @@ pub fn transmittances(m: &Medium, wavelengths_nm: &[f64], o: DVec3, dir: DVec3, 
         }
         let depth = match &field {
             Extinction::Scaled { sigma_t, density } => {
-                (*density_column.get_or_insert_with(|| density.integral_exact(o, dir, t))).map(|d| sigma_t * d)
+                (*density_column.get_or_insert_with(|| density.integral_tabulated(o, dir, t))).map(|d| sigma_t * d)
             }
             Extinction::Constituents { c, sigma } => {
-                Some(Constituents::dot(sigma, columns.get_or_insert_with(|| c.columns(o, dir, t))))
+                Some(Constituents::dot(sigma, columns.get_or_insert_with(|| c.columns(o, dir, t, true))))
             }
         };
         *x *= match depth {
@@ -181,7 +188,7 @@ pub fn optical_depth_exact(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3,
     if field.is_zero() || t <= 0.0 {
         return Some(0.0);
     }
-    field.optical_depth_exact(o, dir, t)
+    field.optical_depth_exact(o, dir, t, false)
 }
 
 /// Ratio tracking estimate of the transmittance of a medium with extinction `sigma_t` at

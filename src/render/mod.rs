@@ -295,6 +295,10 @@ fn one_pass(
     let (bars, stop) = (progress::Bars { quiet, observer: opts.observer.as_deref() }, opts.stop());
     let mut stats = RenderStats::default();
     rank.report.photons.clear();
+    let t = Span::start();
+    if scene.world.media.iter().fold(false, |any, m| m.build_column_tables() | any) {
+        stats.phases.add("column tables", t);
+    }
     let maps = photon_pass::build(rank, scene, s, bars, stop, &mut stats.phases, &mut stats.maps)?;
     let stopped: u64 = stats.maps.iter().map(|m| m.stats.stopped_batches).sum();
     if stopped > 0 {

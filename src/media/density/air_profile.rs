@@ -28,9 +28,10 @@
 //! maximum from the top down), which bounds the interpolant anywhere on the piece whether or not
 //! N decreases with height (it may not, under a strong inversion).
 
+use super::column_table::ColumnTable;
 use crate::atmosphere::{Atmosphere, Earth, gas};
 use glam::DVec3;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// Longest height step of the table, m.
 const MAX_STEP_M: f64 = 5.0;
@@ -57,6 +58,8 @@ pub struct AirProfile {
     values: Arc<[f64]>,
     max_above: Arc<[f64]>,
     panel_m: f64,
+    /// The columns to the top over a spherical Earth, built at first need (shared by clones).
+    to_top: Arc<OnceLock<Option<ColumnTable>>>,
 }
 
 impl AirProfile {
@@ -93,8 +96,15 @@ impl AirProfile {
         for i in (0..cells).rev() {
             max_above[i] = max_above[i].max(max_above[i + 1]);
         }
-        let mut table =
-            AirProfile { earth, top_m, step_m, values: values.into(), max_above: max_above.into(), panel_m: 0.0 };
+        let mut table = AirProfile {
+            earth,
+            top_m,
+            step_m,
+            values: values.into(),
+            max_above: max_above.into(),
+            panel_m: 0.0,
+            to_top: Arc::default(),
+        };
         table.panel_m = calibrated_panel_m(&table);
         table
     }
@@ -126,6 +136,13 @@ impl AirProfile {
     /// The height of `p` above the table's Earth, m.
     pub fn height(&self, p: DVec3) -> f64 {
         self.earth.height(p)
+    }
+
+    /// ∫₀ᵗ d(o + s·dir) ds by piecewise Gauss–Legendre quadrature on panels of `panel_m` of
+    /// height (for [`ColumnTable`]'s nodes).
+    pub(super) fn integral_in_panels(&self, o: DVec3, dir: DVec3, t: f64, panel_m: f64) -> f64 {
+        let coarse = AirProfile { panel_m, ..self.clone() };
+        coarse.integral(o, dir, t)
     }
 
     /// ∫₀ᵗ d(o + s·dir) ds by piecewise Gauss–Legendre quadrature below the top (`dir` a unit
@@ -173,6 +190,78 @@ impl AirProfile {
                 out[k] = sums[k];
             }
         }
+    }
+
+    /// Builds the table of columns to the top now, on the rayon pool's threads, unless it was
+    /// built; whether this call built it. Not from within a task of that pool.
+    pub fn build_column_table(&self) -> bool {
+        if self.to_top.get().is_some() {
+            return false;
+        }
+        self.to_top.set(self.tabulates().then(|| ColumnTable::build(self, true)).flatten()).is_ok()
+    }
+
+    /// Whether the profile is smooth enough for a table of columns ([`ColumnTable`]): it kept
+    /// the 1 km quadrature panels (USA76's density, an aerosol's exponential; not the AFGL
+    /// ozone shape, whose kinks between levels make its column vary too sharply with the
+    /// lowest height of a grazing ray for the table's grid).
+    fn tabulates(&self) -> bool {
+        self.panel_m == PANEL_HEIGHT_M
+    }
+
+    /// The table of columns to the top ([`ColumnTable`]; `None` over a flat Earth or for a
+    /// profile that is not [`AirProfile::tabulates`]), built now (on this thread) if it was
+    /// not yet, and whether this call built it.
+    pub fn column_table(&self) -> (Option<&ColumnTable>, bool) {
+        let mut built = false;
+        let table = self.to_top.get_or_init(|| {
+            built = true;
+            self.tabulates().then(|| ColumnTable::build(self, false)).flatten()
+        });
+        (table.as_ref(), built)
+    }
+
+    /// [`AirProfile::integrals`] read from the tables of columns to the top ([`ColumnTable`])
+    /// where the ray o + s·dir, s ∈ [0, t], runs from inside the atmosphere past its top
+    /// without meeting the ground (a shadow ray to the sun): true then, with `out` filled;
+    /// false, `out` untouched, otherwise (over a flat Earth, or when none of the profiles has a
+    /// table). Tables of one atmosphere share their grid, so the ray's cell is found once; a
+    /// profile without a table (ozone) is integrated.
+    pub fn columns_to_top(tables: &[&AirProfile], o: DVec3, dir: DVec3, t: f64, out: &mut [f64]) -> bool {
+        let Some(first) = tables.first() else { return false };
+        let Earth::Spherical(s) = first.earth else { return false };
+        let Some(table) = tables.iter().find_map(|p| p.column_table().0) else { return false };
+        let Some(cell) = table.cell(s.centre, o, dir, t) else { return false };
+        let (mut rest, mut at) = ([*first; MAX_TABLES], [0usize; MAX_TABLES]);
+        let mut n = 0;
+        for (k, (v, profile)) in out.iter_mut().zip(tables).enumerate() {
+            match profile.column_table().0 {
+                Some(c) => *v = c.column(cell),
+                None => {
+                    (rest[n], at[n]) = (profile, k);
+                    n += 1;
+                }
+            }
+        }
+        if n > 0 {
+            // The profiles without a table (ozone) are integrated together.
+            let mut exact = [0.0; MAX_TABLES];
+            AirProfile::integrals(&rest[..n], o, dir, t, &mut exact[..n]);
+            for (k, v) in at[..n].iter().zip(&exact) {
+                out[*k] = *v;
+            }
+        }
+        true
+    }
+
+    /// [`AirProfile::integral`], read from the table of columns to the top where the ray
+    /// allows ([`AirProfile::columns_to_top`]).
+    pub fn integral_to_top(&self, o: DVec3, dir: DVec3, t: f64) -> f64 {
+        let mut out = [0.0];
+        if !AirProfile::columns_to_top(&[self], o, dir, t, &mut out) {
+            AirProfile::integrals(&[self], o, dir, t, &mut out);
+        }
+        out[0]
     }
 
     /// Calls `panel(t0, t1)` for consecutive panels covering [a, b] (finite) of the ray

@@ -6,12 +6,14 @@
 //! [`Density::majorant_intervals`].
 
 mod air_profile;
+mod column_table;
 mod exponential;
 mod fbm;
 mod grid;
 mod spherical_exponential;
 
 pub use air_profile::{AirProfile, MAX_TABLES};
+pub use column_table::{COLUMN_TOLERANCE, ColumnTable};
 pub use exponential::ExponentialHeight;
 pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
@@ -80,6 +82,16 @@ impl Density {
             Density::SphericalExponential(e) => Some(e.integral(o, dir, t)),
             Density::AirProfile(a) => Some(a.integral(o, dir, t)),
             Density::Grid(_) | Density::Fbm(_) => None,
+        }
+    }
+
+    /// [`Density::integral_exact`], but an atmosphere's air reads the column of a ray that
+    /// leaves through its top from its table ([`ColumnTable`], to [`COLUMN_TOLERANCE`]): what a
+    /// transmittance toward the sun needs.
+    pub fn integral_tabulated(&self, o: DVec3, dir: DVec3, t: f64) -> Option<f64> {
+        match self {
+            Density::AirProfile(a) => Some(a.integral_to_top(o, dir, t)),
+            _ => self.integral_exact(o, dir, t),
         }
     }
 
