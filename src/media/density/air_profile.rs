@@ -210,7 +210,7 @@ impl AirProfile {
     }
 
     /// The table of columns to the top ([`ColumnTable`]; `None` over a flat Earth or for a
-    /// profile that is not [`AirProfile::tabulates`]), built now (on this thread) if it was
+    /// profile too sharp for its grid, such as the AFGL ozone shape), built now (on this thread) if it was
     /// not yet, and whether this call built it.
     pub fn column_table(&self) -> (Option<&ColumnTable>, bool) {
         let mut built = false;
