@@ -11,7 +11,8 @@
 #                              and sky_noon_x3.png, enlarged 3× by whole pixels (scripts/png_zoom.py)
 #   sky_haze/sky_haze.png      all-sky, 64 × 64, 512 samples per pixel (examples/sky_haze.toml),
 #                              and sky_haze_x3.png
-#   sky_sunset/sky_sunset.png  the example as it is (examples/sky_sunset.toml)
+#   sky_sunset/sky_sunset.png  96 × 48, 2 samples per pixel (examples/sky_sunset.toml; ~18 CPU
+#                              minutes), and sky_sunset_x3.png
 #   sky_twilight/twilight.png  the zenith through twilight, solar zenith 90–98° (examples/sky_twilight.toml)
 #   times.txt                  what each took, with `uptime` before and after
 # Copy the PNGs to docs/book/src/figures/sky/ to update the book.
@@ -52,5 +53,7 @@ run sky_haze "$OUT/sky_haze.toml"
 python3 scripts/png_zoom.py "$OUT/sky_haze/sky_haze.png" "$OUT/sky_haze/sky_haze_x3.png" 0 0 64 64 3
 run sky_twilight examples/sky_twilight.toml --sun-zenith-deg 90,91,92,93,94,95,96,97,98
 "$PY" scripts/plot_sun_sweep.py "$OUT/sky_twilight/sky_twilight_sun_sweep.csv" "$OUT/sky_twilight/twilight.png"
-run sky_sunset examples/sky_sunset.toml
+small examples/sky_sunset.toml 96 48 2 "$OUT/sky_sunset.toml"
+run sky_sunset "$OUT/sky_sunset.toml"
+python3 scripts/png_zoom.py "$OUT/sky_sunset/sky_sunset.png" "$OUT/sky_sunset/sky_sunset_x3.png" 0 0 96 48 3
 cat "$OUT/times.txt"
