@@ -112,6 +112,10 @@ impl Medium {
     pub fn albedo(&self, wavelength_nm: f64) -> f64 {
         match &self.coefficients {
             Coefficients::ExtinctionAlbedo { albedo, .. } if self.inelastic.is_empty() => albedo.eval(wavelength_nm),
+            // Air that only scatters: σ_t is σ_s, the same positive number (the Rayleigh cross
+            // section of Bodhaine et al. 1999 at any wavelength), so σ_s/σ_t is exactly 1 —
+            // without the cross section twice per photon of every volume estimate.
+            Coefficients::RayleighAir { .. } if self.inelastic.is_empty() => 1.0,
             Coefficients::ExtinctionAlbedo { .. }
             | Coefficients::AbsorptionScattering { .. }
             | Coefficients::AbsorptionMixture { .. }

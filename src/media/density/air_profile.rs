@@ -29,6 +29,7 @@
 //! N decreases with height (it may not, under a strong inversion).
 
 use super::column_table::ColumnTable;
+use super::height_moments::{HeightMoments, Moments};
 use crate::atmosphere::{Atmosphere, Earth, gas};
 use glam::DVec3;
 use std::sync::{Arc, OnceLock};
@@ -60,6 +61,8 @@ pub struct AirProfile {
     panel_m: f64,
     /// The columns to the top over a spherical Earth, built at first need (shared by clones).
     to_top: Arc<OnceLock<Option<ColumnTable>>>,
+    /// The cumulative height moments, built at first need (shared by clones).
+    moments: Arc<OnceLock<HeightMoments>>,
 }
 
 impl AirProfile {
@@ -104,6 +107,7 @@ impl AirProfile {
             max_above: max_above.into(),
             panel_m: 0.0,
             to_top: Arc::default(),
+            moments: Arc::default(),
         };
         table.panel_m = calibrated_panel_m(&table);
         table
@@ -112,6 +116,12 @@ impl AirProfile {
     /// The atmosphere's top, m: d = 0 at and above it.
     pub fn top_m(&self) -> f64 {
         self.top_m
+    }
+
+    /// ∫ₐᵇ uʲ d(u) du for j = 0…3 over heights u (m), d zero below the ground and above the
+    /// top: exact for the table's interpolant ([`HeightMoments`], built at the first call).
+    pub fn height_moments(&self, a: f64, b: f64) -> Moments {
+        self.moments.get_or_init(|| HeightMoments::new(self.step_m, self.values.clone())).between(a, b)
     }
 
     /// d at height `h` (m).

@@ -10,6 +10,7 @@ mod column_table;
 mod exponential;
 mod fbm;
 mod grid;
+mod height_moments;
 mod spherical_exponential;
 
 pub use air_profile::{AirProfile, MAX_TABLES};
@@ -17,6 +18,7 @@ pub use column_table::{COLUMN_TOLERANCE, ColumnTable};
 pub use exponential::ExponentialHeight;
 pub use fbm::Fbm;
 pub use grid::{GRID_MAGIC, Grid3D};
+pub use height_moments::{Moments, ROUNDING};
 pub use spherical_exponential::SphericalExponential;
 
 use crate::atomic::Staged;
