@@ -119,7 +119,7 @@ impl AirProfile {
     }
 
     /// ∫ₐᵇ uʲ d(u) du for j = 0…3 over heights u (m), d zero below the ground and above the
-    /// top: exact for the table's interpolant ([`HeightMoments`], built at the first call).
+    /// top: exact for the table's interpolant (cumulative sums built at the first call; see [`Moments`]).
     pub fn height_moments(&self, a: f64, b: f64) -> Moments {
         self.moments.get_or_init(|| HeightMoments::new(self.step_m, self.values.clone())).between(a, b)
     }
