@@ -45,6 +45,27 @@ const MAX_LIFTS: usize = 24;
 const BISECTIONS: usize = 48;
 const GROW_ROUNDS: usize = 4;
 
+/// What [`build`] reads of a light: two lights equal in all of it get the same map (the
+/// spectrum is not among it), so a scene traces one map for them.
+#[derive(PartialEq)]
+pub struct MapInputs {
+    dir: DVec3,
+    frame: Frame,
+    beam: [[f64; 2]; 2],
+    sin_max: f64,
+    target: Option<Aabb>,
+    scene: (DVec3, f64),
+    medium: Option<u32>,
+}
+
+impl MapInputs {
+    /// The inputs of the map of `light` emitting into `medium`.
+    pub fn of(light: &DirectionalLight, medium: Option<u32>) -> Self {
+        let (dir, frame, beam, sin_max, target) = (light.dir, light.frame, light.beam, light.sin_max, light.target);
+        MapInputs { dir, frame, beam, sin_max, target, scene: (light.scene_centre, light.scene_radius), medium }
+    }
+}
+
 /// The projection map of directional light `light` (emitting into `medium`), or `None` when it
 /// has no target or nothing of it reaches the target.
 pub fn build(

@@ -37,6 +37,7 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::media::density::Density;
 use crate::ode::CurvedSettings;
+use crate::raypath::projection::MapInputs;
 use crate::spectrum::Bands;
 use crate::validate::Ctx;
 use crate::world::{Names as WorldNames, Prim, Reach, World};
@@ -350,14 +351,14 @@ fn check_output_names(ctx: &Ctx, raw: &RawScene, scene: &Scene) -> Result<()> {
 fn aim_beams(scene: &mut Scene) {
     let Some(curved) = scene.curved() else { return };
     let world = &scene.world;
-    let mut traced: Vec<(BeamGeometry, Option<crate::light::BeamCells>)> = Vec::new();
+    let mut traced: Vec<(MapInputs, Option<crate::light::BeamCells>)> = Vec::new();
     let mut maps: Vec<(usize, Option<crate::light::BeamCells>)> = Vec::new();
     for (i, l) in world.lights.iter().enumerate() {
         let Light::Directional(d) = l else { continue };
         if d.target.is_none() {
             continue;
         }
-        let key = BeamGeometry::of(d, world.light_media[i]);
+        let key = MapInputs::of(d, world.light_media[i]);
         let cells = match traced.iter().find(|(k, _)| *k == key) {
             Some((_, cells)) => cells.clone(),
             None => {
@@ -378,26 +379,6 @@ fn aim_beams(scene: &mut Scene) {
                 )),
             }
         }
-    }
-}
-
-/// What a directional light's projection map depends on: two lights equal in all of it get the
-/// same map.
-#[derive(PartialEq)]
-struct BeamGeometry {
-    dir: DVec3,
-    frame: crate::geometry::Frame,
-    beam: [[f64; 2]; 2],
-    sin_max: f64,
-    target: Option<Aabb>,
-    scene: (DVec3, f64),
-    medium: Option<u32>,
-}
-
-impl BeamGeometry {
-    fn of(d: &crate::light::DirectionalLight, medium: Option<u32>) -> Self {
-        let (dir, frame, beam, sin_max, target) = (d.dir, d.frame, d.beam, d.sin_max, d.target);
-        BeamGeometry { dir, frame, beam, sin_max, target, scene: (d.scene_centre, d.scene_radius), medium }
     }
 }
 
