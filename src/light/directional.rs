@@ -18,13 +18,15 @@
 //! With limb darkening ([`LimbDarkening`]) the disc's radiance falls toward its edge as the
 //! law's P(λ, μ), scaled so that E stays the same: L(λ, r) = E(λ) P(λ, μ(r))/(π sin²θ_m F(λ)).
 //! Photons then draw their direction from P at their own wavelength (weight 1 again), and shadow
-//! rays draw it uniformly in projected solid angle with the weight P/F per wavelength
-//! ([`DirectionalLight::disc_factor`]).
+//! rays draw it from P at the middle of the simulated range, tabulated ([`DiskTable`]: density q
+//! relative to uniform in projected solid angle), with the weight (P/F)/q per wavelength
+//! ([`DirectionalLight::disc_factor`] and the sample's weight).
 
 use crate::geometry::Frame;
 use crate::geometry::convex_polygon::ConvexPolygon;
 use glam::DVec3;
 
+use super::limb_darkening::DiskTable;
 use super::{Incident, LightSpectrum, LimbDarkening};
 
 /// Parallel light from infinitely far away, possibly a disc of finite angular size (see the module
@@ -48,6 +50,8 @@ pub struct DirectionalLight {
     pub sin_max: f64,
     /// How the disc's radiance falls from its centre to its edge.
     pub limb: LimbDarkening,
+    /// With limb darkening: where shadow rays sample the disc ([`DiskTable`]).
+    pub disk: Option<DiskTable>,
     /// The box the beam is aimed at, if the scene gave one.
     pub target: Option<crate::geometry::Aabb>,
     /// With a target (and a shadow of some area): the target box's shadow along the light in
@@ -121,6 +125,7 @@ impl DirectionalLight {
             emission,
             sin_max: 0.0,
             limb: LimbDarkening::Uniform,
+            disk: None,
             target,
             shadow,
             cells: None,
@@ -133,9 +138,11 @@ impl DirectionalLight {
         self
     }
 
-    /// The same disc with the limb darkening `limb`.
-    pub fn with_limb_darkening(mut self, limb: LimbDarkening) -> DirectionalLight {
+    /// The same disc with the limb darkening `limb`; shadow rays sample it as its law has it at
+    /// `reference_nm` (the middle of the simulated range, say).
+    pub fn with_limb_darkening(mut self, limb: LimbDarkening, reference_nm: f64) -> DirectionalLight {
         self.limb = limb;
+        self.disk = (limb != LimbDarkening::Uniform).then(|| DiskTable::new(limb, reference_nm));
         self
     }
 
@@ -156,6 +163,12 @@ impl DirectionalLight {
             return self.sample_dir(u);
         }
         let [x, y] = self.limb.sample_disk(wavelength_nm, u);
+        self.disk_dir(x, y)
+    }
+
+    /// The direction of travel through point (x, y) of the unit disk of the disc's projected
+    /// solid angle.
+    fn disk_dir(&self, x: f64, y: f64) -> DVec3 {
         let (x, y) = (x * self.sin_max, y * self.sin_max);
         let local = DVec3::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt());
         Frame::from_normal(self.dir).to_world(local).normalize()
@@ -175,7 +188,7 @@ impl DirectionalLight {
 
     /// The disc's radiance toward `wi` (the direction from a receiver toward the light) over
     /// its mean radiance, P/F at `wavelength_nm`: exactly 1 for a uniform disc and a collimated
-    /// beam. A shadow ray's sample (uniform in projected solid angle) carries this factor.
+    /// beam. A shadow ray's sample carries this factor beside its weight 1/q.
     pub fn disc_factor(&self, wi: DVec3, wavelength_nm: f64) -> f64 {
         if self.limb == LimbDarkening::Uniform || self.sin_max == 0.0 {
             return 1.0;
@@ -278,8 +291,19 @@ impl DirectionalLight {
 
     /// Irradiance normal to the beam is E, so weight = 1 toward −dir (or toward a direction
     /// sampled in the disc, whose cosine density makes the weight 1 again) at infinite distance.
+    /// A limb-darkened disc is sampled from its [`DiskTable`], the weight 1/q.
     pub fn incident(&self, p: DVec3, u: [f64; 2]) -> Option<Incident> {
-        self.lights(p).then(|| Incident { wi: -self.sample_dir(u), dist: f64::INFINITY, weight: 1.0 })
+        if !self.lights(p) {
+            return None;
+        }
+        match (&self.disk, self.sin_max > 0.0) {
+            (Some(table), true) => {
+                let ([x, y], q) = table.sample(u);
+                let wi = -self.disk_dir(x, y);
+                Some(Incident { wi, dist: f64::INFINITY, weight: 1.0 / q })
+            }
+            _ => Some(Incident { wi: -self.sample_dir(u), dist: f64::INFINITY, weight: 1.0 }),
+        }
     }
 }
 

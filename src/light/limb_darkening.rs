@@ -141,6 +141,16 @@ impl LimbDarkening {
         [r * c, r * s]
     }
 
+    /// C(r): the share of the disc's flux within fractional radius `r` at `wavelength_nm`,
+    /// G(μ)/F with G(μ) = Σ 2Aₖ(1 − μᵏ⁺²)/(k + 2) and μ = √(1 − r²) (module docs).
+    pub fn cumulative(&self, wavelength_nm: f64, r: f64) -> f64 {
+        let a = self.coefficients(wavelength_nm);
+        let mu = (1.0 - r * r).max(0.0).sqrt();
+        let g: f64 =
+            a.iter().enumerate().map(|(k, c)| 2.0 * c * (1.0 - mu.powi(k as i32 + 2)) / (k as f64 + 2.0)).sum();
+        g / self.mean_over_centre(wavelength_nm)
+    }
+
     /// The fractional radius r with C(r) = u (module docs): solves G(μ) = u F for μ, where
     /// G(μ) = Σ 2Aₖ(1 − μᵏ⁺²)/(k + 2) falls from F at μ = 0 to 0 at μ = 1 with G′ = −2μP.
     fn sample_radius(&self, wavelength_nm: f64, u: f64) -> f64 {
@@ -170,6 +180,46 @@ impl LimbDarkening {
             mu = if slope < 0.0 && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
         }
         (1.0 - mu * mu).max(0.0).sqrt()
+    }
+}
+
+/// Equal cells of s = r² in a [`DiskTable`].
+pub const DISK_TABLE_CELLS: usize = 64;
+
+/// Shadow-ray directions for a limb-darkened disc: s = r² drawn from a density constant on each
+/// of [`DISK_TABLE_CELLS`] equal cells of s, with each cell's probability the law's share of the
+/// disc's flux in it at one reference wavelength (the exact C(r) at the cell edges), and a
+/// uniform azimuth. A uniform disc is uniform in s, so the density relative to uniform sampling
+/// of the projected solid angle is q = N (C(rⱼ₊₁) − C(rⱼ)) in cell j, and a sample weighted by
+/// (P/F)(λ, r)/q estimates the same irradiance at every λ as uniform sampling weighted by P/F
+/// did. At the reference wavelength (P/F)/q is within the cell's spread of P of 1, so the
+/// 0.3–1.2 spread of P/F across the sun's disc at 400 nm no longer reaches each shadow ray;
+/// other wavelengths keep only the ratio of their law to the reference's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiskTable {
+    /// C at the cell edges s = j/N: 0 at the centre, 1 at the limb.
+    cdf: Vec<f64>,
+}
+
+impl DiskTable {
+    /// The table of `law` at `wavelength_nm`.
+    pub fn new(law: LimbDarkening, wavelength_nm: f64) -> DiskTable {
+        let n = DISK_TABLE_CELLS;
+        let mut cdf: Vec<f64> = (0..=n).map(|j| law.cumulative(wavelength_nm, (j as f64 / n as f64).sqrt())).collect();
+        cdf[0] = 0.0;
+        cdf[n] = 1.0;
+        DiskTable { cdf }
+    }
+
+    /// A point (x, y) of the unit disk from `u`, and its density relative to uniform, q.
+    pub fn sample(&self, u: [f64; 2]) -> ([f64; 2], f64) {
+        let n = self.cdf.len() - 1;
+        let j = (self.cdf.partition_point(|c| *c <= u[0]).max(1) - 1).min(n - 1);
+        let width = self.cdf[j + 1] - self.cdf[j];
+        let within = if width > 0.0 { ((u[0] - self.cdf[j]) / width).clamp(0.0, 1.0) } else { 0.5 };
+        let r = ((j as f64 + within) / n as f64).min(1.0).sqrt();
+        let (sin, cos) = (2.0 * PI * u[1]).sin_cos();
+        ([r * cos, r * sin], n as f64 * width)
     }
 }
 
@@ -252,6 +302,41 @@ mod tests {
             );
             assert!(p > 1e-3, "{law:?} at {l} nm: p = {p}");
         }
+    }
+
+    #[test]
+    fn the_disk_tables_weights_keep_each_wavelengths_irradiance_and_spread_little() {
+        // The irradiance of a disc over its uniform mean is E[(P/F)(λ, r)/q] = 1 at every λ for
+        // samples from the table at 550 nm (a wrong q or a sample outside its cell moves the
+        // mean); at 550 nm the weight spreads by the cells' variation of P alone, where uniform
+        // samples weighted by P/F spread by the whole disc's.
+        let table = DiskTable::new(LAW, 550.0);
+        let mut rng = Rng::for_task(23, Stream::Test, 0);
+        let samples: Vec<(f64, f64)> = (0..200_000)
+            .map(|_| {
+                let ([x, y], q) = table.sample(rng.uniform2());
+                ((x * x + y * y).sqrt(), q)
+            })
+            .collect();
+        let stats = |w: &dyn Fn(f64, f64) -> f64| {
+            let v: Vec<f64> = samples.iter().map(|(r, q)| w(*r, *q)).collect();
+            let n = v.len() as f64;
+            let mean = v.iter().sum::<f64>() / n;
+            let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+            (mean, sd, sd / n.sqrt())
+        };
+        for l in [320.0, 400.0, 550.0, 700.0, 1000.0] {
+            let (mean, sd, se) = stats(&|r, q| LAW.relative_radiance(l, r) / q);
+            assert!((mean - 1.0).abs() < 4.0 * se + 1e-12, "{l} nm: mean weight {mean} ± {se}");
+            if l == 550.0 {
+                assert!(sd < 0.02, "550 nm: the weight spreads by {sd}");
+            }
+        }
+        let mut rng = Rng::for_task(23, Stream::Test, 1);
+        let uniform: Vec<f64> = (0..20_000).map(|_| LAW.relative_radiance(550.0, rng.uniform().sqrt())).collect();
+        let mean = uniform.iter().sum::<f64>() / uniform.len() as f64;
+        let sd = (uniform.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / uniform.len() as f64).sqrt();
+        assert!(sd > 0.15, "uniform samples spread by {sd} only");
     }
 
     #[test]

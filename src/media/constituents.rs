@@ -173,6 +173,12 @@ impl Constituents {
         Constituents::dot(&self.extinction(wavelength_nm), &bound)
     }
 
+    /// The part [a, b] of [0, t_max] of the ray `o + t·dir` outside which every constituent's
+    /// profile is 0 (the hull of their parts below the top), or `None` where all are 0.
+    pub fn support(&self, o: DVec3, dir: DVec3, t_max: f64) -> Option<(f64, f64)> {
+        self.list.iter().filter_map(|c| c.profile.below_top(o, dir, t_max)).reduce(|p, q| (p.0.min(q.0), p.1.max(q.1)))
+    }
+
     /// The shared pieces of the ray `o + t·dir` over [0, t_max], each with the majorant
     /// Σ_c σ_c max_c; see [`super::density::Density::majorant_intervals`].
     pub fn majorant_intervals(

@@ -10,6 +10,12 @@ use super::inelastic::Inelastic;
 use super::phase::PhaseFunction;
 use crate::spectrum::Spectrum;
 
+/// The share of an atmosphere's least scale height a march step may climb
+/// ([`Medium::climb_step`]): the in-scattered light then changes by about e^(1/4) − 1 ≈ 28 %
+/// across a step, and a jittered sample per step estimates it with a few % of noise where
+/// steps of tens of km (1 % of an Earth-sized scene) left 30 %.
+pub const CLIMB_PER_STEP: f64 = 0.25;
+
 /// The medium's coefficients at density 1, as the scene gave them.
 #[derive(Clone, Debug)]
 pub enum Coefficients {
@@ -142,6 +148,34 @@ impl Medium {
             }
         }
         built
+    }
+
+    /// The part [a, b] of [0, t_max] of the ray `o + t·dir` outside which the medium is empty
+    /// (σ_t = 0: an atmosphere above its top), or `None` where it is empty all along; [0, t_max]
+    /// for media that fill their region. A march need only cover it.
+    pub fn support(&self, o: glam::DVec3, dir: glam::DVec3, t_max: f64) -> Option<(f64, f64)> {
+        match &self.coefficients {
+            Coefficients::Constituents(c) => c.support(o, dir, t_max),
+            _ => self.density.support(o, dir, t_max),
+        }
+    }
+
+    /// The longest march step from `x` along the unit vector `dir` that climbs at most
+    /// [`CLIMB_PER_STEP`] of the least scale height of an atmosphere's profiles
+    /// ([`super::density::AirProfile::least_scale_height_m`]), m: 1.5 km straight up through
+    /// USA76's air, 300 m through a 1.2 km haze, unbounded along the level. Infinite for media
+    /// that are not an atmosphere's.
+    pub fn climb_step(&self, x: glam::DVec3, dir: glam::DVec3) -> f64 {
+        let (scale, earth) = match (&self.coefficients, &self.density) {
+            (Coefficients::Constituents(c), _) => {
+                let scale = c.list().iter().map(|k| k.profile.least_scale_height_m()).fold(f64::INFINITY, f64::min);
+                (scale, c.list()[0].profile.earth())
+            }
+            (_, Density::AirProfile(a)) => (a.least_scale_height_m(), a.earth()),
+            _ => return f64::INFINITY,
+        };
+        let (_, up) = earth.height_grad(x);
+        CLIMB_PER_STEP * scale / dir.dot(up).abs()
     }
 
     /// True when the density is uniform (d ≡ 1) and the coefficients do not vary in space.

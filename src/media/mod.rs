@@ -22,4 +22,4 @@ pub mod refractive_index;
 pub mod tracking;
 
 pub use local::MediumAt;
-pub use medium::{Coefficients, Medium};
+pub use medium::{CLIMB_PER_STEP, Coefficients, Medium};

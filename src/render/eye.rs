@@ -574,8 +574,11 @@ impl<'a> EyeTracer<'a> {
         out
     }
 
-    /// Marches chord `c` (JC98 §4.4): one jittered sample per step (the same offset in every
-    /// step, so the first step is jittered and the rest follow); the step halves after a large
+    /// Marches chord `c` (JC98 §4.4): one sample per step, jittered independently in each (one
+    /// offset shared by every step, as JC98 has it, leaves the first-order error
+    /// (ξ − ½)·h·[g(end) − g(start)] of the whole chord in each estimate: ±7 % per sample for
+    /// a sky seen from the ground in 2 km steps, against ±2.6 % with independent offsets); the
+    /// step halves after a large
     /// change of the in-scattered light and relaxes back after small ones (see
     /// [`EyeTracer::step_length`]); transmittance carried exactly where the medium allows, by
     /// ratio tracking otherwise; Russian roulette once it is negligible.
@@ -672,17 +675,19 @@ impl<'a> EyeTracer<'a> {
         for (s, l) in sigma_t.iter_mut().zip(&lanes.nm[..lanes.len]) {
             *s = m.sigma_t(*l);
         }
-        let xi = rng.uniform();
-        let (mut t0, mut t_prev) = (0.0f64, 0.0f64);
+        // Only the part of the chord where the medium is not empty is marched (an atmosphere's
+        // air ends at its top): elsewhere nothing scatters and the transmittance is 1.
+        let Some((a, b)) = m.support(c.origin, c.dir, c.length) else { return };
+        let (mut t0, mut t_prev) = (a, a);
         let mut level = 0u32;
         let mut last: Option<f64> = None;
-        while t0 < c.length {
+        while t0 < b {
             // Steps resolve the lanes that still carry light: a lane the medium has made opaque
             // (σ_t = 10¹² m⁻¹ at the excitation of a dye) must not hold the others to its steps.
             let sigma_t_max = (0..lanes.len).filter(|i| along.tr[*i] > 0.0).map(|i| sigma_t[i]).fold(0.0, f64::max);
-            let h = self.step_length(m, c, t0, sigma_t_max, level, at.mode);
-            let t1 = (t0 + h).min(c.length);
-            let s = t0 + xi * (t1 - t0);
+            let h = self.step_length(m, c, (t0, b - a), sigma_t_max, level, at.mode);
+            let t1 = (t0 + h).min(b);
+            let s = t0 + rng.uniform() * (t1 - t0);
             sc.rays.medium_steps += 1;
             self.attenuate(m, c, t_prev, s, lanes, along, rng);
             t_prev = s;
@@ -715,19 +720,30 @@ impl<'a> EyeTracer<'a> {
             last = Some(total);
             t0 = t1;
         }
-        self.attenuate(m, c, t_prev, c.length, lanes, along, rng);
+        self.attenuate(m, c, t_prev, b, lanes, along, rng);
     }
 
-    /// The next step: `march_step` halved `level` times and capped at a quarter of the local
-    /// mean free path, but not by that rule below a [`MAX_MARCH_STEPS`]th of the chord — or,
-    /// for a gather ray, the chord in [`GATHER_STEPS`] steps.
-    fn step_length(&self, m: &Medium, c: &Chord, t0: f64, sigma_t_max: f64, level: u32, mode: Mode) -> f64 {
+    /// The next step from `t0` on a marched span of length `span`: `march_step` halved `level`
+    /// times, capped where an atmosphere's density changes ([`Medium::climb_step`]) and at a
+    /// quarter of the local mean free path, but not by the latter rules below a
+    /// [`MAX_MARCH_STEPS`]th of the span — or, for a gather ray, the span in [`GATHER_STEPS`]
+    /// steps.
+    fn step_length(
+        &self,
+        m: &Medium,
+        c: &Chord,
+        (t0, span): (f64, f64),
+        sigma_t_max: f64,
+        level: u32,
+        mode: Mode,
+    ) -> f64 {
         let h_max = self.scene.integrator.march_step_m;
         if mode == Mode::Gather {
-            return h_max.max(c.length / GATHER_STEPS);
+            return h_max.max(span / GATHER_STEPS);
         }
         let mut h = h_max / f64::from(1u32 << level);
-        let floor = h.min(c.length / MAX_MARCH_STEPS);
+        let floor = h.min(span / MAX_MARCH_STEPS);
+        h = h.min(m.climb_step(c.origin + t0 * c.dir, c.dir));
         let local = sigma_t_max * m.density.at(c.origin + t0 * c.dir);
         if local > 0.0 {
             h = h.min(0.25 / local);

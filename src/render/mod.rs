@@ -468,6 +468,10 @@ impl<'a> Tracer<'a> {
 
 /// The band averages of pixel (`x`, `y`): the mean over `n` jittered samples, drawn from the
 /// pass's `seed`; with `spread`, also the spread of the samples ([`adaptive::PixelSpread`]).
+/// The wavelength jitter is stratified over the `n` samples (sample i draws u in
+/// [i/n, (i + 1)/n)): each u is still uniform, so the band average stays unbiased, but a band's
+/// smooth spectral slope (Rayleigh's λ⁻⁴ across a 40 nm band: ±14 %) no longer adds noise
+/// falling only as 1/√n.
 fn pixel(
     (scene, seed): (&Scene, u64),
     tracer: &Tracer,
@@ -480,7 +484,7 @@ fn pixel(
     let weight = film / n as f64;
     let mut acc = [0.0; crate::spectrum::MAX_BANDS];
     let mut spread = spread.then(|| adaptive::PixelSpread::new(scene.bands.count));
-    for _ in 0..n {
+    for i in 0..n {
         let [jx, jy] = rng.uniform2();
         let Some(ray) = scene.camera.ray(x as f64 + jx, y as f64 + jy) else {
             if let Some(sp) = &mut spread {
@@ -488,7 +492,7 @@ fn pixel(
             }
             continue;
         };
-        let lanes = Lanes::new(&scene.bands, scene.sampling, rng.uniform());
+        let lanes = Lanes::new(&scene.bands, scene.sampling, (i as f64 + rng.uniform()) / n as f64);
         let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
         let l = match tracer {
             Tracer::PhotonMap(t) => t.camera_radiance(&state, &lanes, &mut rng, sc),

@@ -132,7 +132,9 @@ pub fn light(
             };
             let limb = limb_darkening(ctx, l, &what, diameter, bands)?;
             let beam = DirectionalLight::new(dir, bounds.centre(), scene_radius, target, emission);
-            Light::Directional(beam.with_angular_diameter(diameter).with_limb_darkening(limb))
+            Light::Directional(
+                beam.with_angular_diameter(diameter).with_limb_darkening(limb, 0.5 * (bands.min_nm + bands.max_nm)),
+            )
         }
     };
     set_level(ctx, l, &span, &what, &mut light, bands)?;

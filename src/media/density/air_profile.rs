@@ -59,6 +59,9 @@ pub struct AirProfile {
     values: Arc<[f64]>,
     max_above: Arc<[f64]>,
     panel_m: f64,
+    /// The least e-folding height of d over 1 km windows where d is above 10⁻³ of its largest
+    /// value, m ([`AirProfile::least_scale_height_m`]).
+    scale_m: f64,
     /// The columns to the top over a spherical Earth, built at first need (shared by clones).
     to_top: Arc<OnceLock<Option<ColumnTable>>>,
     /// The cumulative height moments, built at first need (shared by clones).
@@ -99,6 +102,7 @@ impl AirProfile {
         for i in (0..cells).rev() {
             max_above[i] = max_above[i].max(max_above[i + 1]);
         }
+        let scale_m = least_scale_height(&values, step_m);
         let mut table = AirProfile {
             earth,
             top_m,
@@ -106,6 +110,7 @@ impl AirProfile {
             values: values.into(),
             max_above: max_above.into(),
             panel_m: 0.0,
+            scale_m,
             to_top: Arc::default(),
             moments: Arc::default(),
         };
@@ -116,6 +121,15 @@ impl AirProfile {
     /// The atmosphere's top, m: d = 0 at and above it.
     pub fn top_m(&self) -> f64 {
         self.top_m
+    }
+
+    /// The least e-folding height of d, m: min over 1 km windows [h, h + 1 km] below the top,
+    /// where d is above 10⁻³ of its largest value at both ends, of 1 km/|ln(d(h)/d(h + 1 km))|
+    /// (6.2 km for USA76's air, the aerosol's own scale height for an exponential haze);
+    /// infinite for a profile that is constant there. A march resolves d by steps that climb a
+    /// fraction of it.
+    pub fn least_scale_height_m(&self) -> f64 {
+        self.scale_m
     }
 
     /// ∫ₐᵇ uʲ d(u) du for j = 0…3 over heights u (m), d zero below the ground and above the
@@ -366,8 +380,9 @@ impl AirProfile {
         }
     }
 
-    /// The part [a, b] of [0, t_max] where the ray o + t·dir is below the top, if any.
-    fn below_top(&self, o: DVec3, dir: DVec3, t_max: f64) -> Option<(f64, f64)> {
+    /// The part [a, b] of [0, t_max] where the ray o + t·dir is below the top, if any: outside
+    /// it the profile is 0.
+    pub fn below_top(&self, o: DVec3, dir: DVec3, t_max: f64) -> Option<(f64, f64)> {
         let (a, b) = match &self.earth {
             Earth::Flat { up } => {
                 let (h0, rate) = (o.dot(*up), dir.dot(*up));
@@ -393,6 +408,19 @@ impl AirProfile {
         let (a, b) = (a.max(0.0), b.min(t_max));
         (a < b).then_some((a, b))
     }
+}
+
+/// [`AirProfile::least_scale_height_m`] of the table `values` on nodes `step_m` apart.
+fn least_scale_height(values: &[f64], step_m: f64) -> f64 {
+    let floor = 1e-3 * values.iter().copied().fold(0.0, f64::max);
+    let window = ((1_000.0 / step_m).round() as usize).max(1);
+    let width = window as f64 * step_m;
+    values
+        .iter()
+        .zip(values.iter().skip(window))
+        .filter(|(a, b)| **a > floor && **b > floor)
+        .map(|(a, b)| width / (a / b).ln().abs())
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Pieces of at most `PIECE_M` covering a length.

@@ -114,6 +114,16 @@ impl Density {
         }
     }
 
+    /// The part [a, b] of [0, t_max] of the ray `o + t·dir` outside which d = 0 exactly (an
+    /// atmosphere above its top), or `None` where d = 0 all along; [0, t_max] for densities that
+    /// fill space.
+    pub fn support(&self, o: DVec3, dir: DVec3, t_max: f64) -> Option<(f64, f64)> {
+        match self {
+            Density::AirProfile(a) => a.below_top(o, dir, t_max),
+            _ => Some((0.0, t_max)),
+        }
+    }
+
     /// True for [`Density::Uniform`].
     pub fn is_uniform(&self) -> bool {
         matches!(self, Density::Uniform)
