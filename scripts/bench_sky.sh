@@ -17,8 +17,10 @@
 # 'method = "photon_map"\nphotons = 200000' (the same plus the volume photon map's multiple
 # scattering). After the renders it prints seed 1's report.json lines with the phase times,
 # CPU times and photon, path and shadow-ray counts. Wall times on the shared 2-vCPU machines
-# vary by up to 2× with other work: the script prints user + sys CPU time too.
+# vary by up to 2× with other work: the script prints user + sys CPU time too. SIZE=64 (say)
+# renders the same scene at SIZE × SIZE pixels instead, for quicker comparisons.
 set -euo pipefail
+SIZE=${SIZE:-256}
 SPP=${1:-8}
 BIN=${2:-target/release/morgana}
 OUT=${3:-/tmp/bench_sky}
@@ -26,12 +28,12 @@ INTEGRATOR=${4:-method = \"path\"}
 ELEVATION=${5:-30.0}
 mkdir -p "$OUT"
 SCENE="$OUT/sky_bench.toml"
-sed -e 's/^width = 128$/width = 256/' -e 's/^height = 128$/height = 256/' \
+sed -e "s/^width = 128$/width = $SIZE/" -e "s/^height = 128$/height = $SIZE/" \
     -e "s/^spp = 32$/spp = $SPP/" -e "s/^elevation_deg = 60.0$/elevation_deg = $ELEVATION/" \
     -e 's/^\[output\]$/[output]\ncsv = true\nexr = false\npng = false/' \
     -e "s/^method = \"path\"$/$INTEGRATOR/" \
     examples/sky_noon.toml > "$SCENE"
-grep -q "^width = 256" "$SCENE" && grep -q "^spp = $SPP" "$SCENE" && grep -q "^elevation_deg = $ELEVATION$" "$SCENE" \
+grep -q "^width = $SIZE$" "$SCENE" && grep -q "^spp = $SPP" "$SCENE" && grep -q "^elevation_deg = $ELEVATION$" "$SCENE" \
   && grep -q "^method = " "$SCENE" \
   || { echo "bench_sky.sh: examples/sky_noon.toml no longer has the lines this script edits" >&2; exit 2; }
 sed -n '/^\[integrator\]/,/^$/p' "$SCENE"
@@ -40,7 +42,7 @@ for seed in 1 2; do
   /usr/bin/time -f "seed $seed: %e s wall, %U s user, %S s sys" \
     "$BIN" render "$SCENE" --seed "$seed" --out "$OUT/seed$seed" --quiet > /dev/null
 done
-python3 - "$OUT" "$SPP" <<'PY'
+python3 - "$OUT" "$SPP" "$SIZE" <<'PY'
 import csv, glob, math, sys
 out, spp = sys.argv[1], int(sys.argv[2])
 def image(seed):
@@ -50,7 +52,7 @@ def image(seed):
     bands = [i for i, h in enumerate(head) if h.startswith("L_") or h.endswith("nm")]
     return {(int(r[0]), int(r[1])): sum(float(r[i]) for i in bands) / len(bands) for r in body}
 a, b = image(1), image(2)
-n = 256; R = n / 2
+n = int(sys.argv[3]); R = n / 2
 inside = [k for k in a if math.hypot(abs(k[0] + 0.5 - R) + 0.5, abs(k[1] + 0.5 - R) + 0.5) < R - 1]
 rel = [((a[k] - b[k]) / ((a[k] + b[k]) / 2)) ** 2 / 2 for k in inside if a[k] + b[k] > 0]
 sigma = math.sqrt(sum(rel) / len(rel))
