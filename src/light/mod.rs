@@ -20,7 +20,7 @@ mod spot;
 
 pub use area::{AreaLight, Side};
 pub use directional::{BeamCells, DirectionalLight};
-pub use limb_darkening::{DiskTable, LimbDarkening, NECKEL_LABS_1994};
+pub use limb_darkening::{DISK_TABLE_CELLS, DiskTable, LimbDarkening, NECKEL_LABS_1994};
 pub use luminaire::LuminaireLight;
 pub use point::PointLight;
 pub use sky::SkyLight;
