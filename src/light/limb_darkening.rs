@@ -125,8 +125,12 @@ impl LimbDarkening {
         match self {
             LimbDarkening::Uniform => 1.0,
             LimbDarkening::NeckelLabs1994 => {
+                // profile / mean_over_centre, from one interpolation of the coefficients.
+                let a = self.coefficients(wavelength_nm);
                 let mu = (1.0 - r * r).max(0.0).sqrt();
-                self.profile(wavelength_nm, mu) / self.mean_over_centre(wavelength_nm)
+                let p = a.iter().rev().fold(0.0, |acc, c| acc * mu + c);
+                let f: f64 = a.iter().enumerate().map(|(k, c)| 2.0 * c / (k as f64 + 2.0)).sum();
+                p / f
             }
         }
     }

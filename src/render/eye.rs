@@ -26,7 +26,7 @@ use super::stats::RayCounts;
 use crate::geometry::Hit;
 use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
-use crate::media::{Medium, tracking};
+use crate::media::{Coefficients, Medium, tracking};
 use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
@@ -498,14 +498,16 @@ impl<'a> EyeTracer<'a> {
     /// Single scattering toward travel direction `wo` at `x` in medium `id`, per unit length:
     /// σ_s(λ, x) ∫ f(λ; ω_l·ω_o) L_light(λ) T(λ) dω, estimated by one shadow ray per light and,
     /// for area lights, one phase-sampled ray, combined by the power heuristic (light sampling
-    /// alone has infinite variance near an emitting surface).
+    /// alone has infinite variance near an emitting surface). `unit_sigma_s`: σ_s of each lane
+    /// at density 1 where it does not vary along the chord (every medium but an atmosphere of
+    /// constituents), computed once per chord by the caller.
     #[allow(clippy::too_many_arguments)]
     fn single_scattering(
         &self,
         x: DVec3,
         wo: DVec3,
-        id: u32,
-        m: &Medium,
+        (id, m): (u32, &Medium),
+        unit_sigma_s: Option<&BandValues>,
         lanes: &Lanes,
         rng: &mut Rng,
         sc: &mut Scratch,
@@ -516,6 +518,10 @@ impl<'a> EyeTracer<'a> {
         if d <= 0.0 {
             return out;
         }
+        let sigma_s: BandValues = match unit_sigma_s {
+            Some(u) => *u,
+            None => std::array::from_fn(|i| if i < lanes.len { here.sigma_s(lanes.nm[i]) } else { 0.0 }),
+        };
         let nm = &lanes.nm[..lanes.len];
         let phase = |l: f64, light_travel: DVec3| here.phase_eval(l, light_travel.dot(wo));
         // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
@@ -526,7 +532,7 @@ impl<'a> EyeTracer<'a> {
                 let l = lanes.nm[i];
                 let f = phase(l, -inc.wi);
                 let mis = if light.is_delta() { 1.0 } else { power_heuristic(1.0 / inc.weight, f) };
-                out[i] += mis * d * here.sigma_s(l) * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
+                out[i] += mis * d * sigma_s[i] * f * s.eval(l) * inc.weight * light.disc_factor(inc, l) * tr[i];
             }
         };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);
@@ -545,7 +551,7 @@ impl<'a> EyeTracer<'a> {
                             let le = |l: f64| light.emission.spectrum.eval(l);
                             for i in 0..lanes.len {
                                 let l = lanes.nm[i];
-                                out[i] += mis * d * here.sigma_s(l) * phase(l, wi) / pdf * le(l) * tr[i];
+                                out[i] += mis * d * sigma_s[i] * phase(l, wi) / pdf * le(l) * tr[i];
                             }
                         }
                     }
@@ -563,7 +569,7 @@ impl<'a> EyeTracer<'a> {
                             for i in 0..lanes.len {
                                 let l = lanes.nm[i];
                                 let le = sky.emission.spectrum.eval(l);
-                                out[i] += mis * d * here.sigma_s(l) * phase(l, wi) / pdf * le * tr[i];
+                                out[i] += mis * d * sigma_s[i] * phase(l, wi) / pdf * le * tr[i];
                             }
                         }
                     }
@@ -675,6 +681,8 @@ impl<'a> EyeTracer<'a> {
         for (s, l) in sigma_t.iter_mut().zip(&lanes.nm[..lanes.len]) {
             *s = m.sigma_t(*l);
         }
+        let unit_sigma_s = (shadow && !matches!(m.coefficients, Coefficients::Constituents(_)))
+            .then(|| std::array::from_fn(|i| if i < lanes.len { m.sigma_s(lanes.nm[i]) } else { 0.0 }));
         // Only the part of the chord where the medium is not empty is marched (an atmosphere's
         // air ends at its top): elsewhere nothing scatters and the transmittance is 1.
         let Some((a, b)) = m.support(c.origin, c.dir, c.length) else { return };
@@ -701,7 +709,7 @@ impl<'a> EyeTracer<'a> {
                 add_by_band(&mut src, &v, lanes, &|_| 1.0);
             }
             if shadow {
-                let ss = self.single_scattering(x, wo, id, m, lanes, rng, sc);
+                let ss = self.single_scattering(x, wo, (id, m), unit_sigma_s.as_ref(), lanes, rng, sc);
                 add_by_lane(&mut src, &ss, lanes, &|_| 1.0);
             }
             for ((l, tr), s) in along.l.iter_mut().zip(&along.tr).zip(&src).take(lanes.len) {
