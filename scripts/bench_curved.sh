@@ -7,7 +7,9 @@
 #
 # Defaults: target/release/morgana, /tmp/bench_curved, and sunset_sea, mirage_hot_road and
 # mirage_superior at their shipped sizes. SHRINK=k divides the image's width and height by k (a
-# copy of the scene beside it, removed after), PHOTONS=n overrides the photon count. Compare two binaries in one run (one after the other,
+# copy of the scene beside it, removed after), PHOTONS=n overrides the photon count, SET="key = value"
+# adds a line to the copy's [integrator] (e.g. SET="dispersion_bundles = false" for the per-wavelength
+# paths). Compare two binaries in one run (one after the other,
 # same machine load) by calling it twice with different binaries and out dirs. Wall times on the
 # shared 2-vCPU machines vary by up to 2× with other work: quote ratios from one run.
 set -euo pipefail
@@ -22,21 +24,23 @@ mkdir -p "$OUT"
 for s in "${SCENES[@]}"; do
   name=$(basename "$s" .toml)
   scene=$s
-  if [ -n "${SHRINK:-}" ]; then
+  if [ -n "${SHRINK:-}${SET:-}" ]; then
     scene="$(dirname "$s")/.bench_$name.toml"
-    python3 - "$s" "$scene" "$SHRINK" <<'PY'
+    python3 - "$s" "$scene" "${SHRINK:-1}" "${SET:-}" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read()
 k = int(sys.argv[3])
 for key in ("width", "height"):
     text = re.sub(rf"(?m)^{key} = (\d+)", lambda m: f"{key} = {max(1, int(m.group(1)) // k)}", text, count=1)
+if sys.argv[4]:
+    text = re.sub(r"(?m)^\[integrator\]$", "[integrator]\n" + sys.argv[4], text, count=1)
 open(sys.argv[2], "w").write(text)
 PY
   fi
   extra=()
   if [ -n "${PHOTONS:-}" ]; then extra=(--photons "$PHOTONS"); fi
   "$BIN" render "$scene" --out "$OUT/$name" --quiet "${extra[@]}" > "$OUT/$name.log" 2>&1
-  if [ -n "${SHRINK:-}" ]; then rm -f "$scene"; fi
+  if [ -n "${SHRINK:-}${SET:-}" ]; then rm -f "$scene"; fi
   python3 - "$OUT/$name/report.json" "$name" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -50,7 +54,7 @@ def work(c):
 for m in r.get("maps", []):
     print(f'{sys.argv[2]:<20} {m["map"]:<8} photon pass {m["trace_seconds"]:8.2f} s  {work(m["stats"].get("curved"))}')
 eye = ph.get("eye pass", {})
-print(f'{sys.argv[2]:<20} eye      pass        {eye.get("seconds", 0):8.2f} s  {work(r.get("eye_curved"))}')
+print(f'{sys.argv[2]:<20} eye      pass        {eye.get("seconds", 0):8.2f} s  ({eye.get("cpu_seconds", 0):.1f} CPU s)  {work(r.get("eye_curved"))}  bundled lanes {r["rays"].get("bundled", 0)}')
 print(f'{sys.argv[2]:<20} total               {r["total_seconds"]:8.2f} s')
 PY
 done

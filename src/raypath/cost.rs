@@ -105,6 +105,10 @@ pub struct RayCounts {
     /// of the path tracer.
     #[serde(default)]
     pub medium_steps: u64,
+    /// Lanes of split eye paths whose ends were interpolated from a dispersion bundle's guides
+    /// instead of traced.
+    #[serde(default)]
+    pub bundled: u64,
     /// Image rows not rendered because the run's time budget (`--max-seconds`) ran out.
     #[serde(default)]
     pub stopped_rows: u64,
@@ -118,6 +122,7 @@ impl RayCounts {
         self.gather += o.gather;
         self.splits += o.splits;
         self.medium_steps += o.medium_steps;
+        self.bundled += o.bundled;
         self.stopped_rows += o.stopped_rows;
     }
 
@@ -129,6 +134,7 @@ impl RayCounts {
             gather: self.gather - before.gather,
             splits: self.splits - before.splits,
             medium_steps: self.medium_steps - before.medium_steps,
+            bundled: self.bundled - before.bundled,
             stopped_rows: self.stopped_rows - before.stopped_rows,
         }
     }

@@ -35,6 +35,8 @@ use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
 use std::f64::consts::PI;
 
+mod bundle;
+
 /// Whether a path is seen by the camera (through specular surfaces at most) or is a gather ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Mode {
@@ -176,21 +178,32 @@ impl<'a> EyeTracer<'a> {
             self.march(c, at, &mut along, rng, sc);
             None
         });
-        let surface = match event {
-            Event::Surface { hit, dir, medium, .. } => self.surface(&hit, dir, medium, at, rng, sc),
-            Event::Escape { dir } if at.mode == Mode::Camera => self.escape(dir, at.lanes),
-            _ => [0.0; MAX_BANDS],
-        };
+        let surface = self.end(event, at, rng, sc);
         for i in 0..at.lanes.len {
             out[i] = along.l[i] + along.tr[i] * surface[i];
         }
         out
     }
 
+    /// Radiance per lane leaving the end of a path back along it: from the surface it meets, or
+    /// for a camera path that escapes, from the lights at infinity.
+    fn end(&self, event: Event, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
+        match event {
+            Event::Surface { hit, dir, medium, .. } => self.surface(&hit, dir, medium, at, rng, sc),
+            Event::Escape { dir } if at.mode == Mode::Camera => self.escape(dir, at.lanes),
+            _ => [0.0; MAX_BANDS],
+        }
+    }
+
     /// Radiance per lane along `state` in a medium that bends each wavelength differently: one
-    /// path per lane (a gather path follows one lane chosen uniformly, weighted by the count).
+    /// path per lane (a gather path follows one lane chosen uniformly, weighted by the count), or
+    /// a bundle of them interpolated from four guides where the medium only absorbs
+    /// ([`bundle`]).
     fn split(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
         sc.rays.splits += 1;
+        if self.bundles(state.medium, at) {
+            return self.bundle(state, at, rng, sc);
+        }
         let mut out = [0.0; MAX_BANDS];
         let lanes = at.lanes;
         let one = |i: usize, rng: &mut Rng, sc: &mut Scratch| {

@@ -24,8 +24,8 @@ mod tone;
 
 pub use plan::{Decision, EffectPlan};
 pub use settings::{
-    DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, MAX_PHOTONS, MIN_MARCH_STEP_M, Method, OutputSettings,
-    VolumeEstimate, WavelengthSampling, check_photons_override,
+    BUNDLE_MIN_LANES, DirectLighting, HERO_WAVELENGTHS, IntegratorSettings, MAX_PHOTONS, MIN_MARCH_STEP_M, Method,
+    OutputSettings, VolumeEstimate, WavelengthSampling, check_photons_override,
 };
 
 use crate::atmosphere::Earth;

@@ -115,17 +115,16 @@ impl EffectPlan {
             (false, _) => Decision::off("final_gather = false: indirect light read directly from the global map"),
         };
         let multi = facts.sampling == WavelengthSampling::Hero || facts.bands > 1;
-        let bending = facts
-            .used_media
-            .iter()
-            .find(|m| m.bends_light() && m.index.as_ref().is_some_and(|f| f.is_dispersive()))
-            .map(|m| m.name.as_str());
+        let bending_medium =
+            facts.used_media.iter().find(|m| m.bends_light() && m.index.as_ref().is_some_and(|f| f.is_dispersive()));
+        let bending = bending_medium.map(|m| m.name.as_str());
         let dispersion_splitting = match (dispersive, bending, multi) {
             (None, None, _) => Decision::off("no material's or medium's refractive index depends on wavelength"),
             (_, _, false) => Decision::off("a single band: every path carries one wavelength"),
             (Some(m), _, true) => Decision::on(format!("material \"{m}\" refracts each wavelength differently")),
             (None, Some(m), true) => Decision::on(format!(
-                "medium \"{m}\" bends each wavelength differently: eye paths split into one path per wavelength there"
+                "medium \"{m}\" bends each wavelength differently: eye paths split into one path per wavelength there{}",
+                bundles_words(bending_medium, facts, s)
             )),
         };
         EffectPlan {
@@ -232,6 +231,24 @@ impl std::fmt::Display for EffectPlan {
         }
         Ok(())
     }
+}
+
+/// How camera paths through a bending, dispersive medium that only absorbs follow its
+/// wavelengths: from four guides where dispersion bundles apply
+/// (`dispersion_bundles`, [`IntegratorSettings::dispersion_bundles`]).
+fn bundles_words(medium: Option<&&Medium>, facts: &SceneFacts, s: &IntegratorSettings) -> String {
+    let lanes = if facts.sampling == WavelengthSampling::Bands { facts.bands } else { 0 };
+    let absorbs_only = medium.is_some_and(|m| !m.scatters());
+    if !absorbs_only || lanes < super::settings::BUNDLE_MIN_LANES {
+        return String::new();
+    }
+    if !s.dispersion_bundles {
+        return "; dispersion_bundles = false: every wavelength's camera path is traced".into();
+    }
+    format!(
+        "; camera paths through it trace 4 guide wavelengths and interpolate the other {} from them where a check at one guide holds (dispersion_bundles = true)",
+        lanes - 4
+    )
 }
 
 /// What shadow rays light: "<surface_words> \"white\" and <medium_words> \"fog\"", naming an

@@ -223,6 +223,9 @@ pub struct RawIntegrator {
     pub direct: S<String>,
     /// `[integrator] final_gather`: gather indirect light with rays into the global map.
     pub final_gather: S<bool>,
+    /// `[integrator] dispersion_bundles`: interpolate the paths of a camera path's wavelengths
+    /// through an absorbing, dispersive medium from four guides where a check allows.
+    pub dispersion_bundles: S<bool>,
     /// `[integrator] gather_rays`: final-gather rays per shading point.
     pub gather_rays: S<i64>,
     /// `[integrator] spp`: eye samples per pixel.

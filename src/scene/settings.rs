@@ -130,6 +130,10 @@ pub struct IntegratorSettings {
     pub direct: DirectLighting,
     /// Gather indirect light with rays into the global map at the first diffuse hit.
     pub final_gather: bool,
+    /// Camera paths through an absorbing medium that bends each wavelength differently follow
+    /// four guide wavelengths and interpolate the others where a check allows
+    /// (`render::eye` bundles); `false` traces every wavelength.
+    pub dispersion_bundles: bool,
     /// Final-gather rays per shading point.
     pub gather_rays: usize,
     /// Eye samples per pixel.
@@ -324,6 +328,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         beam: BeamRadii { k: 100, max_radius_m: 0.05 * diag, scale: 1.0 },
         direct: DirectLighting::ShadowRays,
         final_gather: true,
+        dispersion_bundles: true,
         gather_rays: 64,
         spp: 16,
         max_depth: 10,
@@ -389,11 +394,16 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         (None, DirectLighting::PhotonMap) => false,
         (None, DirectLighting::ShadowRays) => true,
     };
+    s.dispersion_bundles = r.dispersion_bundles.as_ref().is_none_or(|b| *b.get_ref());
     s.filter = filter(ctx, r)?;
     s.curved = curved(ctx, r)?;
     s.progressive = super::progressive::progressive(ctx, r)?;
     Ok(s)
 }
+
+/// Fewest wavelength lanes for which a camera path is followed as a dispersion bundle (four
+/// guides must leave lanes to interpolate).
+pub const BUNDLE_MIN_LANES: usize = 8;
 
 /// The smallest `arc_tolerance_m`, m.
 pub const MIN_ARC_TOLERANCE_M: f64 = 1e-6;
