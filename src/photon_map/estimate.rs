@@ -97,11 +97,12 @@ impl Estimator<'_> {
         let Some((r2, skip)) = self.gather(x, nb) else { return out };
         let r = r2.sqrt();
         for &(i, d2) in &nb.items {
-            if Some(i) == skip {
+            // The path is read from the stored flags: a photon left out is never decoded.
+            if Some(i) == skip || !self.paths.accepts(self.map.photons()[i as usize].path()) {
                 continue;
             }
             let p = self.map.record(i);
-            if !self.paths.accepts(p.path) || p.dir.dot(n) >= 0.0 || p.normal.dot(n).abs() < MIN_NORMAL_COS {
+            if p.dir.dot(n) >= 0.0 || p.normal.dot(n).abs() < MIN_NORMAL_COS {
                 continue;
             }
             let Some(b) = self.bands.index_of(p.wavelength_nm) else { continue };
@@ -131,16 +132,20 @@ impl Estimator<'_> {
     pub fn volume_scattered(&self, x: DVec3, wo: DVec3, medium: &Medium, nb: &mut Neighbours) -> (BandValues, f64) {
         let mut out = [0.0; MAX_BANDS];
         let Some((r2, skip)) = self.gather(x, nb) else { return (out, 0.0) };
+        let transfer = medium.inelastic.transfer.as_ref();
         for &(i, _) in &nb.items {
-            if Some(i) == skip {
+            // Re-emission counts every photon; elastic scattering only those the paths accept,
+            // read from the stored flags so that a photon left out is never decoded.
+            let accepted = self.paths.accepts(self.map.photons()[i as usize].path());
+            if Some(i) == skip || (!accepted && transfer.is_none()) {
                 continue;
             }
             let p = self.map.record(i);
             let l = p.wavelength_nm;
-            if let Some(t) = &medium.inelastic.transfer {
+            if let Some(t) = transfer {
                 t.add_photon(&medium.inelastic, &mut out, l, p.dir.dot(wo), p.power_w);
             }
-            if !self.paths.accepts(p.path) {
+            if !accepted {
                 continue;
             }
             let Some(b) = self.bands.index_of(l) else { continue };
