@@ -12,6 +12,7 @@ mod earth;
 pub mod edit;
 pub mod file;
 pub mod gas;
+pub mod horizon_ray;
 mod model;
 pub mod radial_table;
 pub mod refraction;

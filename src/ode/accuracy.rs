@@ -38,6 +38,27 @@ use std::time::Instant;
 /// The largest bending |k|·L of the test ray (its slope at the end is k·L).
 pub const MAX_BENDING: f64 = 100.0;
 
+/// A test ray whose end is known independently of the integrators: the field it follows, where
+/// it starts and where it is after its arc length. [`Problem`] is the paper's linear field with
+/// its closed form; a ray through a standard atmosphere, with its end from Bouguer's invariant
+/// by quadrature, lives beside the atmospheres (`crate::atmosphere::horizon_ray`).
+pub trait TestRay {
+    /// n and ∇n at `p`.
+    fn n_grad(&self, p: DVec3) -> (f64, DVec3);
+    /// The start point and unit direction.
+    fn start(&self) -> (DVec3, DVec3);
+    /// The arc length the ray is followed for, m.
+    fn length_m(&self) -> f64;
+    /// Where the ray is after [`TestRay::length_m`], m.
+    fn end(&self) -> DVec3;
+    /// The length fixed steps are fractions of, m.
+    fn scale_m(&self) -> f64;
+    /// One line saying what the ray is and where it ends, for the text report.
+    fn describe(&self) -> String;
+    /// The figure's title (its font has capitals, digits and a few signs).
+    fn title(&self) -> String;
+}
+
 /// The test ray: n = 1 + k·y, launched at the origin along +x, followed for `length_m`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Problem {
@@ -96,6 +117,35 @@ impl Problem {
     }
 }
 
+impl TestRay for Problem {
+    #[inline]
+    fn n_grad(&self, p: DVec3) -> (f64, DVec3) {
+        (1.0 + self.k_per_m * p.y, DVec3::new(0.0, self.k_per_m, 0.0))
+    }
+    fn start(&self) -> (DVec3, DVec3) {
+        (DVec3::ZERO, DVec3::X)
+    }
+    fn length_m(&self) -> f64 {
+        self.length_m
+    }
+    fn end(&self) -> DVec3 {
+        self.exact(self.length_m)
+    }
+    fn scale_m(&self) -> f64 {
+        Problem::scale_m(self)
+    }
+    fn describe(&self) -> String {
+        let e = self.end();
+        format!(
+            "ray in n = 1 + {:e}*y from the origin along +x, arc length {} m; closed-form endpoint ({:.6}, {:.6}) m",
+            self.k_per_m, self.length_m, e.x, e.y
+        )
+    }
+    fn title(&self) -> String {
+        format!("RAY IN N = 1 + {:.0E} Y, ARC LENGTH {} M: ERROR VS CLOSED-FORM CATENARY", self.k_per_m, self.length_m)
+    }
+}
+
 /// What to measure.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plan {
@@ -118,7 +168,7 @@ impl Plan {
     /// The full figure: tolerances 10⁻¹…10⁻¹² (the paper's 10⁻³…10⁻¹² and two looser ones, where
     /// Dormand–Prince's error meets Euler's), 9 Euler and 8 RK4 step sizes, median of 5 samples
     /// of at least 20 ms each.
-    pub fn standard(p: &Problem) -> Plan {
+    pub fn standard(p: &impl TestRay) -> Plan {
         let h = p.scale_m();
         Plan {
             tolerances: (1..=12).map(|e| 10f64.powi(-e)).collect(),
@@ -131,7 +181,7 @@ impl Plan {
     }
 
     /// A smoke run: 4 tolerances, 3 step sizes each, 3 samples of at least 1 ms.
-    pub fn quick(p: &Problem) -> Plan {
+    pub fn quick(p: &impl TestRay) -> Plan {
         let h = p.scale_m();
         Plan {
             tolerances: vec![1e-2, 1e-4, 1e-6, 1e-8],
@@ -188,8 +238,10 @@ pub struct Speedup {
 /// Everything `morgana accuracy` measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
-    /// The test ray.
-    pub problem: Problem,
+    /// The test ray, in words ([`TestRay::describe`]).
+    pub ray: String,
+    /// The figure's title ([`TestRay::title`]).
+    pub title: String,
     /// Whether steps were projected to |v| = n.
     pub project: bool,
     /// One point per configuration that succeeded.
@@ -206,7 +258,7 @@ pub const GOAL_OVER_EULER: f64 = 100.0;
 pub const GOAL_OVER_RK4: f64 = 3.0;
 
 /// Runs every configuration of `plan` on `problem`.
-pub fn measure(problem: &Problem, plan: &Plan) -> Report {
+pub fn measure(problem: &impl TestRay, plan: &Plan) -> Report {
     let mut points = Vec::new();
     let mut failures = Vec::new();
     for (method, parameter) in plan.methods() {
@@ -223,24 +275,25 @@ pub fn measure(problem: &Problem, plan: &Plan) -> Report {
         }
     }
     let speedups = speedups(&points);
-    Report { problem: *problem, project: plan.project, points, failures, speedups }
+    Report { ray: problem.describe(), title: problem.title(), project: plan.project, points, failures, speedups }
 }
 
 /// Endpoint error, median time and counters of one configuration.
 fn measure_one(
-    problem: &Problem,
+    problem: &impl TestRay,
     plan: &Plan,
     method: Method,
 ) -> std::result::Result<(f64, f64, crate::ode::Counters), OdeError> {
-    let field = problem.field();
+    let field = |p: DVec3| problem.n_grad(p);
+    let (p0, d0) = problem.start();
     let once = || -> std::result::Result<(OdeState, crate::ode::Counters), OdeError> {
         let mut ode = Integrator::new(method)?.with_projection(plan.project).with_max_steps(u64::MAX);
-        let mut state = OdeState::launch(&field, DVec3::ZERO, DVec3::X)?;
-        ode.integrate_to(&field, &mut state, problem.length_m)?;
+        let mut state = OdeState::launch(&field, p0, d0)?;
+        ode.integrate_to(&field, &mut state, problem.length_m())?;
         Ok((std::hint::black_box(state), ode.counters()))
     };
     let (end, counters) = once()?;
-    let error = (end.y.r - problem.exact(problem.length_m)).length();
+    let error = (end.y.r - problem.end()).length();
     let t_once = time(1, || {
         let _ = once();
     });
@@ -346,15 +399,8 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> std::io::Resul
 
 /// A text report: the table of points, the speedups and whether the goals are met.
 pub fn summary(report: &Report) -> String {
-    let p = &report.problem;
-    let mut s = format!(
-        "ray in n = 1 + {:e}*y from the origin along +x, arc length {} m; closed-form endpoint ({:.6}, {:.6}) m{}\n",
-        p.k_per_m,
-        p.length_m,
-        p.exact(p.length_m).x,
-        p.exact(p.length_m).y,
-        if report.project { "; |v| projected onto n after each step" } else { "" }
-    );
+    let mut s =
+        format!("{}{}\n", report.ray, if report.project { "; |v| projected onto n after each step" } else { "" });
     let _ = writeln!(
         s,
         "{:<7} {:>10} {:>14} {:>12} {:>9} {:>10}",

@@ -77,6 +77,7 @@ const BASES: &[&[&str]] = &[
     &["luminaire", "../luminaires/road_batwing.ies", "--png", "p.png"],
     &["luminaire", "../luminaires/office_pendant.ldt"],
     &["accuracy", "--quick", "--k", "0.001", "--length-m", "100"],
+    &["accuracy", "--quick", "--field", "usa76", "--elevation-deg", "1", "--length-m", "20000"],
     &["refraction", "--atmosphere", "usa76", "--apparent-altitudes-deg", "0,5", "--wavelength-nm", "550"],
     &[
         "refraction",

@@ -64,10 +64,7 @@ pub fn figure(report: &Report) -> Canvas {
         },
     ];
     let mut c = Canvas::new(3 * PANEL_W as usize, (PANEL_H + TOP) as usize, WHITE);
-    let p = &report.problem;
-    let title =
-        format!("RAY IN N = 1 + {:.0E} Y, ARC LENGTH {} M: ERROR VS CLOSED-FORM CATENARY", p.k_per_m, p.length_m);
-    c.text(10, 8, &title, 2, BLACK);
+    c.text(10, 8, &report.title, 2, BLACK);
     for (i, panel) in panels.iter().enumerate() {
         draw(&mut c, i as i64 * PANEL_W, TOP, panel);
     }
