@@ -119,6 +119,19 @@ fn bundles_through_a_duct_agree_with_traced_wavelengths_where_they_are_used() {
 }
 
 #[test]
+fn bundles_in_a_hot_road_mirage_agree_with_traced_wavelengths() {
+    // The hot road: the air fills the world, so escaping paths run on straight for 21 000 km and
+    // their direction is held to the floor of ten Dormand–Prince steps, not to the arc tolerance
+    // over that length. The image must still agree with every wavelength traced.
+    let on = example("mirage_hot_road", 60, 40, "");
+    let off = example("mirage_hot_road", 60, 40, "dispersion_bundles = false");
+    let (a, _) = agree(&on, &off);
+    // 8 bands: each split path has 4 lanes to interpolate; most are.
+    let (bundled, splits) = (a.stats.rays.bundled, a.stats.rays.splits);
+    assert!(bundled as f64 > 0.5 * (4 * splits) as f64, "{bundled} of {} lanes interpolated", 4 * splits);
+}
+
+#[test]
 fn a_render_with_bundles_is_the_same_for_any_thread_count() {
     let s = example("sunset_sea", 24, 18, "");
     let (a, b) = (common::render_with(&s, 1), common::render_with(&s, 2));
