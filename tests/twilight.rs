@@ -208,3 +208,25 @@ fn the_twilight_quadrature_is_converged() {
         assert!((a / b - 1.0).abs() < 1e-5, "θ₀ = {zenith}°: {a} vs {b}");
     }
 }
+
+/// A run whose volume photon map would read the sky in the Earth's shadow says that the
+/// estimate is biased there (the book's The sky, "Not yet"); single scattering and a sun above
+/// the horizon do not.
+#[test]
+fn a_volume_map_in_the_earths_shadow_is_warned_about() {
+    let text = std::fs::read_to_string("examples/sky_twilight.toml").expect("the example");
+    let with = |photons: &str, elevation: &str| {
+        let t = text.replacen("photons = 0\n", &format!("photons = {photons}\n"), 1).replacen(
+            "elevation_deg = 0.0",
+            &format!("elevation_deg = {elevation}"),
+            1,
+        );
+        let s = morgana::scene::load_scene_str(&t, Path::new("examples/sky_twilight.toml"), Path::new("examples"), "t")
+            .expect("the edited example loads");
+        morgana::scene::twilight::warning(&s)
+    };
+    let w = with("100000", "-4.0").expect("a warning in the shadow");
+    assert!(w.contains("below the horizon") && w.contains("photons = 0"), "{w}");
+    assert_eq!(with("0", "-4.0"), None, "single scattering reads no map");
+    assert_eq!(with("100000", "30.0"), None, "a sun above the horizon");
+}

@@ -166,16 +166,25 @@ impl Medium {
     /// USA76's air, 300 m through a 1.2 km haze, unbounded along the level. Infinite for media
     /// that are not an atmosphere's.
     pub fn climb_step(&self, x: glam::DVec3, dir: glam::DVec3) -> f64 {
-        let (scale, earth) = match (&self.coefficients, &self.density) {
+        let scale = match (&self.coefficients, &self.density) {
             (Coefficients::Constituents(c), _) => {
-                let scale = c.list().iter().map(|k| k.profile.least_scale_height_m()).fold(f64::INFINITY, f64::min);
-                (scale, c.list()[0].profile.earth())
+                c.list().iter().map(|k| k.profile.least_scale_height_m()).fold(f64::INFINITY, f64::min)
             }
-            (_, Density::AirProfile(a)) => (a.least_scale_height_m(), a.earth()),
+            (_, Density::AirProfile(a)) => a.least_scale_height_m(),
             _ => return f64::INFINITY,
         };
+        let Some(earth) = self.earth() else { return f64::INFINITY };
         let (_, up) = earth.height_grad(x);
         CLIMB_PER_STEP * scale / dir.dot(up).abs()
+    }
+
+    /// The Earth an atmosphere's profiles are heights above (`None` for other media).
+    pub fn earth(&self) -> Option<&crate::atmosphere::Earth> {
+        match (&self.coefficients, &self.density) {
+            (Coefficients::Constituents(c), _) => Some(c.list()[0].profile.earth()),
+            (_, Density::AirProfile(a)) => Some(a.earth()),
+            _ => None,
+        }
     }
 
     /// True when the density is uniform (d ≡ 1) and the coefficients do not vary in space.

@@ -104,6 +104,7 @@ pub fn render_on(
     let mut rank = Rank::new(comm, *dist);
     let quiet = opts.quiet || !comm.is_root();
     let mut stats = RenderStats::default();
+    stats.warnings.extend(crate::scene::twilight::warning(scene));
     let settings = crate::photon::PassSettings::of(scene);
     let mut est = memory::estimate(scene, &settings, comm.size());
     distributed::fault::agree(comm, memory::check(&mut est, opts.max_memory))?;

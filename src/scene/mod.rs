@@ -21,6 +21,7 @@ mod shapes;
 mod sight;
 mod spectrum_spec;
 mod tone;
+pub mod twilight;
 
 pub use plan::{Decision, EffectPlan};
 pub use settings::{
