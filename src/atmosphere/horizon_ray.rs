@@ -23,7 +23,7 @@
 //! own relative precision, and nr − c ≥ 2 n₀ r₀ sin²(e₀/2) stays far from zero for e₀ ≥ 0.1°.
 //! The field the integrators follow is the same n = 1 + K·q(h) with ∇n = K·q′(h)·r̂.
 
-use super::{Atmosphere, EARTH_RADIUS_M};
+use super::{Atmosphere, EARTH_RADIUS_M, Earth};
 use crate::ode::accuracy::TestRay;
 use glam::DVec3;
 
@@ -40,6 +40,8 @@ pub const MAX_END_HEIGHT_M: f64 = 11_000.0;
 #[derive(Clone, Debug)]
 pub struct HorizonRay {
     air: Atmosphere,
+    /// The standard Earth in the frame of the start (its centre at (0, −r₀, 0)).
+    earth: Earth,
     /// Gladstone–Dale factor K(λ), m³ kg⁻¹.
     k: f64,
     h0: f64,
@@ -49,6 +51,8 @@ pub struct HorizonRay {
     q0: f64,
     /// Bouguer's invariant c = n₀ r₀ cos e₀, m.
     c: f64,
+    /// n₀ r₀ − c = 2 n₀ r₀ sin²(e₀/2), m: the part of nr − c at the start.
+    gap0: f64,
     wavelength_nm: f64,
     length_m: f64,
     end: DVec3,
@@ -81,8 +85,11 @@ impl HorizonRay {
         let q0 = air.reduced_refractivity(height_m).0;
         let (r0, e0) = (EARTH_RADIUS_M + height_m, elevation_deg.to_radians());
         let n0 = 1.0 + k * q0;
+        let earth = Earth::spherical(DVec3::new(0.0, -r0, 0.0), EARTH_RADIUS_M)?;
+        let half = (0.5 * e0).sin();
         let mut ray = HorizonRay {
             air,
+            earth,
             k,
             h0: height_m,
             r0,
@@ -90,6 +97,7 @@ impl HorizonRay {
             n0,
             q0,
             c: n0 * r0 * e0.cos(),
+            gap0: 2.0 * n0 * r0 * half * half,
             wavelength_nm,
             length_m,
             end: DVec3::ZERO,
@@ -111,8 +119,7 @@ impl HorizonRay {
         let r = self.r0 + x;
         let q = self.air.reduced_refractivity(self.h0 + x).0;
         let n = 1.0 + self.k * q;
-        let half = (0.5 * self.e0).sin();
-        let below = self.k * (q - self.q0) * r + self.n0 * x + 2.0 * self.n0 * self.r0 * half * half;
+        let below = self.k * (q - self.q0) * r + self.n0 * x + self.gap0;
         let d = (below * (n * r + self.c)).sqrt();
         [n * r / d, self.c / (r * d)]
     }
@@ -162,12 +169,9 @@ impl HorizonRay {
 impl TestRay for HorizonRay {
     #[inline]
     fn n_grad(&self, p: DVec3) -> (f64, DVec3) {
-        // Height from the start's frame without forming 6 371 km coordinates (as Earth does).
-        let d = p + DVec3::new(0.0, self.r0, 0.0);
-        let r = d.length();
-        let rise = (p.length_squared() + 2.0 * self.r0 * p.y) / (r + self.r0);
-        let (q, dq) = self.air.reduced_refractivity(self.h0 + rise);
-        (1.0 + self.k * q, d * (self.k * dq / r))
+        let (h, up) = self.earth.height_grad(p);
+        let (q, dq) = self.air.reduced_refractivity(h);
+        (1.0 + self.k * q, up * (self.k * dq))
     }
     fn start(&self) -> (DVec3, DVec3) {
         (DVec3::ZERO, DVec3::new(self.e0.cos(), self.e0.sin(), 0.0))

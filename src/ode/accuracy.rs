@@ -98,12 +98,6 @@ impl Problem {
         Ok(Problem { k_per_m, length_m })
     }
 
-    /// n and ∇n.
-    pub fn field(&self) -> impl Fn(DVec3) -> (f64, DVec3) + Copy + use<> {
-        let k = self.k_per_m;
-        move |p: DVec3| (1.0 + k * p.y, DVec3::new(0.0, k, 0.0))
-    }
-
     /// The closed-form position at arc length s (module docs).
     pub fn exact(&self, s: f64) -> DVec3 {
         let k = self.k_per_m;
