@@ -153,6 +153,21 @@ pub fn gauss_legendre_7(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     sum * h
 }
 
+/// The 7 nodes and weights of [`gauss_legendre_7`] on [−1, 1], for callers that reuse
+/// per-node work across panels of equal width.
+pub fn gauss_legendre_7_rule() -> [(f64, f64); 7] {
+    let x = |i: usize| KRONROD_15_X[2 * i + 1];
+    [
+        (-x(0), GAUSS_7_W[0]),
+        (-x(1), GAUSS_7_W[1]),
+        (-x(2), GAUSS_7_W[2]),
+        (0.0, GAUSS_7_W[3]),
+        (x(2), GAUSS_7_W[2]),
+        (x(1), GAUSS_7_W[1]),
+        (x(0), GAUSS_7_W[0]),
+    ]
+}
+
 /// The 15-point Kronrod and the embedded 7-point Gauss estimates of ∫_a^b f.
 fn gauss_kronrod_15(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
     let (c, h) = (0.5 * (a + b), 0.5 * (b - a));

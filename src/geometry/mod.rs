@@ -5,6 +5,7 @@
 //! serve straight rays and the chords of curved arcs.
 
 mod aabb;
+pub mod axial;
 mod bvh;
 mod camera;
 pub mod convex_polygon;
@@ -16,6 +17,7 @@ pub mod shape;
 mod spawn;
 
 pub use aabb::Aabb;
+pub use axial::AxialFold;
 pub use bvh::Bvh;
 pub use camera::{Camera, Projection};
 pub use frame::Frame;

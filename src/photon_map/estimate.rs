@@ -26,12 +26,19 @@
 //! [`crate::media::inelastic::BandTransfer`]); that term counts every photon, direct ones
 //! included, because shadow rays compute elastic single scattering only.
 //!
+//! Folded photons: where the scene is symmetric about the sun's axis through the Earth's centre
+//! ([`crate::scene::symmetry`]) the volume map's photons are turned about it into one
+//! half-plane ([`crate::geometry::AxialFold`]) and so is each query; the k nearest then lie in
+//! a disc of the half-plane, which stands for the ring it sweeps about the axis, and V is that
+//! ring's density-weighted volume ([`super::stratified::ring_volume`]).
+//!
 //! The radius: when k photons are found, the k-th sets r and is left out of the sum — for
 //! photons from a Poisson process, (k − 1)/V(r_k) is unbiased where k/V(r_k) is too high by
 //! k/(k − 1) (Loftsgaarden & Quesenberry 1965; Silverman 1986, §5.2); when fewer are found
 //! within the maximum radius, that radius is r and every photon counts.
 
 use super::filter::{Filter, filter_norm, filter_weight};
+use super::stratified::{Region, region_volume};
 use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
 use crate::media::Medium;
 use crate::spectrum::{BandValues, Bands, MAX_BANDS};
@@ -129,9 +136,15 @@ impl Estimator<'_> {
 
     /// Radiance scattered per unit length toward travel direction `wo` at `x` in `medium`, per
     /// band (W m⁻³ sr⁻¹ nm⁻¹), and the radius of the sphere used (0 if no photon was found).
+    ///
+    /// In a map of folded photons ([`PhotonMap::folded`]) `x` and `wo` are folded too, the
+    /// nearest photons are those of the disc about the folded `x`, and the volume they stand for
+    /// is the ring it sweeps about the axis ([`super::stratified::Region::Ring`]).
     pub fn volume_scattered(&self, x: DVec3, wo: DVec3, medium: &Medium, nb: &mut Neighbours) -> (BandValues, f64) {
         let mut out = [0.0; MAX_BANDS];
-        let Some((r2, skip)) = self.gather(x, nb) else { return (out, 0.0) };
+        let fold = self.map.fold();
+        let (xq, wq) = fold.map_or((x, wo), |f| (f.point(x), f.direction(x, wo)));
+        let Some((r2, skip)) = self.gather(xq, nb) else { return (out, 0.0) };
         let transfer = medium.inelastic.transfer.as_ref();
         for &(i, _) in &nb.items {
             // Re-emission counts every photon; elastic scattering only those the paths accept,
@@ -143,18 +156,19 @@ impl Estimator<'_> {
             let p = self.map.record(i);
             let l = p.wavelength_nm;
             if let Some(t) = transfer {
-                t.add_photon(&medium.inelastic, &mut out, l, p.dir.dot(wo), p.power_w);
+                t.add_photon(&medium.inelastic, &mut out, l, p.dir.dot(wq), p.power_w);
             }
             if !accepted {
                 continue;
             }
             let Some(b) = self.bands.index_of(l) else { continue };
             let at = medium.at(p.position);
-            out[b] += at.albedo(l) * at.phase_eval(l, p.dir.dot(wo)) * p.power_w;
+            out[b] += at.albedo(l) * at.phase_eval(l, p.dir.dot(wq)) * p.power_w;
         }
         let r = r2.sqrt();
         let mid_nm = 0.5 * (self.bands.min_nm + self.bands.max_nm);
-        let scale = 1.0 / (super::stratified::gather_volume(medium, x, r, mid_nm) * self.bands.width_nm());
+        let region = fold.map_or(Region::Ball, Region::Ring);
+        let scale = 1.0 / (region_volume(medium, x, r, mid_nm, region) * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         (out, r)
     }

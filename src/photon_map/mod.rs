@@ -31,8 +31,20 @@ pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
 pub use photon::{Photon, PhotonPath, PhotonRecord, oct_decode, oct_encode};
 
+use crate::geometry::AxialFold;
 use glam::DVec3;
 use rayon::prelude::*;
+
+/// `record` turned about `fold`'s axis into its reference half-plane, direction and normal with it.
+pub fn fold_record(fold: &AxialFold, record: &PhotonRecord) -> PhotonRecord {
+    let x = record.position;
+    PhotonRecord {
+        position: fold.point(x),
+        dir: fold.direction(x, record.dir),
+        normal: fold.direction(x, record.normal),
+        ..*record
+    }
+}
 
 /// A photon map: photons stored compactly (positions as f32 relative to the map's origin) in a
 /// kd-tree.
@@ -40,6 +52,8 @@ use rayon::prelude::*;
 pub struct PhotonMap {
     origin: DVec3,
     tree: KdTree<Photon>,
+    /// The axis its photons were folded about, if they were ([`PhotonMap::folded`]).
+    fold: Option<AxialFold>,
 }
 
 impl PhotonMap {
@@ -83,7 +97,18 @@ impl PhotonMap {
     /// The map of photons already encoded relative to `origin` (the kd-tree is built from them
     /// in their order, so equal inputs give equal maps).
     pub fn from_photons(origin: DVec3, photons: Vec<Photon>) -> PhotonMap {
-        PhotonMap { origin, tree: KdTree::build(photons) }
+        PhotonMap { origin, tree: KdTree::build(photons), fold: None }
+    }
+    /// The map marked as holding photons folded about `fold` (their records passed through
+    /// [`fold_record`] before [`PhotonMap::build`]): volume estimates then fold their query
+    /// too and divide by the ring's volume instead of the sphere's.
+    pub fn folded(mut self, fold: AxialFold) -> PhotonMap {
+        self.fold = Some(fold);
+        self
+    }
+    /// The axis the photons were folded about, if they were.
+    pub fn fold(&self) -> Option<&AxialFold> {
+        self.fold.as_ref()
     }
     /// Number of photons.
     pub fn len(&self) -> usize {

@@ -34,6 +34,7 @@
 //!   outside it is accounted for.
 
 use crate::atmosphere::Earth;
+use crate::geometry::AxialFold;
 use crate::media::density::{Density, Moments, ROUNDING};
 use crate::media::{Coefficients, Medium};
 use crate::quadrature::gauss_legendre_7;
@@ -71,6 +72,28 @@ pub struct Profile<'a> {
 /// aerosols), d is their extinction Σ_c σ_c(λ) d_c(h) at `wavelength_nm` (one wavelength for
 /// all photons: their own would give one V_d per band; either tends to (4/3)π r³ as r → 0).
 pub fn gather_volume(medium: &Medium, x: glam::DVec3, r: f64, wavelength_nm: f64) -> f64 {
+    region_volume(medium, x, r, wavelength_nm, Region::Ball)
+}
+
+/// Where an estimate's photons were gathered from.
+#[derive(Clone, Copy, Debug)]
+pub enum Region<'a> {
+    /// The sphere of radius r about x.
+    Ball,
+    /// Every point whose fold lies within r of x's (photons folded about an axis, see
+    /// [`crate::geometry::AxialFold`]): the disc of radius r about x in the half-plane, turned
+    /// about the axis — a ring.
+    Ring(&'a AxialFold),
+}
+
+/// The volume (m³) the photons found in `region` about `x` stand for: [`gather_volume`] for the
+/// ball; for a ring, V_d = ∫_ring d dy / d(x) ([`ring_volume`]) in air stratified in height above
+/// a round Earth centred on the fold's axis, the ring's plain volume elsewhere.
+pub fn region_volume(medium: &Medium, x: glam::DVec3, r: f64, wavelength_nm: f64, region: Region) -> f64 {
+    let weighted = |profile: &Profile, h: f64| match region {
+        Region::Ball => weighted_volume(profile, h, x, r),
+        Region::Ring(fold) => ring_volume(profile, h, fold.coordinates(x), r),
+    };
     match (&medium.coefficients, &medium.density) {
         (Coefficients::Constituents(c), _) => {
             let list = c.list();
@@ -89,15 +112,95 @@ pub fn gather_volume(medium: &Medium, x: glam::DVec3, r: f64, wavelength_nm: f64
             };
             let first = &list[0].profile;
             let profile = Profile { earth: first.earth(), top_m: first.top_m(), d: &d, moments: &moments };
-            weighted_volume(&profile, first.height(x), x, r)
+            weighted(&profile, first.height(x))
         }
         (_, Density::AirProfile(p)) => {
             let (d, moments) = (|h| p.at_height(h), |a, b| p.height_moments(a, b));
             let profile = Profile { earth: p.earth(), top_m: p.top_m(), d: &d, moments: &moments };
-            weighted_volume(&profile, p.height(x), x, r)
+            weighted(&profile, p.height(x))
         }
-        _ => 4.0 / 3.0 * PI * r * r * r,
+        _ => match region {
+            Region::Ball => 4.0 / 3.0 * PI * r * r * r,
+            Region::Ring(fold) => ring_integral(&|_| 1.0, (0.0, f64::INFINITY), fold.coordinates(x), r),
+        },
     }
+}
+
+/// V_d of a ring: ∫ d dy over the points whose (z, ρ) about the fold's axis lie within `r` of
+/// `(z, rho)` (the query's), divided by d at the query's height `h`; the axis passes through the
+/// Earth's centre, so a point's height is |(z, ρ)| − R. On a flat Earth (no fold applies there)
+/// the ball's V_d.
+pub fn ring_volume(profile: &Profile, h: f64, (z, rho): (f64, f64), r: f64) -> f64 {
+    let here = if h < 0.0 { 0.0 } else { (profile.d)(h) };
+    if here <= 0.0 || r <= 0.0 {
+        return f64::INFINITY;
+    }
+    let Earth::Spherical(s) = profile.earth else {
+        return 4.0 / 3.0 * PI * r * r * r / here;
+    };
+    let big_r = s.radius_m;
+    let d = |s: f64| (profile.d)(s - big_r);
+    let integral = ring_integral(&d, (big_r, big_r + profile.top_m), (z, rho), r);
+    if integral > 0.0 { integral / here } else { f64::INFINITY }
+}
+
+/// ∫ d(s) 2πρ′ dA′ over the disc of radius `r` about (z, ρ) in the half-plane ρ′ ≥ 0, s the
+/// distance from the origin and d zero outside [s_lo, s_hi] — the integral of d over the ring
+/// the disc sweeps about the z axis (Pappus: 2πρ · πr² for d ≡ 1 and a disc clear of the axis).
+///
+/// The circle of radius s about the origin, at polar angle ϑ from the axis, crosses the disc for
+/// |ϑ − ϑ₀| ≤ β, 1 − cos β = q = (r² − (s − D)²)/(2sD), with D = |(z, ρ)| and ϑ₀ its angle, and
+/// ∫ 2π s sin ϑ · s dϑ over that arc (within [0, π]) is 2π s² (cos a − cos b) — for a disc
+/// clear of the axis (ρ ≥ r) 2π s² · 2 sin ϑ₀ sin β, sin β = √(q(2 − q)). The substitution
+/// s = D + r sin ψ takes out the square-root ends (β ∝ cos ψ); 7-point Gauss–Legendre panels of
+/// equal width in ψ span at most 8 km of height each, their nodes' sines and cosines
+/// built from each panel's centre by the angle-sum formulas.
+pub fn ring_integral(d: &dyn Fn(f64) -> f64, span: (f64, f64), at: (f64, f64), r: f64) -> f64 {
+    ring_in_panels(d, span, at, r, RING_PANEL_M)
+}
+
+/// Height spanned by one panel of [`ring_integral`] at most, m: twice the sphere's
+/// [`PANEL_M`], since the ring's integrand has no end singularity left after the substitution
+/// (`ring_volumes_are_the_integral_to_a_thousandth`: within 5 × 10⁻⁴ of 100 m panels, measured
+/// 3.0 × 10⁻⁴; 4 km panels 6 × 10⁻⁵, 16 km 1.1 × 10⁻³).
+const RING_PANEL_M: f64 = 8_000.0;
+
+/// [`ring_integral`] on panels spanning at most `panel_m` of height.
+fn ring_in_panels(d: &dyn Fn(f64) -> f64, (s_lo, s_hi): (f64, f64), (z, rho): (f64, f64), r: f64, panel_m: f64) -> f64 {
+    let big_d = z.hypot(rho);
+    let theta = rho.max(0.0).atan2(z);
+    let psi = |s: f64| ((s - big_d) / r).clamp(-1.0, 1.0).asin();
+    let (lo, hi) = (psi(s_lo.max(0.0)), psi(s_hi));
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) || r <= 0.0 {
+        return 0.0;
+    }
+    let clear = rho >= r && r < big_d;
+    let sin_theta = theta.sin();
+    let f = |sin: f64, cos: f64| {
+        let s = big_d + r * sin;
+        if s <= 0.0 {
+            return 0.0;
+        }
+        let q = if big_d > 0.0 { (r * cos).powi(2) / (2.0 * s * big_d) } else { 2.0 };
+        let arc = if clear {
+            2.0 * sin_theta * (q * (2.0 - q)).max(0.0).sqrt()
+        } else {
+            let beta = if q >= 2.0 { PI } else { 2.0 * (0.5 * q).sqrt().asin() };
+            (theta - beta).max(0.0).cos() - (theta + beta).min(PI).cos()
+        };
+        2.0 * PI * s * s * arc * d(s) * r * cos
+    };
+    let panels = (r * (hi - lo) / panel_m).ceil().clamp(1.0, MAX_PANELS) as usize;
+    let half = 0.5 * (hi - lo) / panels as f64;
+    let rule = crate::quadrature::gauss_legendre_7_rule().map(|(x, w)| ((half * x).sin_cos(), w));
+    let mut sum = 0.0;
+    for i in 0..panels {
+        let (sc, cc) = (lo + (2 * i + 1) as f64 * half).sin_cos();
+        for &((sx, cx), w) in &rule {
+            sum += w * f(sc * cx + cc * sx, cc * cx - sc * sx);
+        }
+    }
+    sum * half
 }
 
 /// V_d = ∫_{B(x, r)} d dy / d(x) for `profile` (d taken as zero below the ground, where a table
@@ -316,5 +419,74 @@ mod tests {
         assert!(worst_panels < 5e-4, "panels: largest relative difference {worst_panels:e}");
         // The moments serve most spheres in the air; in the haze, not those far above it.
         assert!(used[0] > 75 && used[1] > 30, "spheres by moments of 150: USA76 {}, haze {}", used[0], used[1]);
+    }
+
+    #[test]
+    fn a_ring_clear_of_the_axis_has_pappus_volume_and_one_about_it_is_a_ball() {
+        let one = |_: f64| 1.0;
+        let (r, rho) = (20_000.0, 6_000_000.0);
+        let v = ring_integral(&one, (0.0, f64::INFINITY), (-700_000.0, rho), r);
+        let want = 2.0 * PI * rho * PI * r * r;
+        assert!((v / want - 1.0).abs() < 1e-9, "{v} vs {want}");
+        let v = ring_integral(&one, (0.0, f64::INFINITY), (3e6, 0.0), r);
+        let want = 4.0 / 3.0 * PI * r * r * r;
+        assert!((v / want - 1.0).abs() < 1e-9, "{v} vs {want}");
+    }
+
+    #[test]
+    fn ring_volumes_agree_with_monte_carlo_in_stratified_air() {
+        // An independent estimate: points drawn uniformly in a box around the ring, kept where
+        // their (z, ρ) fall in the disc, weighted by the air's density over a round Earth of
+        // radius 1 000 km (d = e^{−h/H}, zero below the ground and above 150 km). Discs clear
+        // of the axis, reaching across it, cut by the ground and by the top.
+        let (big_r, top, hs) = (1_000_000.0, 150_000.0, 30_000.0);
+        let d = |s: f64| if s < big_r || s > big_r + top { 0.0 } else { (-(s - big_r) / hs).exp() };
+        let mut rng = crate::rng::Rng::for_task(11, crate::rng::Stream::Test, 0);
+        for (z, rho, r) in [
+            (300_000.0, 1_000_000.0, 60_000.0),
+            (1_050_000.0, 20_000.0, 70_000.0),
+            (-200_000.0, 1_000_000.0, 120_000.0),
+            (0.0, 1_140_000.0, 40_000.0),
+        ] {
+            let want = ring_integral(&d, (big_r, big_r + top), (z, rho), r);
+            let (n, half) = (400_000, rho + r);
+            let mut sum = 0.0;
+            for _ in 0..n {
+                let [a, b] = rng.uniform2();
+                let p = DVec3::new(z + r * (2.0 * rng.uniform() - 1.0), half * (2.0 * a - 1.0), half * (2.0 * b - 1.0));
+                let q = (p.x - z).hypot(p.y.hypot(p.z) - rho);
+                if q <= r {
+                    sum += d(p.length());
+                }
+            }
+            let got = sum / n as f64 * (2.0 * r) * (2.0 * half).powi(2);
+            assert!((got / want - 1.0).abs() < 0.01, "({z}, {rho}, {r}): Monte Carlo {got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn ring_volumes_are_the_integral_to_a_thousandth() {
+        // 300 pseudo-random rings (heights to the top, radii 100 m to 300 km, positions from
+        // the axis to 90° from it) in USA76 air and in a 1.5 km aerosol-like layer on a round
+        // Earth: the 8 km panels against panels of 100 m.
+        let earth = Earth::standard();
+        let Earth::Spherical(sphere) = &earth else { panic!("a round Earth") };
+        let big_r = sphere.radius_m;
+        let usa76 = AirProfile::new(&crate::atmosphere::Atmosphere::usa76(), earth, 2.5e25).expect("USA76");
+        let haze = AirProfile::from_heights(earth, usa76.top_m(), |h| (-h / 1_500.0).exp());
+        let mut rng = crate::rng::Rng::for_task(13, crate::rng::Stream::Test, 0);
+        let mut worst = 0.0f64;
+        for p in [&usa76, &haze] {
+            let d = |s: f64| p.at_height(s - big_r);
+            let span = (big_r, big_r + p.top_m());
+            for _ in 0..150 {
+                let (h, angle) = (rng.uniform() * p.top_m(), rng.uniform() * 0.5 * PI);
+                let r = 100.0 * 3000f64.powf(rng.uniform());
+                let at = ((big_r + h) * angle.cos(), (big_r + h) * angle.sin());
+                let fine = ring_in_panels(&d, span, at, r, 100.0);
+                worst = worst.max((ring_integral(&d, span, at, r) / fine - 1.0).abs());
+            }
+        }
+        assert!(worst < 5e-4, "largest relative difference {worst:e}");
     }
 }

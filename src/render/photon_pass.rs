@@ -6,10 +6,11 @@ use super::stats::{MapReport, Phases};
 use crate::distributed::{self, Rank, assemble, photons::Shot};
 use crate::error::Result;
 use crate::photon::MapKind;
-use crate::photon_map::{BeamMap, Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord};
+use crate::photon_map::{BeamMap, Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord, fold_record};
 use crate::scene::VolumeEstimate;
 use crate::scene::{IntegratorSettings, Scene};
 use crate::timing::Span;
+use rayon::prelude::*;
 
 /// Every stride-th global photon gets a precomputed irradiance estimate (Christensen uses 4).
 pub const IRRADIANCE_STRIDE: usize = 4;
@@ -45,14 +46,26 @@ pub fn build(
     let plan = &scene.plan;
     let mut maps = Maps::default();
     if plan.global_map.on || plan.volume_map.on {
-        let shot = shoot(rank, scene, (MapKind::Global, s.seed), s.photons, "global", (bars, stop), phases);
+        let mut shot = shoot(rank, scene, (MapKind::Global, s.seed), s.photons, "global", (bars, stop), phases);
         if plan.global_map.on {
             let (map, report) = build_map(rank, &shot.sink.surface, "global", s.photons, &shot, phases)?;
             reports.push(report);
             maps.global = Some(map);
         }
         if plan.volume_map.on {
+            // Where the scene is symmetric about the sun's axis, every rank folds its own
+            // photons (per photon, so the map is still independent of the rank count).
+            let fold = crate::scene::symmetry::sun_axis(&scene.world, s).ok();
+            if let Some(f) = &fold {
+                let t = Span::start();
+                shot.sink.volume.par_iter_mut().for_each(|r| *r = fold_record(f, r));
+                phases.add("volume photon folding", t);
+            }
             let (map, report) = build_map(rank, &shot.sink.volume, "volume", s.photons, &shot, phases)?;
+            let map = match fold {
+                Some(f) => map.folded(f),
+                None => map,
+            };
             reports.push(report);
             if s.volume_estimate == VolumeEstimate::Beam {
                 let t = Span::start();

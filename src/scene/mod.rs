@@ -20,6 +20,7 @@ mod settings;
 mod shapes;
 mod sight;
 mod spectrum_spec;
+pub mod symmetry;
 mod tone;
 pub mod twilight;
 
@@ -707,6 +708,7 @@ fn decide_plan(
         min_nm: bands.min_nm,
         photon_sensors: !sensors.is_empty(),
         lowest_sight_deg: sight::lowest_elevation_deg(camera, sensors, &world.lights),
+        axial_words: symmetry::plan_words(world, integrator),
     };
     EffectPlan::decide(&facts, integrator)
 }

@@ -66,6 +66,9 @@ pub struct SceneFacts<'a> {
     /// The lowest elevation (degrees above the horizontal) of any direction the scene measures
     /// light along or receives it from (camera field, sky sensors, suns).
     pub lowest_sight_deg: f64,
+    /// What the volume map's decision says of folding photons about the sun's axis (see
+    /// [`super::symmetry::plan_words`]).
+    pub axial_words: Option<String>,
 }
 
 impl EffectPlan {
@@ -134,7 +137,7 @@ impl EffectPlan {
             final_gather,
             dispersion_splitting,
             participating_media: media_decision(&facts.used_media),
-            volume_map: volume_map_decision(&facts.used_media, facts.photon_sensors, s),
+            volume_map: volume_map_decision(facts, s),
             curved_paths: curved_decision(facts, s),
             inelastic_scattering: inelastic_decision(&facts.used_media),
             progressive_passes: Self::progressive_decision(s),
@@ -353,8 +356,8 @@ fn inelastic_decision(media: &[&Medium]) -> Decision {
     }
 }
 
-fn volume_map_decision(media: &[&Medium], photon_sensors: bool, s: &IntegratorSettings) -> Decision {
-    let mut d = volume_map_storage(media, photon_sensors, s);
+fn volume_map_decision(facts: &SceneFacts, s: &IntegratorSettings) -> Decision {
+    let mut d = volume_map_storage(&facts.used_media, facts.photon_sensors, s);
     if d.on {
         d.why.push_str(match s.volume_estimate {
             VolumeEstimate::Point => {
@@ -364,6 +367,9 @@ fn volume_map_decision(media: &[&Medium], photon_sensors: bool, s: &IntegratorSe
                 "; eye rays read it by the beam estimate (every photon whose disc a chord crosses, one query per chord; volume_estimate = \"beam\")"
             }
         });
+        if let Some(words) = &facts.axial_words {
+            d.why.push_str(words);
+        }
     }
     d
 }

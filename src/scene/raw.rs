@@ -226,6 +226,9 @@ pub struct RawIntegrator {
     /// `[integrator] dispersion_bundles`: interpolate the paths of a camera path's wavelengths
     /// through an absorbing, dispersive medium from four guides where a check allows.
     pub dispersion_bundles: S<bool>,
+    /// `[integrator] axial_symmetry`: fold volume photons about the sun's axis where the scene
+    /// is symmetric about it.
+    pub axial_symmetry: S<bool>,
     /// `[integrator] gather_rays`: final-gather rays per shading point.
     pub gather_rays: S<i64>,
     /// `[integrator] spp`: eye samples per pixel.

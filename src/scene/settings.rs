@@ -134,6 +134,10 @@ pub struct IntegratorSettings {
     /// four guide wavelengths and interpolate the others where a check allows
     /// (`render::eye` bundles); `false` traces every wavelength.
     pub dispersion_bundles: bool,
+    /// Fold volume photons about the sun's axis through the Earth's centre where the scene is
+    /// symmetric about it ([`crate::scene::symmetry`]); `false` keeps them where they were
+    /// stored.
+    pub axial_symmetry: bool,
     /// Final-gather rays per shading point.
     pub gather_rays: usize,
     /// Eye samples per pixel.
@@ -329,6 +333,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         direct: DirectLighting::ShadowRays,
         final_gather: true,
         dispersion_bundles: true,
+        axial_symmetry: true,
         gather_rays: 64,
         spp: 16,
         max_depth: 10,
@@ -395,6 +400,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         (None, DirectLighting::ShadowRays) => true,
     };
     s.dispersion_bundles = r.dispersion_bundles.as_ref().is_none_or(|b| *b.get_ref());
+    s.axial_symmetry = r.axial_symmetry.as_ref().is_none_or(|b| *b.get_ref());
     s.filter = filter(ctx, r)?;
     s.curved = curved(ctx, r)?;
     s.progressive = super::progressive::progressive(ctx, r)?;
