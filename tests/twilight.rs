@@ -287,3 +287,48 @@ fn the_folded_volume_map_matches_the_path_tracer_through_twilight() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The plan folds volume photons about the sun's axis in twilight by default, everywhere with
+/// `axial_symmetry = true`, never with `false`, and says what breaks the symmetry: a second
+/// light, a target box, a shape that is not a sphere about the Earth's centre.
+#[test]
+fn the_plan_folds_photons_only_where_the_scene_is_symmetric_about_the_sun() {
+    let text = std::fs::read_to_string("examples/sky_twilight.toml").expect("the example");
+    let plan = |elevation: &str, integrator: &str, extra: &str| {
+        let t = text.replacen("photons = 0\n", &format!("photons = 100000\n{integrator}"), 1).replacen(
+            "elevation_deg = 0.0",
+            &format!("elevation_deg = {elevation}"),
+            1,
+        ) + extra;
+        let s = morgana::scene::load_scene_str(&t, Path::new("examples/sky_twilight.toml"), Path::new("examples"), "t")
+            .expect("the edited example loads");
+        (s.plan.volume_map.why.clone(), morgana::scene::symmetry::scene_fold(&s).is_ok())
+    };
+    let folded = |(why, on): (String, bool)| {
+        assert_eq!(on, why.contains("volume photons are folded"), "{why}");
+        on
+    };
+    assert!(folded(plan("-4.0", "", "")), "twilight folds by default");
+    assert!(!folded(plan("30.0", "", "")), "a sun above the horizon does not, by default");
+    assert!(folded(plan("30.0", "axial_symmetry = true\n", "")), "unless asked to");
+    assert!(!folded(plan("-4.0", "axial_symmetry = false\n", "")), "never when asked not to");
+    let moon = "\n[[light]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\nspectrum = 1.0\nscale = 0.001\n";
+    let (why, _) = plan("-4.0", "", moon);
+    assert!(why.contains("not folded") && why.contains("not one directional light"), "{why}");
+    let off_centre = "\n[[shape]]\ntype = \"sphere\"\ncenter = [0.0, 10.0, 0.0]\nradius = 1.0\nmaterial = \"ground\"\n";
+    let (why, _) = plan("-4.0", "", off_centre);
+    assert!(why.contains("not folded") && why.contains("shape 2 is not a sphere about the Earth's centre"), "{why}");
+    let target = text.replacen(
+        "azimuth_deg = 90.0",
+        "azimuth_deg = 90.0\ntarget_min = [-1000.0, 0.0, -1000.0]\ntarget_max = [1000.0, 1000.0, 1000.0]",
+        1,
+    );
+    let t = target.replacen("photons = 0\n", "photons = 100000\n", 1).replacen(
+        "elevation_deg = 0.0",
+        "elevation_deg = -4.0",
+        1,
+    );
+    let s = morgana::scene::load_scene_str(&t, Path::new("examples/sky_twilight.toml"), Path::new("examples"), "t")
+        .expect("the edited example loads");
+    assert!(s.plan.volume_map.why.contains("aims at a target box"), "{}", s.plan.volume_map.why);
+}

@@ -55,7 +55,8 @@ pub fn build(
         if plan.volume_map.on {
             // Where the scene is symmetric about the sun's axis, every rank folds its own
             // photons (per photon, so the map is still independent of the rank count).
-            let fold = crate::scene::symmetry::sun_axis(&scene.world, s).ok();
+            let views = crate::scene::symmetry::viewpoints(&scene.camera, &scene.sensors);
+            let fold = crate::scene::symmetry::sun_axis(&scene.world, s, &views).ok();
             if let Some(f) = &fold {
                 let t = Span::start();
                 shot.sink.volume.par_iter_mut().for_each(|r| *r = fold_record(f, r));

@@ -708,7 +708,7 @@ fn decide_plan(
         min_nm: bands.min_nm,
         photon_sensors: !sensors.is_empty(),
         lowest_sight_deg: sight::lowest_elevation_deg(camera, sensors, &world.lights),
-        axial_words: symmetry::plan_words(world, integrator),
+        axial_words: symmetry::plan_words(world, integrator, &symmetry::viewpoints(camera, sensors)),
     };
     EffectPlan::decide(&facts, integrator)
 }

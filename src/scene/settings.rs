@@ -135,9 +135,10 @@ pub struct IntegratorSettings {
     /// (`render::eye` bundles); `false` traces every wavelength.
     pub dispersion_bundles: bool,
     /// Fold volume photons about the sun's axis through the Earth's centre where the scene is
-    /// symmetric about it ([`crate::scene::symmetry`]); `false` keeps them where they were
-    /// stored.
-    pub axial_symmetry: bool,
+    /// symmetric about it ([`crate::scene::symmetry`]): `Some(true)` wherever it is,
+    /// `Some(false)` never, `None` (the default) where the sun is also below the horizon at the
+    /// camera or a sky sensor — twilight, where the unfolded map is biased.
+    pub axial_symmetry: Option<bool>,
     /// Final-gather rays per shading point.
     pub gather_rays: usize,
     /// Eye samples per pixel.
@@ -333,7 +334,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         direct: DirectLighting::ShadowRays,
         final_gather: true,
         dispersion_bundles: true,
-        axial_symmetry: true,
+        axial_symmetry: None,
         gather_rays: 64,
         spp: 16,
         max_depth: 10,
@@ -400,7 +401,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         (None, DirectLighting::ShadowRays) => true,
     };
     s.dispersion_bundles = r.dispersion_bundles.as_ref().is_none_or(|b| *b.get_ref());
-    s.axial_symmetry = r.axial_symmetry.as_ref().is_none_or(|b| *b.get_ref());
+    s.axial_symmetry = r.axial_symmetry.as_ref().map(|b| *b.get_ref());
     s.filter = filter(ctx, r)?;
     s.curved = curved(ctx, r)?;
     s.progressive = super::progressive::progressive(ctx, r)?;

@@ -28,7 +28,7 @@ pub fn warning(scene: &Scene) -> Option<String> {
     let (_, up) = earth.height_grad(scene.camera.position);
     let below = scene.world.lights.iter().position(|l| matches!(l, Light::Directional(d) if d.dir.dot(up) > 0.0))?;
     let name = &scene.world.names.lights[below];
-    match super::symmetry::sun_axis(&scene.world, &scene.integrator) {
+    match super::symmetry::scene_fold(scene) {
         Err(why) => Some(format!(
             "light \"{name}\" is below the horizon at the camera: in the Earth's shadow the volume photon map's estimate is biased high (25–50× the path tracer's zenith radiance at solar zenith 96°, see the book's The sky, twilight), and its photons cannot be folded about the sun's axis ({why}); for twilight use photons = 0 (single scattering) or method = \"path\""
         )),
