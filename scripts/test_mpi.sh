@@ -3,8 +3,9 @@
 # and without the `mpi` feature and checks, on this machine (`mpirun --oversubscribe`), that
 #   1. 1, 2 and 3 ranks (and the MPI build run without mpirun, and the static schedule) give the
 #      same EXR bytes as the non-MPI build, for a scene with global + caustic maps and final
-#      gathering, one with a volume map and one with curved paths (the hot-road mirage: index
-#      field, sun projection map, curved eye paths); report.json lists the ranks and their photons;
+#      gathering, one with a volume map, one with curved paths (the hot-road mirage: index
+#      field, sun projection map, curved eye paths) and the zenith in twilight (a volume map folded
+#      about the sun's axis); report.json lists the ranks and their photons;
 #   2. errors are collective: a missing scene, a too-small --max-map-memory and ranks that do
 #      not see the same scene (another command line; another copy of a file the scene names,
 #      where `unshare -m` can bind-mount one for a single rank) end every rank with one message
@@ -51,6 +52,9 @@ shrink examples/fog_box.toml 40 32 2 4 > "$work/fog.toml"
 # The mirage's atmosphere file by its absolute path (the copy lives in $work).
 shrink examples/mirage_hot_road.toml 40 20 1 4 | sed "s#\.\./atmospheres/#$PWD/atmospheres/#" > "$work/mirage.toml"
 shrink src/scene/default.toml 192 160 8 16 > "$work/slow.toml"
+# The zenith in twilight (sun 4° below the horizon): a volume map folded about the sun's axis,
+# each rank folding its own photons before the map is assembled.
+sed -e "s/^elevation_deg = 0.0/elevation_deg = -4.0/" examples/sky_twilight.toml > "$work/twilight.toml"
 
 check_report() { # report.json ranks emitted
   python3 - "$1" "$2" "$3" <<'EOF'
@@ -71,7 +75,7 @@ EOF
 }
 
 step "same image bytes for 1, 2 and 3 ranks as without MPI"
-for scene in box fog mirage; do
+for scene in box fog mirage twilight; do
   out="$work/out-$scene"
   "$work/morgana-local" render "$work/$scene.toml" --out "$out/local" --photons 20000 --seed 7 --threads 2 --quiet >/dev/null
   ref="$(ls "$out/local"/*.exr)"
@@ -89,6 +93,8 @@ for scene in box fog mirage; do
     ok "$scene: $run: EXR identical ($(stat -c %s "$got") bytes), report lists $n rank(s)"
   done
 done
+grep -q "volume photons are folded" "$work/out-twilight/np2/report.json" || fail "twilight: the plan does not fold the volume map"
+ok "twilight: the volume map is folded about the sun's axis"
 
 step "progressive passes: same bytes on 1, 2 and 3 ranks, and a resume on another rank count"
 # Three passes (fresh maps, shrinking radii, the error layer) of the box (global and caustic maps,
