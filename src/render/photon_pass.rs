@@ -55,8 +55,7 @@ pub fn build(
         if plan.volume_map.on {
             // Where the scene is symmetric about the sun's axis, every rank folds its own
             // photons (per photon, so the map is still independent of the rank count).
-            let views = crate::scene::symmetry::viewpoints(&scene.camera, &scene.sensors);
-            let fold = crate::scene::symmetry::sun_axis(&scene.world, s, &views).ok();
+            let fold = crate::scene::symmetry::scene_fold(scene).ok();
             if let Some(f) = &fold {
                 let t = Span::start();
                 shot.sink.volume.par_iter_mut().for_each(|r| *r = fold_record(f, r));

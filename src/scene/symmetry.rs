@@ -144,11 +144,12 @@ fn sphere_about(shape: &Shape, centre: DVec3) -> bool {
 
 /// Whether the beam of `sun` covers the disc of radius `top_radius` about the axis through
 /// `centre`, widened by the disc's angular radius over the beam's length (photons from the sun's
-/// edge start off the axis so as to cross it at the scene's centre).
+/// edge start off the axis so as to cross it at the scene's centre). A beam with a projection
+/// map has a target box, refused before.
 fn covers(sun: &crate::light::DirectionalLight, centre: DVec3, top_radius: f64) -> bool {
     let d = centre - sun.scene_centre;
     let (cs, ct) = (d.dot(sun.frame.s), d.dot(sun.frame.t));
     let reach = top_radius * 1.001 + sun.sin_max * 4.0 * sun.scene_radius;
     let [[s0, s1], [t0, t1]] = sun.beam;
-    s0 <= cs - reach && cs + reach <= s1 && t0 <= ct - reach && ct + reach <= t1 && sun.cells.is_none()
+    s0 <= cs - reach && cs + reach <= s1 && t0 <= ct - reach && ct + reach <= t1
 }
