@@ -93,12 +93,12 @@ impl Method {
         }
     }
 
-    /// The error Dormand–Prince allows in the ray vector v per step where |v| = `n`, as kink
-    /// cuts ([`kink::KinkSpheres::next_cut`]) judge a straddle by: atol + rtol·n/√3 (a
-    /// component's share of |v|); `None` for the fixed-step methods, which reject nothing.
-    pub fn kink_tolerance(&self, n: f64) -> Option<f64> {
+    /// The error Dormand–Prince allows per step where |v| = `n`, as kink cuts
+    /// ([`kink::KinkSpheres::next_cut`]) judge a step by ([`kink::Tolerance`]); `None` for the
+    /// fixed-step methods, which reject nothing.
+    pub fn kink_tolerance(&self, n: f64) -> Option<kink::Tolerance> {
         match *self {
-            Method::DormandPrince { rtol, atol, .. } => Some(atol + rtol * n / 3f64.sqrt()),
+            Method::DormandPrince { rtol, atol, .. } => Some(kink::Tolerance { rtol, atol, n }),
             Method::Rk4 { .. } | Method::Euler { .. } => None,
         }
     }

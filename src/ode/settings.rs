@@ -24,10 +24,10 @@ pub struct CurvedSettings {
 }
 
 impl CurvedSettings {
-    /// The error Dormand–Prince allows in the ray vector v per step where |v| = `n`, as the
-    /// propagator's kink cuts judge a straddle by: atol + rtol·n/√3 (a component's
-    /// share of |v|); `None` for the fixed-step methods, which reject nothing.
-    pub fn kink_tolerance(&self, n: f64) -> Option<f64> {
+    /// The error Dormand–Prince allows per step where |v| = `n`, as the propagator's kink cuts
+    /// judge a step by ([`super::kink::Tolerance`]); `None` for the fixed-step methods, which
+    /// reject nothing.
+    pub fn kink_tolerance(&self, n: f64) -> Option<super::kink::Tolerance> {
         self.method.kink_tolerance(n)
     }
 }

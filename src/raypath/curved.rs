@@ -168,13 +168,15 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     let Ok(f0) = ode.prime(sample, &state.y) else { return Leg::Done(Event::Lost { position: w.position }) };
     let mut grad = f0.v;
     loop {
-        let tol_v = settings.kink_tolerance(state.y.v.length());
-        let cut = kinks.and_then(|k| k.next_cut(w.position, w.dir, state.y.curvature(grad), KINK_MIN_M, tol_v));
+        let tol = settings.kink_tolerance(state.y.v.length());
+        let cut = kinks.and_then(|k| k.next_cut(w.position, w.dir, state.y.curvature(grad), KINK_MIN_M, tol));
         let h_limit = cut.map_or(h_cap, |t| t.min(h_cap));
-        if grad == DVec3::ZERO && cut.is_some() {
-            // Entering where ∇n = 0 (the top of an atmosphere, where n − 1 tapers to 0 with
-            // zero slope) the starting-step guess has no scale to go by and comes out at
-            // centimetres; the field is smooth up to the next kink, so that is the first step.
+        if cut.is_some() && grad.length() * h_limit <= tol.map_or(0.0, |t| t.v()) {
+            // Entering where ∇n is 0 or nearly (the top of an atmosphere, where n − 1 tapers to
+            // 0 with zero slope: 10⁻²³ m⁻¹ by rounding) the starting-step guess has no scale to
+            // go by and comes out at centimetres, then grows ×10 a step; ∇n changes v by less
+            // than the tolerance all the way to the next kink, up to which the field is smooth,
+            // so that is the first step.
             ode.propose_first_step(h_limit);
         }
         let Ok(step) = ode.step(sample, &mut state, h_limit) else {

@@ -212,7 +212,7 @@ impl EyeTracer<'_> {
         let lanes = at.lanes;
         let settings = self.prop.curved_settings();
         let arc = settings.map_or(0.0, |c| c.arc_tolerance_m);
-        let floor = settings.and_then(|c| c.kink_tolerance(1.0)).map_or(0.0, |t| DIRECTION_STEPS * t);
+        let floor = settings.and_then(|c| c.kink_tolerance(1.0)).map_or(0.0, |t| DIRECTION_STEPS * t.v());
         let tol = Tolerance { position_m: arc, direction_floor: floor };
         let kappa: [f64; MAX_BANDS] = std::array::from_fn(|i| {
             if i < lanes.len { self.prop.n_at(state.medium, lanes.nm[i], state.position) - 1.0 } else { 0.0 }
