@@ -43,11 +43,13 @@
 //! along a path that meets the kink t ahead from depth Δr, the layer grows e-fold every
 //! ℓ = L·t/Δr, a step of length xℓ ends where ∇n = G·e^(x − Δr/L), and the step's error
 //! estimate through a field growing as e^(s/ℓ) is, in v, xℓ·∇n(end)·K(x) and, in r,
-//! (xℓ)²·∇n(end)·K_r(x)/n, with K and K_r sums over the tableau (bounded by
-//! the constants below the code). The longest x whose bounds stay within the controller's tolerance for an error
-//! along the radial direction (one component's share, so the step passes with room) solves
-//! x + m·ln x = b for m = 1, 2, 5 (Newton). The result: one step to where the layer begins
-//! to matter, then steps that shrink with it, none rejected (the sun photon: 31 attempts).
+//! (xℓ)²·∇n(end)·K_r(x)/n, with K and K_r sums over the tableau (bounded by the constants
+//! `KV_MAX`, `KV4`, `KR_MAX`, `KR3` below). The longest x whose bounds stay within the
+//! controller's tolerance for an error along the radial direction (one component's share, so
+//! the step passes with room) solves x + m·ln x = b for m = 1, 2, 5 (Newton). The result: one
+//! step to where the layer begins to matter, then steps that shrink with it, none rejected
+//! (that sun photon: 31 attempts; 26 with the first step at the top of the atmosphere that
+//! `raypath::curved` now takes).
 //!
 //! Spheres of the scene that are not kinks (a sea under a smooth profile) are not step ends: a
 //! step aimed at a surface ends within the prediction's error of it, and one that ends a few
