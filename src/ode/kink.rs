@@ -184,9 +184,9 @@ impl KinkSpheres {
         radii.sort_by(f64::total_cmp);
         radii.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
         let mut kinks: Vec<Kink> = radii.iter().map(|&r| Kink::probe(sample, centre, r)).collect();
-        // Only thin layers are approached: a side whose field grows e-fold over less than a
-        // fraction of the way to the next kink on that side (not a smooth atmosphere's layer,
-        // whose scale height is as long as its layers are thick).
+        // Only thin layers are approached: a side whose e-folding depth fits [`APPROACH_DEPTHS`]
+        // times within the way to the next kink on that side (not a smooth atmosphere's layer,
+        // whose scale height is about as long as its layers are thick).
         for (i, k) in kinks.iter_mut().enumerate() {
             let gaps = [
                 if i > 0 { radii[i] - radii[i - 1] } else { f64::INFINITY },
@@ -286,8 +286,8 @@ fn x_plus_m_ln_x(b: f64, m: f64) -> f64 {
     u.exp()
 }
 
-/// A side of a kink is a layer to approach ([`approach`]) where the field there grows e-fold
-/// over less than this fraction of the way to the next kink on that side.
+/// A side of a kink is a layer to approach ([`approach`]) where this many of its e-folding
+/// depths fit within the way to the next kink on that side.
 const APPROACH_DEPTHS: f64 = 4.0;
 
 /// Bounds of the error a Dormand–Prince step of length h = x·ℓ makes through a field whose
