@@ -12,9 +12,9 @@
 //!   (below 10 z₀ = 66.7 m, where the layer's e^(−h/z₀) outweighs USA76 in every derivative of
 //!   ∇n past the first) are rejected (the goal for the photon pass), and fewer attempts
 //!   are made in all (accepted + rejected, six field samples each) than with the trend alone;
-//! - with the trend alone (a layer the kinks do not describe), fewer are rejected in the layer
-//!   than with plain PI control, which rejects more than 10 % (so the checks can fail), and
-//!   fewer attempts are made;
+//! - with the trend alone (a layer the kinks do not describe), fewer steps are rejected and
+//!   fewer attempts made than with plain PI control, which rejects more than 10 % of those in
+//!   the layer (so the checks can fail);
 //! - each ray ends within the integrator's tolerance, summed over its steps, of a reference at
 //!   tolerance 10⁻¹³.
 //!
