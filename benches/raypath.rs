@@ -30,7 +30,7 @@ use atm_refraction::{EarthShape, Environment, air::us76_atmosphere};
 use criterion::{BenchmarkId, Criterion};
 use glam::DVec3;
 use morgana::ode::accuracy::{Point, pareto, time_at};
-use morgana::ode::{Integrator, Method, OdeError, OdeState, Step};
+use morgana::ode::{Counters, Integrator, Method, OdeError, OdeState, Step};
 use ode_solvers::{Dopri5, OutputType, System, Vector6};
 use std::hint::black_box;
 use std::time::Instant;
@@ -53,11 +53,11 @@ fn exact_end() -> DVec3 {
     DVec3::new(ks.asinh() / K, K * LENGTH * LENGTH / (1.0 + (1.0 + ks * ks).sqrt()), 0.0)
 }
 
-fn morgana_catenary(tol: f64) -> Result<OdeState, OdeError> {
+fn morgana_catenary(tol: f64) -> Result<(OdeState, Counters), OdeError> {
     let mut ode = Integrator::new(Method::dormand_prince(tol, tol))?;
     let mut state = OdeState::launch(&linear, DVec3::ZERO, DVec3::X)?;
     ode.integrate_to(&linear, &mut state, LENGTH)?;
-    Ok(state)
+    Ok((state, ode.counters()))
 }
 
 struct Ray<F>(F);
@@ -74,13 +74,15 @@ impl<F: Fn(DVec3) -> (f64, DVec3)> System<f64, Vector6<f64>> for Ray<F> {
     }
 }
 
-fn ode_solvers_catenary(tol: f64) -> DVec3 {
+/// ode_solvers' endpoint and its (accepted, rejected, field samples).
+fn ode_solvers_catenary(tol: f64) -> (DVec3, [u64; 3]) {
     let y = Vector6::new(0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
     let mut solver = Dopri5::new(Ray(linear), 0.0, LENGTH, LENGTH, y, tol, tol);
     solver.set_output(OutputType::Sparse);
-    solver.integrate().expect("ode_solvers integrates");
+    let stats = solver.integrate().expect("ode_solvers integrates");
     let e = solver.y_out().last().expect("a final state");
-    DVec3::new(e[0], e[1], e[2])
+    let work = [stats.accepted_steps, stats.rejected_steps, stats.num_eval].map(u64::from);
+    (DVec3::new(e[0], e[1], e[2]), work)
 }
 
 fn environment() -> Environment {
@@ -196,8 +198,11 @@ fn point(method: &'static str, parameter: f64, error: f64, time_s: f64) -> Point
 
 fn summary_catenary() {
     let exact = exact_end();
-    let ours = morgana_catenary(TOL).map(|s| s.y.r).unwrap_or(DVec3::NAN);
-    let theirs = ode_solvers_catenary(TOL);
+    let (ours, our_work) = match morgana_catenary(TOL) {
+        Ok((s, c)) => (s.y.r, [c.accepted, c.rejected, c.rhs_evals]),
+        Err(_) => (DVec3::NAN, [0; 3]),
+    };
+    let (theirs, their_work) = ode_solvers_catenary(TOL);
     let t_ours = median_time(7, 0.05, || {
         let _ = black_box(morgana_catenary(black_box(TOL)));
     });
@@ -205,9 +210,16 @@ fn summary_catenary() {
         black_box(ode_solvers_catenary(black_box(TOL)));
     });
     println!("\ncatenary n = 1 + 1e-3 y, 1 km, rtol = atol = {TOL:e}:");
-    println!("  {:<22} {:>12} {:>14}", "", "median", "endpoint error");
-    println!("  {:<22} {:>9.3} µs {:>12.3e} m", "morgana dopri5", t_ours * 1e6, (ours - exact).length());
-    println!("  {:<22} {:>9.3} µs {:>12.3e} m", "ode_solvers Dopri5", t_theirs * 1e6, (theirs - exact).length());
+    println!("  {:<22} {:>12} {:>14}  accepted/rejected/samples", "", "median", "endpoint error");
+    let [a, r, n] = our_work;
+    println!("  {:<22} {:>9.3} µs {:>12.3e} m  {a}/{r}/{n}", "morgana dopri5", t_ours * 1e6, (ours - exact).length());
+    let [a, r, n] = their_work;
+    println!(
+        "  {:<22} {:>9.3} µs {:>12.3e} m  {a}/{r}/{n}",
+        "ode_solvers Dopri5",
+        t_theirs * 1e6,
+        (theirs - exact).length()
+    );
     let ratio = t_theirs / t_ours;
     println!("  morgana is {ratio:.2}x faster (goal >= 3x: {})", if ratio >= 3.0 { "met" } else { "NOT met" });
 }

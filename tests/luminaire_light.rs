@@ -204,6 +204,7 @@ fn photon_map_illuminance_under_a_luminaire_is_i_cos3_over_h2() {
         filter: Filter::Cone { k: k_cone },
         bands: s.bands,
         paths: Paths::All,
+        scatter_rows: None,
     };
     let mut nb = Neighbours::default();
     let h = 2.0;

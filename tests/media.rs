@@ -317,8 +317,9 @@ fn a_glass_sphere_focuses_a_volume_caustic_into_fog() {
             filter: s.integrator.filter,
             bands: s.bands,
             paths: Paths::All,
+            scatter_rows: None,
         };
-        let (v, _) = est.volume_scattered(p, DVec3::Z, &s.world.media[0], &mut Neighbours::default());
+        let (v, _) = est.volume_scattered(p, DVec3::Z, (0, &s.world.media[0]), &mut Neighbours::default());
         v.iter().take(s.bands.count).sum::<f64>()
     };
     let focus = DVec3::new(0.0, -0.45, 0.0);

@@ -37,9 +37,61 @@ impl Medium {
         };
         MediumAt { medium: self, local }
     }
+
+    /// Values in a photon's scattering row in this medium ([`MediumAt::write_scatter_row`]).
+    pub fn scatter_row_len(&self) -> usize {
+        1 + match &self.coefficients {
+            Coefficients::Constituents(c) => 1 + c.list().len(),
+            _ => self.phase.weight_count(),
+        }
+    }
+
+    /// σ_s/σ_t × p(λ, cos θ) at the place and wavelength `row` was written for
+    /// ([`MediumAt::write_scatter_row`]): bit for bit `albedo(λ) · phase_eval(λ, cos θ)` there,
+    /// without evaluating a spectrum or a density.
+    pub fn scattered_from_row(&self, row: &[f64], wavelength_nm: f64, cos_theta: f64) -> f64 {
+        let phase = match &self.coefficients {
+            Coefficients::Constituents(c) => constituent_phase(c, &row[2..], row[1], wavelength_nm, cos_theta),
+            _ => self.phase.eval_with_weights(&row[1..], wavelength_nm, cos_theta),
+        };
+        row[0] * phase
+    }
+}
+
+/// The constituents' mixture p = Σ w_c p_c / Σ w_c for weights `w` with sum `total` (the first
+/// constituent's phase function where nothing scatters).
+fn constituent_phase(c: &Constituents, w: &[f64], total: f64, wavelength_nm: f64, cos_theta: f64) -> f64 {
+    if total <= 0.0 {
+        return c.list()[0].phase.eval(wavelength_nm, cos_theta);
+    }
+    let mut sum = 0.0;
+    for (wi, k) in w.iter().zip(c.list()) {
+        if *wi > 0.0 {
+            sum += wi * k.phase.eval(wavelength_nm, cos_theta);
+        }
+    }
+    sum / total
 }
 
 impl<'a> MediumAt<'a> {
+    /// Writes into `row` ([`Medium::scatter_row_len`] values) what an in-scattering estimate
+    /// needs at this place for light of wavelength λ, apart from the angle: the albedo, then the
+    /// phase function's weights (a mixture's σ_s,i(λ); the constituents' total and their
+    /// scattering w_c). [`Medium::scattered_from_row`] reads it.
+    pub fn write_scatter_row(&self, wavelength_nm: f64, row: &mut [f64]) {
+        row[0] = self.albedo(wavelength_nm);
+        match &self.local {
+            Local::Scaled { .. } => self.medium.phase.write_weights(wavelength_nm, &mut row[1..]),
+            Local::Constituents { c, d } => {
+                let w = c.scattering(wavelength_nm, d);
+                row[1] = w.iter().sum();
+                for (r, v) in row[2..].iter_mut().zip(&w) {
+                    *r = *v;
+                }
+            }
+        }
+    }
+
     /// d(x) of a medium with a density field; for constituents 1 (0 where every profile
     /// vanishes, above the top).
     pub fn density(&self) -> f64 {
@@ -90,17 +142,7 @@ impl<'a> MediumAt<'a> {
             Local::Scaled { .. } => self.medium.phase.eval(wavelength_nm, cos_theta),
             Local::Constituents { c, d } => {
                 let w = c.scattering(wavelength_nm, d);
-                let total: f64 = w.iter().sum();
-                if total <= 0.0 {
-                    return c.list()[0].phase.eval(wavelength_nm, cos_theta);
-                }
-                let mut sum = 0.0;
-                for (wi, k) in w.iter().zip(c.list()) {
-                    if *wi > 0.0 {
-                        sum += wi * k.phase.eval(wavelength_nm, cos_theta);
-                    }
-                }
-                sum / total
+                constituent_phase(c, &w, w.iter().sum(), wavelength_nm, cos_theta)
             }
         }
     }

@@ -38,12 +38,14 @@
 //! within the maximum radius, that radius is r and every photon counts.
 
 use super::filter::{Filter, filter_norm, filter_weight};
+use super::scatter_rows::ScatterRows;
 use super::stratified::{Region, region_volume};
 use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
 use crate::media::Medium;
 use crate::spectrum::{BandValues, Bands, MAX_BANDS};
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// Photons on surfaces tilted more than this (cosine) from the query normal are ignored.
 const MIN_NORMAL_COS: f64 = 0.5;
@@ -85,6 +87,9 @@ pub struct Estimator<'a> {
     pub bands: Bands,
     /// Which photons count.
     pub paths: Paths,
+    /// The volume photons' albedo and phase weights, per medium, filled on first use
+    /// ([`ScatterRows`]); `None`: each estimate computes them for its photons.
+    pub scatter_rows: Option<Arc<ScatterRows>>,
 }
 
 impl Estimator<'_> {
@@ -140,12 +145,21 @@ impl Estimator<'_> {
     /// In a map of folded photons ([`PhotonMap::folded`]) `x` and `wo` are folded too, the
     /// nearest photons are those of the disc about the folded `x`, and the volume they stand for
     /// is the ring it sweeps about the axis ([`super::stratified::Region::Ring`]).
-    pub fn volume_scattered(&self, x: DVec3, wo: DVec3, medium: &Medium, nb: &mut Neighbours) -> (BandValues, f64) {
+    ///
+    /// `id` is `medium`'s index in the world, which selects its [`ScatterRows`].
+    pub fn volume_scattered(
+        &self,
+        x: DVec3,
+        wo: DVec3,
+        (id, medium): (u32, &Medium),
+        nb: &mut Neighbours,
+    ) -> (BandValues, f64) {
         let mut out = [0.0; MAX_BANDS];
         let fold = self.map.fold();
         let (xq, wq) = fold.map_or((x, wo), |f| (f.point(x), f.direction(x, wo)));
         let Some((r2, skip)) = self.gather(xq, nb) else { return (out, 0.0) };
         let transfer = medium.inelastic.transfer.as_ref();
+        let rows = self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium));
         for &(i, _) in &nb.items {
             // Re-emission counts every photon; elastic scattering only those the paths accept,
             // read from the stored flags so that a photon left out is never decoded.
@@ -162,8 +176,15 @@ impl Estimator<'_> {
                 continue;
             }
             let Some(b) = self.bands.index_of(l) else { continue };
-            let at = medium.at(p.position);
-            out[b] += at.albedo(l) * at.phase_eval(l, p.dir.dot(wq)) * p.power_w;
+            let cos = p.dir.dot(wq);
+            let scattered = match rows {
+                Some(rows) => medium.scattered_from_row(rows.of(i), l, cos),
+                None => {
+                    let at = medium.at(p.position);
+                    at.albedo(l) * at.phase_eval(l, cos)
+                }
+            };
+            out[b] += scattered * p.power_w;
         }
         let r = r2.sqrt();
         let mid_nm = 0.5 * (self.bands.min_nm + self.bands.max_nm);

@@ -21,6 +21,7 @@ mod irradiance;
 mod kdtree;
 mod photon;
 pub mod progressive;
+pub mod scatter_rows;
 pub mod stratified;
 
 pub use crate::spectrum::BandValues;
@@ -30,6 +31,7 @@ pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
 pub use photon::{Photon, PhotonPath, PhotonRecord, oct_decode, oct_encode};
+pub use scatter_rows::ScatterRows;
 
 use crate::geometry::AxialFold;
 use glam::DVec3;

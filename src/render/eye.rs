@@ -27,13 +27,14 @@ use crate::geometry::Hit;
 use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Coefficients, Medium, tracking};
-use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths};
+use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::scene::{IntegratorSettings, Scene};
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 mod bundle;
 
@@ -121,8 +122,21 @@ impl<'a> EyeTracer<'a> {
     /// An eye tracer over `scene` reading `maps` with the estimate settings `s` (the scene's
     /// own, or a progressive pass's: see [`IntegratorSettings::for_pass`]).
     pub fn new(scene: &'a Scene, s: &IntegratorSettings, maps: &'a Maps) -> EyeTracer<'a> {
-        let est =
-            |map, k, max_radius, paths| Estimator { map, k, max_radius, filter: s.filter, bands: scene.bands, paths };
+        let est = |map, k, max_radius, paths| Estimator {
+            map,
+            k,
+            max_radius,
+            filter: s.filter,
+            bands: scene.bands,
+            paths,
+            scatter_rows: None,
+        };
+        // Both readings of the volume map weigh its photons alike: one set of rows serves them.
+        let rows = Arc::new(ScatterRows::new(scene.world.media.len()));
+        let volume = |k, max_radius, paths| {
+            let map = maps.volume.as_ref()?;
+            Some(Estimator { scatter_rows: Some(Arc::clone(&rows)), ..est(map, k, max_radius, paths) })
+        };
         // Under shadow rays the maps' direct photons are left out (the rays count that light).
         let shadow = scene.plan.shadow_rays.on;
         let global_paths = if shadow { Paths::DiffuseOnly } else { Paths::All };
@@ -138,8 +152,8 @@ impl<'a> EyeTracer<'a> {
             global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, global_paths)),
             global_all: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, Paths::All)),
             caustic: maps.caustic.as_ref().map(|m| est(m, s.caustic_k, s.caustic_max_radius_m, Paths::All)),
-            volume: maps.volume.as_ref().map(|m| est(m, s.volume_k, s.volume_max_radius_m, volume_paths)),
-            volume_all: maps.volume.as_ref().map(|m| est(m, s.volume_k, s.volume_max_radius_m, Paths::All)),
+            volume: volume(s.volume_k, s.volume_max_radius_m, volume_paths),
+            volume_all: volume(s.volume_k, s.volume_max_radius_m, Paths::All),
             beam: beam(volume_paths),
         }
     }
@@ -718,7 +732,7 @@ impl<'a> EyeTracer<'a> {
             let x = c.origin + s * c.dir;
             let mut src = [0.0; MAX_BANDS];
             if let Some(e) = est {
-                let (v, _) = e.volume_scattered(x, wo, m, &mut sc.nb);
+                let (v, _) = e.volume_scattered(x, wo, (id, m), &mut sc.nb);
                 add_by_band(&mut src, &v, lanes, &|_| 1.0);
             }
             if shadow {

@@ -20,6 +20,9 @@
 //!                4·B·n_irr + 76·n_irr + nodes (the values, the points' sites and the kd-tree)),
 //!                n_irr = n_global/4; the cache then holds (28 + 4·B)·n_irr + nodes
 //!   eye pass     the maps + 2 · 4·W·H·B (rows, then the image) + 12·W·H (linear sRGB)
+//!                + 8·n_vol·Σ_m s_m (each volume photon's scattering row in each medium m that
+//!                reads the volume map, s_m values: `photon_map::scatter_rows`; every medium
+//!                counted)
 //!   outputs      4·W·H·(B + 3) (EXR channels) + 3·W·H (PNG bytes) + the image
 //! ```
 //!
@@ -135,6 +138,8 @@ pub fn estimate(scene: &Scene, pass: &PassSettings, ranks: usize) -> MemoryEstim
     let bands = scene.bands.count as f64;
     let irradiance = (28.0 + 4.0 * bands) * n_irr + nodes_bytes(n_irr);
     let irradiance_build = (8.0 * bands * n_irr).max(4.0 * bands * n_irr + 76.0 * n_irr + nodes_bytes(n_irr));
+    let row_values: usize = scene.world.media.iter().map(|m| m.scatter_row_len()).sum();
+    let scatter_rows = 8.0 * g_volume * row_values as f64;
     let pixels = (scene.camera.width * scene.camera.height) as f64;
     let image = 4.0 * pixels * bands;
     let (acc, se) = if s.progressive.pass_limit() > 1 { (16.0 * pixels * bands, 2.0 * image) } else { (0.0, 0.0) };
@@ -144,7 +149,10 @@ pub fn estimate(scene: &Scene, pass: &PassSettings, ranks: usize) -> MemoryEstim
         ("caustic photon tracing", acc + global_maps + records(c_surface) + group(c_surface, s.caustic_photons)),
         ("caustic map build", acc + global_maps + records(c_surface) + map_bytes(c_surface) + wire(c_surface)),
         ("irradiance cache", acc + global_maps + map_bytes(c_surface) + irradiance_build),
-        ("eye pass", acc + global_maps + map_bytes(c_surface) + irradiance + 2.0 * image + 12.0 * pixels),
+        (
+            "eye pass",
+            acc + global_maps + map_bytes(c_surface) + irradiance + scatter_rows + 2.0 * image + 12.0 * pixels,
+        ),
         // The maps are gone by now (the render returns its image, then the outputs are written).
         ("outputs", image + se + 12.0 * pixels + 4.0 * pixels * (bands + 3.0) + 3.0 * pixels),
     ];

@@ -91,6 +91,7 @@ pub fn build(
             filter: s.filter,
             bands: scene.bands,
             paths: Paths::All,
+            scatter_rows: None,
         };
         let (cache, gathered) = assemble::irradiance(rank.comm, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
         rank.report.irradiance_received_bytes += gathered.received_bytes;

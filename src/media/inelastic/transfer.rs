@@ -65,22 +65,42 @@ impl BandTransfer {
 
     /// T_i(λ', b) for component `i`, linear between nodes.
     pub fn at(&self, i: usize, excitation_nm: f64, b: usize) -> f64 {
+        self.node(excitation_nm).map_or(0.0, |node| self.lerp(i, node, b))
+    }
+
+    /// The node j below λ' and the fraction t past it (`None` below the first node, where T
+    /// is 0).
+    fn node(&self, excitation_nm: f64) -> Option<(usize, f64)> {
         let x = (excitation_nm - self.bands.min_nm) / NODE_STEP_NM;
         if x.is_nan() || x < 0.0 || self.nodes < 2 {
-            return 0.0;
+            return None;
         }
         let j = (x.floor() as usize).min(self.nodes - 2);
-        let t = (x - j as f64).clamp(0.0, 1.0);
+        Some((j, (x - j as f64).clamp(0.0, 1.0)))
+    }
+
+    /// T_i between nodes j and j + 1 at fraction t, band b.
+    fn lerp(&self, i: usize, (j, t): (usize, f64), b: usize) -> f64 {
         let row = |j: usize| self.table[(i * self.nodes + j) * self.bands.count + b];
         (1.0 - t) * row(j) + t * row(j + 1)
     }
 
-    /// Adds Σ_i p_i(cos θ) T_i(λ_p, b) ΔΦ_p to every band of `out` for one stored photon.
+    /// Adds Σ_i p_i(cos θ) T_i(λ_p, b) ΔΦ_p to every band of `out` for one stored photon (the
+    /// node found once per photon, not per band).
     pub fn add_photon(&self, inelastic: &Inelastic, out: &mut BandValues, wavelength_nm: f64, cos: f64, power_w: f64) {
+        let node = self.node(wavelength_nm);
+        let count = self.bands.count;
         for (i, c) in inelastic.components.iter().enumerate() {
             let p = c.phase.eval(wavelength_nm, cos) * power_w;
-            for (b, o) in out.iter_mut().enumerate().take(self.bands.count) {
-                *o += p * self.at(i, wavelength_nm, b);
+            let Some((j, t)) = node else {
+                out.iter_mut().take(count).for_each(|o| *o += p * 0.0);
+                continue;
+            };
+            // The rows of nodes j and j + 1 side by side: the loop over bands vectorises.
+            let at = (i * self.nodes + j) * count;
+            let (lo, hi) = (&self.table[at..at + count], &self.table[at + count..at + 2 * count]);
+            for ((o, a), b) in out.iter_mut().zip(lo).zip(hi) {
+                *o += p * ((1.0 - t) * a + t * b);
             }
         }
     }

@@ -89,6 +89,27 @@ impl Mixture {
         self.weighted_mean(wavelength_nm, |c| c.phase.mean_cosine(wavelength_nm))
     }
 
+    /// Writes the weights of [`Mixture::eval`] at λ into `out` (one per component), so that
+    /// [`Mixture::eval_weighted`] can give the same densities without evaluating σ_s,i again.
+    pub fn weights_into(&self, wavelength_nm: f64, out: &mut [f64]) {
+        for (o, w) in out.iter_mut().zip(self.weights(wavelength_nm)) {
+            *o = w;
+        }
+    }
+
+    /// [`Mixture::eval`] with the weights `w` that [`Mixture::weights_into`] wrote for this
+    /// wavelength: the same sums in the same order, so the same number to the last bit.
+    pub fn eval_weighted(&self, w: &[f64], wavelength_nm: f64, cos_theta: f64) -> f64 {
+        let (mut num, mut den) = (0.0, 0.0);
+        for (c, &w) in self.components.iter().zip(w) {
+            if w > 0.0 {
+                num += w * c.phase.eval(wavelength_nm, cos_theta);
+                den += w;
+            }
+        }
+        num / den
+    }
+
     /// Σ wᵢ f(componentᵢ) / Σ wᵢ.
     fn weighted_mean(&self, wavelength_nm: f64, f: impl Fn(&MixtureComponent) -> f64) -> f64 {
         let (mut num, mut den) = (0.0, 0.0);

@@ -153,6 +153,32 @@ impl PhaseFunction {
         }
     }
 
+    /// How many weights [`PhaseFunction::write_weights`] writes: a mixture's component count,
+    /// 0 for a single phase function.
+    pub fn weight_count(&self) -> usize {
+        match self {
+            PhaseFunction::Mixture(p) => p.components().len(),
+            _ => 0,
+        }
+    }
+
+    /// Writes what [`PhaseFunction::eval`] computes from λ alone (a mixture's weights σ_s,i(λ))
+    /// into `out`, [`PhaseFunction::weight_count`] values.
+    pub fn write_weights(&self, wavelength_nm: f64, out: &mut [f64]) {
+        if let PhaseFunction::Mixture(p) = self {
+            p.weights_into(wavelength_nm, out);
+        }
+    }
+
+    /// [`PhaseFunction::eval`] from the weights [`PhaseFunction::write_weights`] wrote for
+    /// this λ: bit for bit the same density.
+    pub fn eval_with_weights(&self, weights: &[f64], wavelength_nm: f64, cos_theta: f64) -> f64 {
+        match self {
+            PhaseFunction::Mixture(p) => p.eval_weighted(weights, wavelength_nm, cos_theta.clamp(-1.0, 1.0)),
+            _ => self.eval(wavelength_nm, cos_theta),
+        }
+    }
+
     /// Solid-angle density of [`PhaseFunction::sample`]; equal to [`PhaseFunction::eval`]
     /// because every sampler is exact.
     pub fn pdf(&self, wavelength_nm: f64, cos_theta: f64) -> f64 {
