@@ -79,13 +79,13 @@ fn beam_pass(s: &morgana::scene::Scene, pass: u32) -> f64 {
     let first: Vec<_> = sink.volume.into_iter().filter(|p| p.path == PhotonPath::Direct).collect();
     let map = PhotonMap::build(&first);
     let discs = BeamMap::build(&map, 50, 0.2, measure_ratio(pass, DEFAULT_ALPHA).sqrt());
-    let est = BeamEstimator { map: &map, discs: &discs, bands: s.bands, paths: Paths::All };
+    let est = BeamEstimator { map: &map, discs: &discs, bands: s.bands, paths: Paths::All, scatter_rows: None };
     let medium = &s.world.media[0];
     let (mut hits, mut tmp) = (Vec::new(), [0.0; morgana::spectrum::MAX_BANDS]);
     est.gather(DVec3::new(-1.0, 0.0, 0.0), DVec3::X, 2.0, &mut hits);
     let mut l = 0.0;
     for h in &hits {
-        est.photon(h, DVec3::NEG_X, medium, &mut tmp, &mut |_, v| l += (-SIGMA_T * h.t).exp() * v);
+        est.photon(h, DVec3::NEG_X, (0, medium), &mut tmp, &mut |_, v| l += (-SIGMA_T * h.t).exp() * v);
     }
     l
 }
@@ -203,14 +203,14 @@ fn grazing_and_empty_chords_give_finite_non_negative_light() {
     let (sink, _) = shoot(&s.world, &PassSettings::of(&s), MapKind::Global, 50_000, 9, &|_| {});
     let map = PhotonMap::build(&sink.volume);
     let discs = BeamMap::build(&map, 50, 0.2, 1.0);
-    let est = BeamEstimator { map: &map, discs: &discs, bands: s.bands, paths: Paths::All };
+    let est = BeamEstimator { map: &map, discs: &discs, bands: s.bands, paths: Paths::All, scatter_rows: None };
     let medium = &s.world.media[0];
     let (mut hits, mut tmp) = (Vec::new(), [0.0; morgana::spectrum::MAX_BANDS]);
     let mut total = |o: DVec3, d: DVec3, len: f64| {
         est.gather(o, d, len, &mut hits);
         let mut l = 0.0;
         for h in &hits {
-            est.photon(h, -d, medium, &mut tmp, &mut |_, v| l += v);
+            est.photon(h, -d, (0, medium), &mut tmp, &mut |_, v| l += v);
         }
         l
     };

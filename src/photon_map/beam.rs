@@ -35,12 +35,13 @@
 //!   scenes with participating media using photon maps", SIGGRAPH 98
 //!   (`shared/papers/`).
 
-use super::{KdPoint, Neighbours, Paths, PhotonMap};
+use super::{KdPoint, Neighbours, Paths, PhotonMap, ScatterRows};
 use crate::media::Medium;
 use crate::spectrum::{BandValues, Bands, MAX_BANDS};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// The bounding box of no photon: every slab test fails.
 const EMPTY: [f32; 6] =
@@ -197,6 +198,9 @@ pub struct BeamEstimator<'a> {
     pub bands: Bands,
     /// Which photons count for elastic scattering (inelastic re-emission counts every photon).
     pub paths: Paths,
+    /// The photons' albedo and phase weights per medium ([`ScatterRows`]; `None`: computed
+    /// per photon read).
+    pub scatter_rows: Option<Arc<ScatterRows>>,
 }
 
 impl BeamEstimator<'_> {
@@ -214,7 +218,7 @@ impl BeamEstimator<'_> {
         &self,
         hit: &BeamHit,
         wo: DVec3,
-        medium: &Medium,
+        (id, medium): (u32, &Medium),
         tmp: &mut BandValues,
         add: &mut impl FnMut(usize, f64),
     ) {
@@ -238,8 +242,14 @@ impl BeamEstimator<'_> {
             return;
         }
         if let Some(b) = self.bands.index_of(l) {
-            let at = medium.at(p.position);
-            add(b, at.albedo(l) * at.phase_eval(l, cos) * p.power_w * kernel);
+            let scattered = match self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium)) {
+                Some(rows) => medium.scattered_from_row(rows.of(hit.index), l, cos),
+                None => {
+                    let at = medium.at(p.position);
+                    at.albedo(l) * at.phase_eval(l, cos)
+                }
+            };
+            add(b, scattered * p.power_w * kernel);
         }
     }
 }

@@ -143,7 +143,7 @@ impl<'a> EyeTracer<'a> {
         let volume_paths = if shadow { Paths::NotDirect } else { Paths::All };
         let beam = |paths| -> Option<BeamEstimator<'a>> {
             let (map, discs) = (maps.volume.as_ref()?, maps.beam.as_ref()?);
-            Some(BeamEstimator { map, discs, bands: scene.bands, paths })
+            Some(BeamEstimator { map, discs, bands: scene.bands, paths, scatter_rows: Some(Arc::clone(&rows)) })
         };
         EyeTracer {
             scene,
@@ -629,7 +629,7 @@ impl<'a> EyeTracer<'a> {
         // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
         // dozen at each shading point, and a whole chord's tube of discs costs more than that.
         if let (Some(b), Mode::Camera) = (&self.beam, at.mode) {
-            let tr = self.beam_chord(b, c, m, lanes, along, rng, sc);
+            let tr = self.beam_chord(b, c, (id, m), lanes, along, rng, sc);
             if shadow {
                 // Single scattering by shadow rays keeps its own jittered steps along the chord.
                 self.march_steps(c, (id, m), at, None, along, rng, sc);
@@ -654,7 +654,7 @@ impl<'a> EyeTracer<'a> {
         &self,
         b: &BeamEstimator,
         c: &Chord,
-        m: &Medium,
+        (id, m): (u32, &Medium),
         lanes: &Lanes,
         along: &mut Along,
         rng: &mut Rng,
@@ -675,7 +675,7 @@ impl<'a> EyeTracer<'a> {
         let mut tmp = [0.0; MAX_BANDS];
         let wo = -c.dir;
         for h in &hits {
-            b.photon(h, wo, m, &mut tmp, &mut |band, l| {
+            b.photon(h, wo, (id, m), &mut tmp, &mut |band, l| {
                 for i in (0..n).filter(|i| lanes.band[*i] as usize == band) {
                     along.l[i] += along.tr[i] * advance(i, h.t, rng) * l;
                 }
