@@ -9,6 +9,7 @@
 # mirage_superior at their shipped sizes. SHRINK=k divides the image's width and height by k (a
 # copy of the scene beside it, removed after), PHOTONS=n overrides the photon count, SET="key = value"
 # adds a line to the copy's [integrator] (e.g. SET="dispersion_bundles = false" for the per-wavelength
+# paths), THREADS=n the worker threads. Any scene works (the ODE columns are "-" without curved
 # paths). Compare two binaries in one run (one after the other,
 # same machine load) by calling it twice with different binaries and out dirs. Wall times on the
 # shared 2-vCPU machines vary by up to 2× with other work: quote ratios from one run.
@@ -39,6 +40,7 @@ PY
   fi
   extra=()
   if [ -n "${PHOTONS:-}" ]; then extra=(--photons "$PHOTONS"); fi
+  if [ -n "${THREADS:-}" ]; then extra+=(--threads "$THREADS"); fi
   "$BIN" render "$scene" --out "$OUT/$name" --quiet "${extra[@]}" > "$OUT/$name.log" 2>&1
   if [ -n "${SHRINK:-}${SET:-}" ]; then rm -f "$scene"; fi
   python3 - "$OUT/$name/report.json" "$name" <<'PY'
