@@ -99,7 +99,8 @@ fn bvh_handles_tiny_scenes() {
     assert_eq!(empty.intersect(&[], &ray, f64::INFINITY), None);
     assert!(!empty.occluded(&[], &ray, f64::INFINITY));
     assert_eq!(Bvh::default().intersect(&[], &ray, f64::INFINITY), None);
-    for n in 1..=20 {
+    // Up to 40 shapes: trees of at most 33 nodes take the small stack, larger ones the full one.
+    for n in 1..=40 {
         let shapes = random_scene(&mut rng, n, 1.0);
         let rays: Vec<(Ray, f64)> = (0..500).map(|_| random_ray(&mut rng, 1.0)).collect();
         check_against_brute_force(&shapes, &rays);
