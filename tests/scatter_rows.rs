@@ -9,6 +9,7 @@ mod common;
 use glam::DVec3;
 use morgana::photon::{MapKind, PassSettings, shoot};
 use morgana::photon_map::{Estimator, Neighbours, Paths, PhotonMap, ScatterRows};
+use morgana::rng::{Rng, Stream};
 use morgana::scene::{Scene, load_scene_str};
 use std::path::Path;
 use std::sync::Arc;
@@ -27,15 +28,8 @@ fn example(name: &str) -> Scene {
 /// the row's albedo × phase equals the medium's own to the last bit.
 #[test]
 fn a_row_gives_the_albedo_and_phase_the_medium_gives() {
-    // SplitMix64 (Steele, Lea & Flood 2014): uniform numbers in [0, 1).
-    let mut state = 7u64;
-    let mut uniform = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        (z ^ (z >> 31)) as f64 / 2f64.powi(64)
-    };
+    let mut rng = Rng::for_task(7, Stream::Test, 0);
+    let mut uniform = move || rng.uniform();
     let mut checked = 0;
     for name in ["underwater_luminaire", "sky_haze", "sky_noon", "fog_box", "fluorescent_glass_block", "sunset_fog"] {
         let s = example(name);

@@ -127,6 +127,7 @@ impl Sphere {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::{Rng, Stream};
 
     /// A direction (not uniformly distributed: any spread will do here).
     fn unit(uniform: &mut impl FnMut() -> f64) -> DVec3 {
@@ -139,15 +140,8 @@ mod tests {
     /// find (10⁻⁹ r to 10⁻¹⁷ r before it), where rounding decides.
     #[test]
     fn the_inside_shortcut_answers_as_the_roots_do() {
-        let mut state = 11u64;
-        let mut uniform = move || {
-            // SplitMix64 (Steele, Lea & Flood 2014).
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            (z ^ (z >> 31)) as f64 / 2f64.powi(64)
-        };
+        let mut rng = Rng::for_task(11, Stream::Test, 0);
+        let mut uniform = move || rng.uniform();
         let (mut shortcut, mut hits) = (0, 0);
         for sphere in [
             Sphere { center: DVec3::new(0.0, -6.371e6, 0.0), radius: 6.461e6 },
