@@ -20,7 +20,8 @@
 //! Memory: 8 bytes × [`Medium::scatter_row_len`] (1 + the phase function's weights) per photon
 //! and medium read, beside the map's 32 bytes per photon; `crate::render::memory` counts it in
 //! the eye pass. Rows are filled on one thread (a rayon worker waiting for the fill must not
-//! pick up another estimate of the same medium), about 0.1 s per 10⁵ photons.
+//! pick up another estimate of the same medium): one albedo and one set of weights per photon,
+//! what a single k-nearest estimate used to evaluate k times.
 
 use super::PhotonMap;
 use crate::media::Medium;
