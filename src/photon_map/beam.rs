@@ -242,14 +242,8 @@ impl BeamEstimator<'_> {
             return;
         }
         if let Some(b) = self.bands.index_of(l) {
-            let scattered = match self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium)) {
-                Some(rows) => medium.scattered_from_row(rows.of(hit.index), l, cos),
-                None => {
-                    let at = medium.at(p.position);
-                    at.albedo(l) * at.phase_eval(l, cos)
-                }
-            };
-            add(b, scattered * p.power_w * kernel);
+            let rows = self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium));
+            add(b, super::scatter_rows::scattered(rows, medium, hit.index, &p, cos) * p.power_w * kernel);
         }
     }
 }

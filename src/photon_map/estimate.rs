@@ -38,7 +38,7 @@
 //! within the maximum radius, that radius is r and every photon counts.
 
 use super::filter::{Filter, filter_norm, filter_weight};
-use super::scatter_rows::ScatterRows;
+use super::scatter_rows::{self, ScatterRows};
 use super::stratified::{Region, region_volume};
 use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
 use crate::media::Medium;
@@ -177,14 +177,7 @@ impl Estimator<'_> {
             }
             let Some(b) = self.bands.index_of(l) else { continue };
             let cos = p.dir.dot(wq);
-            let scattered = match rows {
-                Some(rows) => medium.scattered_from_row(rows.of(i), l, cos),
-                None => {
-                    let at = medium.at(p.position);
-                    at.albedo(l) * at.phase_eval(l, cos)
-                }
-            };
-            out[b] += scattered * p.power_w;
+            out[b] += scatter_rows::scattered(rows, medium, i, &p, cos) * p.power_w;
         }
         let r = r2.sqrt();
         let mid_nm = 0.5 * (self.bands.min_nm + self.bands.max_nm);

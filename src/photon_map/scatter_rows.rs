@@ -23,7 +23,7 @@
 //! pick up another estimate of the same medium): one albedo and one set of weights per photon,
 //! what a single k-nearest estimate used to evaluate k times.
 
-use super::PhotonMap;
+use super::{PhotonMap, PhotonRecord};
 use crate::media::Medium;
 use std::sync::OnceLock;
 
@@ -59,6 +59,19 @@ impl ScatterRows {
     pub fn rows(&self, map: &PhotonMap, id: u32, medium: &Medium) -> Option<&Rows> {
         let cell = self.per_medium.get(id as usize)?;
         Some(cell.get_or_init(|| fill(map, medium)))
+    }
+}
+
+/// α(λ_p) · p(λ_p; cos θ) of photon `i` (`p`, its record) in `medium`: read from `rows` when
+/// there are some, computed at the photon's place otherwise (the same number either way).
+pub fn scattered(rows: Option<&Rows>, medium: &Medium, i: u32, p: &PhotonRecord, cos: f64) -> f64 {
+    let l = p.wavelength_nm;
+    match rows {
+        Some(rows) => medium.scattered_from_row(rows.of(i), l, cos),
+        None => {
+            let at = medium.at(p.position);
+            at.albedo(l) * at.phase_eval(l, cos)
+        }
     }
 }
 
