@@ -63,7 +63,8 @@ fn panel_sum(f: &dyn Fn(f64) -> f64, a: f64, h: f64, panels: std::ops::Range<usi
 
 /// Nodes and weights of the 16-point Gauss–Legendre rule on [−1, 1], computed once (the
 /// renderer's optical depths through round-Earth air call the rule millions of times).
-fn gauss_legendre_16() -> &'static ([f64; 16], [f64; 16]) {
+/// The 16-point Gauss–Legendre nodes and weights on [−1, 1].
+pub fn gauss_legendre_16() -> &'static ([f64; 16], [f64; 16]) {
     static RULE: std::sync::OnceLock<([f64; 16], [f64; 16])> = std::sync::OnceLock::new();
     RULE.get_or_init(gauss_legendre_16_newton)
 }

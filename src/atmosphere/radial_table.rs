@@ -179,6 +179,26 @@ impl RadialTable {
             .collect();
     }
 
+    /// The Earth the heights are measured above.
+    pub fn earth(&self) -> &Earth {
+        &self.earth
+    }
+
+    /// The heights where the table's intervals start, ascending, and its top (the last), m.
+    pub fn knot_heights_m(&self) -> &[f64] {
+        &self.lo
+    }
+
+    /// The exact q and q′ at height `h` (what the table interpolates), from the atmosphere.
+    pub fn exact(&self, h: f64) -> (f64, f64) {
+        self.atmosphere.reduced_refractivity(h)
+    }
+
+    /// Heights below the top where ∇n is not smooth, ascending, m (the atmosphere's kinks).
+    pub fn kink_heights_m(&self) -> Vec<f64> {
+        self.atmosphere.kink_heights_m()
+    }
+
     /// Number of intervals.
     pub fn intervals(&self) -> usize {
         self.pieces.len()

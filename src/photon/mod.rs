@@ -33,6 +33,9 @@ pub struct PassSettings<'a> {
     pub photon_sensors: bool,
     /// The wavelengths simulated, nm; light re-emitted outside them is absorbed.
     pub range_nm: (f64, f64),
+    /// Whether photons cross a layered upper air in one move ([`crate::raypath::shell`]) where
+    /// the scene has one and no sensor counts photons (on unless a test compares the two).
+    pub layered_shell: bool,
     /// When the run must stop (time budget, cancel flag): batches not started by then are
     /// skipped (and counted in [`PhotonStats::stopped_batches`]).
     pub deadline: crate::timing::Stop<'a>,
@@ -46,6 +49,7 @@ impl<'a> PassSettings<'a> {
             volume_map: scene.plan.volume_map.on,
             photon_sensors: !scene.sensors.is_empty(),
             range_nm: (scene.bands.min_nm, scene.bands.max_nm),
+            layered_shell: true,
             deadline: crate::timing::Stop::default(),
         }
     }
@@ -121,6 +125,8 @@ pub fn shoot_batches(
     let power = chooser.total_power_w() / emitted.max(1) as f64;
     stats.power_per_photon_w = power;
     let prop = Propagator::new(world, pass.curved);
+    // A sensor that counts photons keeps those absorbed in media: none may skip the air.
+    let prop = if pass.layered_shell && !pass.photon_sensors { prop.with_layered_shell(pass.range_nm) } else { prop };
     let stream = match kind {
         MapKind::Caustic => Stream::CausticPhotons,
         MapKind::Global => Stream::GlobalPhotons,

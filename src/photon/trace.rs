@@ -68,6 +68,9 @@ pub struct PhotonStats {
     pub bounces: u64,
     /// Interactions in media.
     pub medium_interactions: u64,
+    /// Photons that crossed the layered upper air by its ray invariant ([`crate::raypath::shell`]).
+    #[serde(default)]
+    pub shell_descents: u64,
     /// Integrator work along curved paths (zero where every path is straight).
     pub curved: crate::raypath::CurvedWorkTotals,
     /// Photons re-emitted by fluorescence, and Raman scatterings (see `inelastic`).
@@ -92,6 +95,7 @@ impl PhotonStats {
         self.stopped_batches += o.stopped_batches;
         self.bounces += o.bounces;
         self.medium_interactions += o.medium_interactions;
+        self.shell_descents += o.shell_descents;
         self.reemitted += o.reemitted;
         self.raman_events += o.raman_events;
         if self.inelastic.len() < o.inelastic.len() {
@@ -153,7 +157,15 @@ pub fn trace(
     let origin = if em.normal == DVec3::ZERO { em.origin } else { spawn_origin(em.origin, em.normal, em.dir) };
     let mut state = RayState { position: origin, dir: em.dir, wavelength_nm: Some(f.lambda), medium };
     let store_volume = pass.volume_map;
+    // The layered upper air, crossed in one move (the pass asks for it only when no sensor
+    // counts photons: the shell's medium then keeps none).
+    let shell = prop.layered_shell();
     for _ in 0..MAX_PHOTON_BOUNCES {
+        if let Some(s) = shell.filter(|s| state.medium == Some(s.medium()))
+            && !cross_shell(&f, s, &mut state, rng, st)
+        {
+            return;
+        }
         let event = prop.next_event_with(&state, &mut |c| {
             let m = world.medium(c.medium)?;
             tracking::sample_interaction(m, f.lambda, c.origin, c.dir, c.length, rng)
@@ -204,6 +216,34 @@ pub fn trace(
         state = next;
     }
     st.truncated_w += f.power_w;
+}
+
+/// Moves a photon that has just entered the layered upper air `shell` going down to where it
+/// leaves the shell's bottom, if it gets there ([`crate::raypath::shell`]): it crosses with
+/// probability e^(−τ), τ = σ_t(λ)·C, and is otherwise absorbed in the shell's medium (which does
+/// not scatter). Returns false when the photon ends there; a photon elsewhere is left as it is.
+fn cross_shell(
+    f: &Flight,
+    shell: &crate::raypath::shell::LayeredShell,
+    state: &mut RayState,
+    rng: &mut Rng,
+    st: &mut PhotonStats,
+) -> bool {
+    let Some(d) = shell.descend(state.position, state.dir, f.lambda) else { return true };
+    st.shell_descents += 1;
+    let tau = f.world.media[shell.medium() as usize].sigma_t(f.lambda) * d.column_m;
+    if rng.uniform() < (-tau).exp() {
+        state.position = d.position;
+        state.dir = d.dir;
+        return true;
+    }
+    st.medium_interactions += 1;
+    if f.kind == MapKind::Caustic {
+        st.missed += 1;
+    } else {
+        st.absorbed_medium_w += f.power_w;
+    }
+    false
 }
 
 /// The second roulette: the direction a re-emitted photon leaves in (its wavelength and power

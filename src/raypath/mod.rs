@@ -26,6 +26,7 @@ pub mod curved;
 pub mod far;
 pub mod kink;
 pub mod projection;
+pub mod shell;
 pub mod trace;
 
 pub use cost::{CurvedWork, CurvedWorkTotals, RayCounts};
@@ -144,6 +145,9 @@ pub struct Propagator<'a> {
     far: Vec<Option<far::FarCone>>,
     /// Per medium: what makes its curved paths cheaper (kinks as step ends, a tabulated index).
     aids: Vec<Aids>,
+    /// The layered upper air photons cross in one move, when the pass asked for it
+    /// ([`Propagator::with_layered_shell`]) and the scene has one ([`shell`]).
+    shell: Option<Box<shell::LayeredShell>>,
     /// Integrator work along curved paths.
     pub work: CurvedWork,
 }
@@ -181,8 +185,26 @@ impl<'a> Propagator<'a> {
             clear,
             far,
             aids,
+            shell: None,
             work: CurvedWork::default(),
         }
+    }
+
+    /// This propagator with the layered upper air of the first medium that has one
+    /// ([`shell::LayeredShell::of`]), tabulated for wavelengths `range_nm`: photon passes cross it
+    /// by the ray invariant ([`Propagator::layered_shell`]).
+    pub fn with_layered_shell(mut self, range_nm: (f64, f64)) -> Propagator<'a> {
+        let Some(c) = self.curved else { return self };
+        self.shell = self.aids.iter().enumerate().find_map(|(i, a)| {
+            let table = a.table.as_ref().filter(|_| self.regions[i].is_some())?;
+            shell::LayeredShell::of(self.world, i as u32, table, range_nm, c.rtol).map(Box::new)
+        });
+        self
+    }
+
+    /// The layered upper air, if [`Propagator::with_layered_shell`] found one.
+    pub fn layered_shell(&self) -> Option<&shell::LayeredShell> {
+        self.shell.as_deref()
     }
 
     /// Whether medium `m` neither absorbs nor scatters light.

@@ -455,14 +455,14 @@ fn eye_pass(
 /// The eye-pass algorithm the scene asks for.
 enum Tracer<'a> {
     PhotonMap(Box<EyeTracer<'a>>),
-    Path(path::PathTracer<'a>),
+    Path(Box<path::PathTracer<'a>>),
 }
 
 impl<'a> Tracer<'a> {
     fn new(scene: &'a Scene, s: &crate::scene::IntegratorSettings, maps: &'a photon_pass::Maps) -> Tracer<'a> {
         match scene.integrator.method {
             Method::PhotonMap => Tracer::PhotonMap(Box::new(EyeTracer::new(scene, s, maps))),
-            Method::Path => Tracer::Path(path::PathTracer::new(scene)),
+            Method::Path => Tracer::Path(Box::new(path::PathTracer::new(scene))),
         }
     }
 }

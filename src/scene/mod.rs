@@ -710,7 +710,20 @@ fn decide_plan(
         lowest_sight_deg: sight::lowest_elevation_deg(camera, sensors, &world.lights),
         axial_words: symmetry::plan_words(world, integrator, &symmetry::viewpoints(camera, sensors)),
     };
-    EffectPlan::decide(&facts, integrator)
+    let mut plan = EffectPlan::decide(&facts, integrator);
+    if plan.curved_paths.on && integrator.method == Method::PhotonMap && sensors.is_empty() {
+        let shell = (0..world.media.len() as u32)
+            .find_map(|i| crate::raypath::shell::LayeredShell::candidate(world, i).map(|h| (i, h)));
+        if let Some((i, (low, top))) = shell {
+            plan.curved_paths.why += &format!(
+                "; photons cross \"{}\" from {top:.0} m down to {low:.0} m above the ground in one move each, by \
+                 Bouguer's invariant (where its table reaches the integrator's rtol; report.json counts the \
+                 crossings as shell_descents)",
+                world.media[i as usize].name
+            );
+        }
+    }
+    plan
 }
 
 fn list_names(names: &[String]) -> String {

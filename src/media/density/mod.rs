@@ -128,4 +128,19 @@ impl Density {
     pub fn is_uniform(&self) -> bool {
         matches!(self, Density::Uniform)
     }
+
+    /// True when d depends on the distance from `centre` alone (within 1 mm of it): uniform, or
+    /// exponential or an atmosphere's air above a spherical Earth centred there.
+    pub fn is_radial_about(&self, centre: DVec3) -> bool {
+        let near = |c: DVec3| (c - centre).length() <= 1e-3;
+        match self {
+            Density::Uniform => true,
+            Density::SphericalExponential(e) => near(e.centre),
+            Density::AirProfile(a) => match a.earth() {
+                crate::atmosphere::Earth::Spherical(s) => near(s.centre),
+                crate::atmosphere::Earth::Flat { .. } => false,
+            },
+            Density::ExponentialHeight(_) | Density::Grid(_) | Density::Fbm(_) => false,
+        }
+    }
 }

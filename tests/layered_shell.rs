@@ -1,0 +1,140 @@
+//! The layered upper air crossed by Bouguer's invariant (`raypath::shell`) against the ray
+//! equation integrated step by step through the same air, and the photon pass with and without it.
+
+use glam::DVec3;
+use morgana::atmosphere::RadialTable;
+use morgana::media::refractive_index::IndexField;
+use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::raypath::shell::LayeredShell;
+use morgana::raypath::{Event, Propagator, RayState};
+use morgana::scene::{Scene, load_scene_str};
+use std::path::Path;
+
+const R: f64 = 6_371_000.0;
+
+/// `sunset_sea` as shipped, with `extra` appended to its text.
+fn sunset_sea(extra: &str) -> Scene {
+    sunset_sea_with(extra, &[])
+}
+
+/// `sunset_sea` with `extra` appended and each (from, to) of `edits` replaced in its text.
+fn sunset_sea_with(extra: &str, edits: &[(&str, &str)]) -> Scene {
+    let path = "examples/sunset_sea.toml";
+    let mut text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}")) + extra;
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replace(from, to);
+    }
+    load_scene_str(&text, Path::new(path), Path::new("examples"), "sunset_sea")
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+fn air(scene: &Scene) -> u32 {
+    scene.world.media.iter().position(|m| m.name == "air").expect("air") as u32
+}
+
+/// The shipped scene has a shell from 1 m above the sea (its highest other shape) to its top at
+/// 90 km, and a photon pass crosses it: the propagator of a photon pass finds it.
+#[test]
+fn sunset_sea_has_a_shell_from_a_metre_above_the_sea_to_its_top() {
+    let scene = sunset_sea("");
+    let prop = Propagator::new(&scene.world, scene.curved()).with_layered_shell((400.0, 700.0));
+    let shell = prop.layered_shell().expect("a shell");
+    assert_eq!(shell.medium(), air(&scene));
+    let (low, top) = shell.heights_m();
+    assert!((low - 1.0).abs() < 1e-6 && (top - 90_000.0).abs() < 1e-6, "{low} {top}");
+    // Without curved paths there is nothing to cross in one move.
+    assert!(Propagator::new(&scene.world, None).with_layered_shell((400.0, 700.0)).layered_shell().is_none());
+}
+
+/// Paths entering the top of the air at 400, 550 and 700 nm, from straight down to 10⁻⁵ short of
+/// tangent at the bottom (impact parameters b = f·n_low·r_low): where the shell puts them on
+/// its bottom, and the density column they crossed, against the ray equation (Dormand–Prince at
+/// rtol = 10⁻¹¹, chords within 1 mm of the arc) followed to an index-matched sphere at the same
+/// radius, summing the density integral of each chord. The shell's table (rtol = 10⁻⁹) holds Δθ
+/// to rtol (6.4 mm at the Earth's radius) and C to 10·rtol (see the module notes).
+#[test]
+fn the_invariant_puts_a_path_where_the_ray_equation_does() {
+    let edits = [("arc_tolerance_m = 0.5", "arc_tolerance_m = 0.001\node_rtol = 1e-11\node_atol = 1e-11")];
+    let scene = sunset_sea_with(
+        "\n[[shape]]\nname = \"bottom\"\ntype = \"sphere\"\ncenter = [0.0, -6371000.0, 0.0]\nradius = 6371001.0\n\
+         interior = \"air\"\nexterior = \"air\"\n",
+        &edits,
+    );
+    let id = air(&scene);
+    let medium = &scene.world.media[id as usize];
+    let Some(IndexField::Atmosphere(atmosphere)) = &medium.index else { panic!("air has an atmosphere") };
+    let curved = scene.curved().expect("curved paths");
+    let rtol = 1e-9;
+    let table = RadialTable::new(atmosphere, rtol).expect("table");
+    let centre = DVec3::new(0.0, -R, 0.0);
+    let (r_low, r_top) = (R + 1.0, R + 90_000.0);
+    let shell =
+        LayeredShell::between(medium, id, &table, centre, (r_low, r_top), (400.0, 700.0), rtol).expect("a shell");
+    let prop = Propagator::new(&scene.world, Some(curved));
+    let r0 = r_top - 1e-3;
+    let mut worst = (0.0f64, 0.0f64, 0.0f64);
+    for lambda in [400.0, 550.0, 700.0] {
+        let k = table.k(lambda);
+        let q = |r: f64| table.at(r - R).expect("inside the table").0;
+        let (n0, n_low) = (1.0 + k * q(r0), 1.0 + k * q(r_low));
+        for f in [0.0, 0.3, 0.6, 0.9, 0.99, 0.999, 0.9999, 0.99999] {
+            let sin0 = f * n_low * r_low / (n0 * r0);
+            let dir = DVec3::new(sin0, -(1.0 - sin0 * sin0).sqrt(), 0.0);
+            let start = centre + DVec3::new(0.0, r0, 0.0);
+            let d = shell.descend(start, dir, lambda).unwrap_or_else(|| panic!("{lambda} nm, f = {f}: no descent"));
+            let mut column = 0.0;
+            let state = RayState { position: start, dir, wavelength_nm: Some(lambda), medium: Some(id) };
+            let event = prop.next_event_with(&state, &mut |c| {
+                column += medium.density.integral_exact(c.origin, c.dir, c.length).expect("column");
+                None
+            });
+            let Event::Surface { hit, dir: end_dir, .. } = event else { panic!("{lambda} nm, f = {f}: {event:?}") };
+            let (dp, dd) = ((d.position - hit.point).length(), d.dir.angle_between(end_dir));
+            let dc = (d.column_m - column).abs() / column;
+            worst = (worst.0.max(dp), worst.1.max(dd), worst.2.max(dc));
+            assert!((d.position - centre).length() - r_low < 1e-6, "on the bottom");
+            // Position: the table's bound on Δθ (rtol·r_low, 6.4 mm) twice over for the
+            // reference's own error; direction: above the 1.5·10⁻⁸ rad floor of `angle_between`;
+            // column: the reference sums straight chords within 1 mm of the arc, up to
+            // ~1 mm / 8 km ≈ 10⁻⁷ of the column on the longest paths (measured: ≤ 3.5·10⁻⁷ at
+            // f = 0.99999, ≤ 3.3·10⁻⁸ elsewhere).
+            assert!(
+                dp < 2.0 * rtol * r_low && dd < 1e-7 && dc < 1e-6,
+                "{lambda} nm, f = {f}: {dp} m, {dd} rad, column {dc:e}"
+            );
+        }
+    }
+    eprintln!("largest differences: position {:.3e} m, direction {:.3e} rad, column {:.3e}", worst.0, worst.1, worst.2);
+}
+
+/// What happens to a photon pass's photons does not depend on whether the shell is crossed in
+/// one move: the shares of the emitted power absorbed in the air, absorbed at the sea and
+/// escaped, and the photons stored, agree within their binomial noise (4 σ), each pass with its
+/// own photons (the shell draws one number per crossing where the steps drew one per tentative
+/// collision, so the two passes' random streams part at the first photon).
+#[test]
+fn a_photon_pass_ends_the_same_with_and_without_the_shell() {
+    let scene = sunset_sea("");
+    let mut pass = PassSettings::of(&scene);
+    let emitted = 40_000u64;
+    let (with, st_with) = shoot(&scene.world, &pass, MapKind::Global, emitted, 11, &|_| {});
+    pass.layered_shell = false;
+    let (without, st_without) = shoot(&scene.world, &pass, MapKind::Global, emitted, 11, &|_| {});
+    assert!(st_with.shell_descents > emitted / 2, "the shell was used: {}", st_with.shell_descents);
+    assert_eq!(st_without.shell_descents, 0);
+    let total = st_with.power_per_photon_w * emitted as f64;
+    let share = |w: f64| w / total;
+    for (name, a, b) in [
+        ("absorbed in the air", st_with.absorbed_medium_w, st_without.absorbed_medium_w),
+        ("absorbed at the sea", st_with.absorbed_surface_w, st_without.absorbed_surface_w),
+        ("escaped", st_with.escaped_w, st_without.escaped_w),
+    ] {
+        let (pa, pb) = (share(a), share(b));
+        let sigma = ((pa * (1.0 - pa) + pb * (1.0 - pb)) / emitted as f64).sqrt().max(1.0 / emitted as f64);
+        assert!((pa - pb).abs() < 4.0 * sigma, "{name}: {pa} with, {pb} without (σ {sigma})");
+    }
+    let (a, b) = (with.surface.len() as f64 / emitted as f64, without.surface.len() as f64 / emitted as f64);
+    let sigma = ((a * (1.0 - a) + b * (1.0 - b)) / emitted as f64).sqrt();
+    assert!((a - b).abs() < 4.0 * sigma, "stored: {a} with, {b} without");
+}
