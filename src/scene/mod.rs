@@ -716,8 +716,8 @@ fn decide_plan(
             .find_map(|i| crate::raypath::shell::LayeredShell::candidate(world, i).map(|h| (i, h)));
         if let Some((i, (low, top))) = shell {
             plan.curved_paths.why += &format!(
-                "; photons cross \"{}\" from {top:.0} m down to {low:.0} m above the ground in one move each, by \
-                 Bouguer's invariant (where its table reaches the integrator's rtol; report.json counts the \
+                "; photons that enter \"{}\" through its top going down cross it from {top:.0} m to {low:.0} m above \
+                 the ground in one move each, by Bouguer's invariant (where its table reaches the integrator's rtol; report.json counts the \
                  crossings as shell_descents)",
                 world.media[i as usize].name
             );
