@@ -106,6 +106,8 @@ pub struct LayeredShell {
     earth_radius: f64,
     r_low: f64,
     r_top: f64,
+    /// q at the bottom.
+    q_low: f64,
     table: RadialTable,
     density: crate::media::density::Density,
     tables: [ZTable; 3],
@@ -168,6 +170,7 @@ impl LayeredShell {
             earth_radius: s.radius_m,
             r_low,
             r_top,
+            q_low: table.exact(r_low - s.radius_m).0,
             table: table.clone(),
             density: m.density.clone(),
             tables: std::array::from_fn(|_| ZTable { k: 0.0, values: Vec::new() }),
@@ -326,7 +329,7 @@ impl LayeredShell {
 
     /// Δθ and C for the path with z_low = π/2 − `zc` at factor `k`, by the shared rule.
     fn fast(&self, nodes: &[Node], k: f64, zc: f64) -> Pair {
-        let q_low = self.q(self.r_low);
+        let q_low = self.q_low;
         let u_low = (1.0 + k * q_low) * self.r_low;
         let (cos_z, sin_z) = zc.sin_cos();
         let b = u_low * sin_z;
@@ -421,7 +424,7 @@ impl LayeredShell {
         let across = dir - cos0 * up;
         let sin0 = across.length();
         let k = self.table.k(wavelength_nm);
-        let (n0, n_low) = (1.0 + k * self.q(r0), 1.0 + k * self.q(self.r_low));
+        let (n0, n_low) = (1.0 + k * self.q(r0), 1.0 + k * self.q_low);
         let b = n0 * r0 * sin0;
         let u_low = n_low * self.r_low;
         if b >= u_low {
