@@ -194,11 +194,6 @@ impl RadialTable {
         self.atmosphere.reduced_refractivity(h)
     }
 
-    /// Heights below the top where ∇n is not smooth, ascending, m (the atmosphere's kinks).
-    pub fn kink_heights_m(&self) -> Vec<f64> {
-        self.atmosphere.kink_heights_m()
-    }
-
     /// Number of intervals.
     pub fn intervals(&self) -> usize {
         self.pieces.len()

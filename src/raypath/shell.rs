@@ -183,7 +183,8 @@ impl LayeredShell {
         if !shell.no_duct(ks[2]) {
             return None;
         }
-        let nodes = shell.nodes();
+        let kinks = m.index.as_ref().map(|f| f.kink_radii_m()).unwrap_or_default();
+        let nodes = shell.nodes(&kinks);
         for (i, k) in ks.iter().enumerate() {
             shell.tables[i] = shell.tabulate(&nodes, *k, rtol)?;
         }
@@ -227,7 +228,7 @@ impl LayeredShell {
             .shapes
             .iter()
             .zip(&world.prims)
-            .filter(|(sh, p)| p.interior == Some(medium) && p.exterior != Some(medium) && about(sh).is_some())
+            .filter(|(_, p)| p.interior == Some(medium) && p.exterior != Some(medium))
             .filter_map(|(sh, _)| about(sh))
             .fold(f64::INFINITY, f64::min);
         if !r_top.is_finite() {
@@ -251,11 +252,6 @@ impl LayeredShell {
         self.medium
     }
 
-    /// The bottom and top radii of the shell, m.
-    pub fn radii_m(&self) -> (f64, f64) {
-        (self.r_low, self.r_top)
-    }
-
     /// Heights of the bottom and top above the Earth, m.
     pub fn heights_m(&self) -> (f64, f64) {
         (self.r_low - self.earth_radius, self.r_top - self.earth_radius)
@@ -273,8 +269,7 @@ impl LayeredShell {
     }
 
     /// Whether n·r increases with r through the shell at the largest K: checked at every knot of
-    /// the index table and midway between (where the table is a cubic, q′ is smooth), and 1 m
-    /// apart in between.
+    /// the index table and every metre between (within an interval the table is a cubic).
     fn no_duct(&self, k: f64) -> bool {
         let (h_low, h_top) = self.heights_m();
         let knots = self.table.knot_heights_m();
@@ -284,7 +279,7 @@ impl LayeredShell {
         };
         let mut prev = h_low;
         for &h in knots.iter().filter(|h| **h > h_low && **h < h_top).chain([h_top].iter()) {
-            let steps = ((h - prev) / 1.0).ceil().clamp(1.0, 1e6) as usize;
+            let steps = (h - prev).ceil().clamp(1.0, 1e6) as usize; // 1 m apart
             if !(0..=steps).all(|i| grows(prev + (h - prev) * i as f64 / steps as f64)) {
                 return false;
             }
@@ -297,12 +292,10 @@ impl LayeredShell {
     /// first piece (from the bottom to the first kink) panels halving in width toward t = 0, down
     /// to 2⁻⁴⁰ of it (the integrands bend at t ≈ cos z_low·√(r_low/2), at any scale as the path
     /// nears tangency); on each piece above, [`UPPER_PANELS`] equal panels.
-    fn nodes(&self) -> Vec<Node> {
+    fn nodes(&self, kink_radii: &[f64]) -> Vec<Node> {
         let (r_low, r_top) = (self.r_low, self.r_top);
         let mut breaks = vec![0.0];
-        breaks.extend(
-            kink_radii(&self.table).into_iter().filter(|r| *r > r_low && *r < r_top).map(|r| (r - r_low).sqrt()),
-        );
+        breaks.extend(kink_radii.iter().filter(|r| **r > r_low && **r < r_top).map(|r| (r - r_low).sqrt()));
         breaks.push((r_top - r_low).sqrt());
         let mut panels = Vec::new();
         let first = breaks[1];
@@ -473,12 +466,6 @@ impl ZTable {
 /// one at the vertical.
 fn complement(w: f64) -> f64 {
     FRAC_PI_2 * (1.0 - w).powi(GRADING)
-}
-
-/// The radii of the table's atmosphere's kinks (where the integrands' slopes jump).
-fn kink_radii(table: &RadialTable) -> Vec<f64> {
-    let Earth::Spherical(s) = table.earth() else { return Vec::new() };
-    table.kink_heights_m().into_iter().map(|h| s.radius_m + h).collect()
 }
 
 /// The distance from `c` of the corner of `b` farthest from it.
