@@ -1,12 +1,17 @@
 //! `morgana refraction`: astronomical refraction through an atmosphere, as a table, a CSV, a
 //! dispersion line or the flattened sun (the work is [`crate::atmosphere::refraction`]); without
 //! `--atmosphere`, through the model atmosphere of the observer's conditions, by quadrature of
-//! the refraction integral or by the ray trace.
+//! the refraction integral or by the ray trace. With `--ground-distances-km`, terrestrial
+//! refraction: where the rays are at those distances along the ground.
 
 use crate::atmosphere::dispersion::Ciddor;
-use crate::atmosphere::refraction::model::{ModelAtmosphere, Observer, Refractivity};
+use crate::atmosphere::refraction::model::{
+    MODEL_EARTH_RADIUS_M, ModelAtmosphere, Observer, Refractivity, TOP_M, TROPOPAUSE_M,
+};
 use crate::atmosphere::refraction::model_table::{ModelMethod, model_table};
 use crate::atmosphere::refraction::report::{dispersion, sun_text, table};
+use crate::atmosphere::refraction::terrestrial::{RadialAir, radial_air};
+use crate::atmosphere::refraction::terrestrial_table::terrestrial_table;
 use crate::atmosphere::refraction::{Settings, Tracer};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
@@ -80,12 +85,21 @@ pub struct RefractionArgs {
     /// between the first and the last: the dispersion behind the green rim of the setting sun.
     #[arg(long, value_delimiter = ',')]
     pub wavelengths_nm: Option<Vec<f64>>,
+    /// Terrestrial refraction instead: where each ray of --apparent-altitudes-deg is at these
+    /// distances along the ground (km, comma-separated) — its height, its elevation, and the
+    /// straight line's height beside it — by quadrature of Bouguer's invariant (air whose index
+    /// depends on height alone; a duct on a ray's path is an error).
+    #[arg(long, value_delimiter = ',')]
+    pub ground_distances_km: Option<Vec<f64>>,
 }
 
 /// Runs the command; the text to print.
 pub fn run(args: &RefractionArgs) -> Result<String> {
     if let Some(csv) = &args.csv {
         super::check_output_file("--csv", csv)?;
+    }
+    if let Some(distances) = &args.ground_distances_km {
+        return run_terrestrial(args, distances);
     }
     let Some(atmosphere_name) = &args.atmosphere else { return run_model(args) };
     if args.apparent_altitudes_deg.is_empty() {
@@ -115,11 +129,78 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
     Ok(out)
 }
 
+/// The terrestrial table (`--ground-distances-km`), through `--atmosphere` or the model.
+fn run_terrestrial(args: &RefractionArgs, distances_km: &[f64]) -> Result<String> {
+    let refuse =
+        |flag: &str| Err(Error::input(None, format!("{flag} is not used with --ground-distances-km; drop it")));
+    if args.wavelengths_nm.is_some() {
+        return refuse("--wavelengths-nm");
+    }
+    if args.zenith_table_deg.is_some() {
+        return refuse("--zenith-table-deg");
+    }
+    if args.method == MethodArg::Trace {
+        return refuse("--method trace");
+    }
+    if distances_km.is_empty() || args.apparent_altitudes_deg.is_empty() {
+        return Err(Error::input(None, "--ground-distances-km: give at least one distance and one apparent altitude"));
+    }
+    let (h0, alts) = (args.observer_height_m, &args.apparent_altitudes_deg);
+    let table = if let Some(name) = &args.atmosphere {
+        let atmosphere = crate::atmosphere::resolve(name)?;
+        let air = radial_air(&atmosphere, args.wavelength_nm)
+            .map_err(|e| Error::input(None, format!("--atmosphere {name}: {e}")))?;
+        let title = format!("atmosphere \"{}\", {} nm", atmosphere.name, args.wavelength_nm);
+        terrestrial_table(&air, title, h0, alts, distances_km)?
+    } else {
+        let model = model_atmosphere(args)?;
+        let air = RadialAir {
+            refractivity: model,
+            kink_heights_m: vec![TROPOPAUSE_M],
+            ground_radius_m: MODEL_EARTH_RADIUS_M,
+            top_m: TOP_M,
+        };
+        let o = &model.observer;
+        let title = format!(
+            "model atmosphere of Hohenkerk & Sinclair, {} nm, {} hPa, {:.2} °C, relative humidity {}, lapse rate {} K/m at the observer",
+            o.wavelength_nm,
+            o.pressure_hpa,
+            o.temperature_k - 273.15,
+            o.humidity,
+            o.lapse_k_per_m
+        );
+        terrestrial_table(&air, title, h0, alts, distances_km)?
+    };
+    let mut out = table.to_text();
+    if let Some(path) = &args.csv {
+        table.write_csv(path)?;
+        out.push_str(&format!("wrote {}\n", path.display()));
+    }
+    Ok(out)
+}
+
 /// The model-atmosphere table (no `--atmosphere`).
 fn run_model(args: &RefractionArgs) -> Result<String> {
     if args.wavelengths_nm.is_some() {
         return Err(Error::input(None, "--wavelengths-nm needs --atmosphere; run the model table once per wavelength"));
     }
+    let model = model_atmosphere(args)?;
+    let zeniths = zenith_list(args)?;
+    let method = match args.method {
+        MethodArg::Quadrature => ModelMethod::Quadrature,
+        MethodArg::Trace => ModelMethod::Trace,
+    };
+    let t = model_table(&model, &zeniths, method)?;
+    let mut out = t.to_text();
+    if let Some(path) = &args.csv {
+        t.write_csv(path)?;
+        out.push_str(&format!("wrote {}\n", path.display()));
+    }
+    Ok(out)
+}
+
+/// The model atmosphere of the observer's conditions (the options, or their defaults).
+fn model_atmosphere(args: &RefractionArgs) -> Result<ModelAtmosphere> {
     let d = Observer::default();
     let observer = Observer {
         pressure_hpa: args.pressure_hpa.unwrap_or(d.pressure_hpa),
@@ -134,19 +215,7 @@ fn run_model(args: &RefractionArgs) -> Result<String> {
         RefractivityArg::Ciddor => Refractivity::Ciddor(Ciddor::new(450.0).map_err(|e| Error::input(None, e))?),
         RefractivityArg::HohenkerkSinclair => Refractivity::HohenkerkSinclair,
     };
-    let model = ModelAtmosphere::new(observer, law).map_err(|e| Error::input(None, e))?;
-    let zeniths = zenith_list(args)?;
-    let method = match args.method {
-        MethodArg::Quadrature => ModelMethod::Quadrature,
-        MethodArg::Trace => ModelMethod::Trace,
-    };
-    let t = model_table(&model, &zeniths, method)?;
-    let mut out = t.to_text();
-    if let Some(path) = &args.csv {
-        t.write_csv(path)?;
-        out.push_str(&format!("wrote {}\n", path.display()));
-    }
-    Ok(out)
+    ModelAtmosphere::new(observer, law).map_err(|e| Error::input(None, e))
 }
 
 /// Most rows of a zenith table.

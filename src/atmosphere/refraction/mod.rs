@@ -22,8 +22,10 @@
 //!
 //! [`formulas`] holds the classical formulas the traced values are compared with (Bennett 1982,
 //! Saemundsson 1986, their pressure–temperature factor); [`sun`] the apparent shape of the sun
-//! near the horizon; [`report`] the table and CSV of `morgana refraction`
-//! line.
+//! near the horizon; [`report`] the table and CSV of `morgana refraction`. [`terrestrial`] is
+//! the other question refraction answers, for targets on the Earth: where a ray from the
+//! observer is at a given distance along the ground, by quadrature of Bouguer's invariant
+//! ([`terrestrial_table`]: `morgana refraction --ground-distances-km`).
 //!
 //! # References
 //! - W. M. Smart, *Textbook on Spherical Astronomy*, 6th ed. (rev. R. M. Green), Cambridge 1977,
@@ -37,9 +39,21 @@ pub mod model_trace;
 pub mod quadrature;
 pub mod report;
 pub mod sun;
+pub mod terrestrial;
+pub mod terrestrial_table;
 mod trace;
 
 pub use trace::{Outcome, Settings, Trace, Tracer};
+
+/// Writes `text` to the CSV file `path` atomically (the `--csv` option of `morgana refraction`).
+fn write_csv(path: &std::path::Path, text: &str) -> crate::error::Result<()> {
+    use crate::error::Error;
+    let staged =
+        crate::atomic::Staged::new(path).map_err(|e| Error::input(None, format!("--csv {}: {e}", path.display())))?;
+    let fail = |e: std::io::Error| Error::internal(format!("cannot write {}: {e}", path.display()));
+    std::fs::write(&staged.temp, text).map_err(fail)?;
+    staged.commit().map_err(fail)
+}
 
 /// Arcseconds per radian (648000/π).
 pub const ARCSEC_PER_RAD: f64 = 648_000.0 / std::f64::consts::PI;

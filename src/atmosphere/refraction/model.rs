@@ -182,6 +182,21 @@ impl ModelAtmosphere {
         (n, rd / r_m)
     }
 
+    /// n − 1 and dn/dr at radius `r_m` (the layer by the radius; 0 and 0 from the top up), with
+    /// n − 1 to its own relative precision (not through 1 + (n − 1)).
+    pub fn refractivity_dndr(&self, r_m: f64) -> (f64, f64) {
+        if r_m >= self.r_top_m {
+            return (0.0, 0.0);
+        }
+        let r = Dual::variable(r_m);
+        let (t, p, pw) = match self.layer_of(r_m) {
+            Layer::Troposphere => self.troposphere(r),
+            Layer::Stratosphere => self.stratosphere(r),
+        };
+        let nr = self.refractivity(t, p, pw);
+        (nr.v, nr.d)
+    }
+
     /// T (K), p and p_w (hPa) in the troposphere.
     fn troposphere(&self, r: Dual) -> (Dual, Dual, Dual) {
         let o = &self.observer;
@@ -207,6 +222,13 @@ impl ModelAtmosphere {
                 (p * a - pw * 11.2684e-6) / t
             }
         }
+    }
+}
+
+/// Heights above the model's sea level ([`MODEL_EARTH_RADIUS_M`]).
+impl super::terrestrial::RadialIndex for ModelAtmosphere {
+    fn refractivity_slope(&self, h_m: f64) -> (f64, f64) {
+        self.refractivity_dndr(MODEL_EARTH_RADIUS_M + h_m)
     }
 }
 

@@ -7,7 +7,6 @@ use super::ARCSEC_PER_RAD;
 use super::model::{ModelAtmosphere, Refractivity};
 use super::model_trace::traced_refraction;
 use super::quadrature::refraction;
-use crate::atomic::Staged;
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -119,10 +118,7 @@ impl ModelTable {
                 r.refraction_rad * ARCSEC_PER_RAD
             );
         }
-        let staged = Staged::new(path).map_err(|e| Error::input(None, format!("--csv {}: {e}", path.display())))?;
-        let fail = |e: std::io::Error| Error::internal(format!("cannot write {}: {e}", path.display()));
-        std::fs::write(&staged.temp, text).map_err(fail)?;
-        staged.commit().map_err(fail)
+        super::write_csv(path, &text)
     }
 }
 

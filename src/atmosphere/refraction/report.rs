@@ -6,8 +6,7 @@
 use super::formulas::{bennett_rad, conditions_factor, saemundsson_rad};
 use super::sun::{Flattening, SUN_DIAMETER_RAD, flattened_disc};
 use super::{ARCSEC_PER_RAD, Outcome, Trace, Tracer};
-use crate::atomic::Staged;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -101,10 +100,7 @@ impl Table {
             };
             let _ = writeln!(text, "{},{t},{rr}", r.apparent_altitude_deg);
         }
-        let staged = Staged::new(path).map_err(|e| Error::input(None, format!("--csv {}: {e}", path.display())))?;
-        let fail = |e: std::io::Error| Error::internal(format!("cannot write {}: {e}", path.display()));
-        std::fs::write(&staged.temp, text).map_err(fail)?;
-        staged.commit().map_err(fail)
+        super::write_csv(path, &text)
     }
 }
 
