@@ -10,8 +10,8 @@ use crate::atmosphere::refraction::model::{
 };
 use crate::atmosphere::refraction::model_table::{ModelMethod, model_table};
 use crate::atmosphere::refraction::report::{dispersion, sun_text, table};
-use crate::atmosphere::refraction::terrestrial::{RadialAir, radial_air};
-use crate::atmosphere::refraction::terrestrial_table::terrestrial_table;
+use crate::atmosphere::refraction::terrestrial::{RadialAir, RadialIndex, radial_air};
+use crate::atmosphere::refraction::terrestrial_table::{sight_table, terrestrial_table};
 use crate::atmosphere::refraction::{Settings, Tracer};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
@@ -91,6 +91,12 @@ pub struct RefractionArgs {
     /// depends on height alone; a duct on a ray's path is an error).
     #[arg(long, value_delimiter = ',')]
     pub ground_distances_km: Option<Vec<f64>>,
+    /// Lines of sight instead: for each target DISTANCE_KM:HEIGHT_M (comma-separated, e.g.
+    /// 50:300,120:1500) the apparent elevation(s) at which it is seen (several in a mirage, none
+    /// when hidden), the straight line's elevation, and how high the horizon hides things at
+    /// that distance; the header gives the horizon's distance and dip.
+    #[arg(long, value_delimiter = ',')]
+    pub targets: Option<Vec<String>>,
 }
 
 /// Runs the command; the text to print.
@@ -98,8 +104,8 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
     if let Some(csv) = &args.csv {
         super::check_output_file("--csv", csv)?;
     }
-    if let Some(distances) = &args.ground_distances_km {
-        return run_terrestrial(args, distances);
+    if args.ground_distances_km.is_some() || args.targets.is_some() {
+        return run_terrestrial(args);
     }
     let Some(atmosphere_name) = &args.atmosphere else { return run_model(args) };
     if args.apparent_altitudes_deg.is_empty() {
@@ -130,9 +136,12 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
 }
 
 /// The terrestrial table (`--ground-distances-km`), through `--atmosphere` or the model.
-fn run_terrestrial(args: &RefractionArgs, distances_km: &[f64]) -> Result<String> {
-    let refuse =
-        |flag: &str| Err(Error::input(None, format!("{flag} is not used with --ground-distances-km; drop it")));
+fn run_terrestrial(args: &RefractionArgs) -> Result<String> {
+    let mode = if args.targets.is_some() { "--targets" } else { "--ground-distances-km" };
+    let refuse = |flag: &str| Err(Error::input(None, format!("{flag} is not used with {mode}; drop it")));
+    if args.targets.is_some() && args.ground_distances_km.is_some() {
+        return refuse("--ground-distances-km");
+    }
     if args.wavelengths_nm.is_some() {
         return refuse("--wavelengths-nm");
     }
@@ -142,41 +151,76 @@ fn run_terrestrial(args: &RefractionArgs, distances_km: &[f64]) -> Result<String
     if args.method == MethodArg::Trace {
         return refuse("--method trace");
     }
-    if distances_km.is_empty() || args.apparent_altitudes_deg.is_empty() {
-        return Err(Error::input(None, "--ground-distances-km: give at least one distance and one apparent altitude"));
-    }
-    let (h0, alts) = (args.observer_height_m, &args.apparent_altitudes_deg);
-    let table = if let Some(name) = &args.atmosphere {
+    if let Some(name) = &args.atmosphere {
         let atmosphere = crate::atmosphere::resolve(name)?;
         let air = radial_air(&atmosphere, args.wavelength_nm)
             .map_err(|e| Error::input(None, format!("--atmosphere {name}: {e}")))?;
         let title = format!("atmosphere \"{}\", {} nm", atmosphere.name, args.wavelength_nm);
-        terrestrial_table(&air, title, h0, alts, distances_km)?
-    } else {
-        let model = model_atmosphere(args)?;
-        let air = RadialAir {
-            refractivity: model,
-            kink_heights_m: vec![TROPOPAUSE_M],
-            ground_radius_m: MODEL_EARTH_RADIUS_M,
-            top_m: TOP_M,
-        };
-        let o = &model.observer;
-        let title = format!(
-            "model atmosphere of Hohenkerk & Sinclair, {} nm, {} hPa, {:.2} °C, relative humidity {}, lapse rate {} K/m at the observer",
-            o.wavelength_nm,
-            o.pressure_hpa,
-            o.temperature_k - 273.15,
-            o.humidity,
-            o.lapse_k_per_m
-        );
-        terrestrial_table(&air, title, h0, alts, distances_km)?
+        return terrestrial_report(args, &air, title);
+    }
+    let model = model_atmosphere(args)?;
+    let air = RadialAir {
+        refractivity: model,
+        kink_heights_m: vec![TROPOPAUSE_M],
+        ground_radius_m: MODEL_EARTH_RADIUS_M,
+        top_m: TOP_M,
     };
-    let mut out = table.to_text();
-    if let Some(path) = &args.csv {
-        table.write_csv(path)?;
+    let o = &model.observer;
+    let title = format!(
+        "model atmosphere of Hohenkerk & Sinclair, {} nm, {} hPa, {:.2} °C, relative humidity {}, lapse rate {} K/m at the observer",
+        o.wavelength_nm,
+        o.pressure_hpa,
+        o.temperature_k - 273.15,
+        o.humidity,
+        o.lapse_k_per_m
+    );
+    terrestrial_report(args, &air, title)
+}
+
+/// The rays' table (`--ground-distances-km`) or the targets' (`--targets`) through `air`.
+fn terrestrial_report<F: RadialIndex>(args: &RefractionArgs, air: &RadialAir<F>, title: String) -> Result<String> {
+    let h0 = args.observer_height_m;
+    let (text, written) = if let Some(targets) = &args.targets {
+        let targets = parse_targets(targets)?;
+        let table = sight_table(air, title, h0, &targets)?;
+        (table.to_text(), args.csv.as_ref().map(|p| table.write_csv(p).map(|_| p)))
+    } else {
+        let distances = args.ground_distances_km.as_deref().unwrap_or_default();
+        if distances.is_empty() || args.apparent_altitudes_deg.is_empty() {
+            return Err(Error::input(
+                None,
+                "--ground-distances-km: give at least one distance and one apparent altitude",
+            ));
+        }
+        let table = terrestrial_table(air, title, h0, &args.apparent_altitudes_deg, distances)?;
+        (table.to_text(), args.csv.as_ref().map(|p| table.write_csv(p).map(|_| p)))
+    };
+    let mut out = text;
+    if let Some(path) = written.transpose()? {
         out.push_str(&format!("wrote {}\n", path.display()));
     }
     Ok(out)
+}
+
+/// `--targets D:H,...` as (distance km, height m) pairs.
+fn parse_targets(items: &[String]) -> Result<Vec<(f64, f64)>> {
+    let bad = |item: &str, why: &str| {
+        Error::input(None, format!("--targets: \"{item}\" {why}; expected DISTANCE_KM:HEIGHT_M, e.g. 50:300"))
+    };
+    if items.is_empty() {
+        return Err(Error::input(None, "--targets: give at least one DISTANCE_KM:HEIGHT_M, e.g. 50:300"));
+    }
+    items
+        .iter()
+        .map(|item| {
+            let (d, h) = item.split_once(':').ok_or_else(|| bad(item, "has no ':'"))?;
+            let num = |v: &str| v.trim().parse::<f64>().ok().filter(|x| x.is_finite());
+            match (num(d), num(h)) {
+                (Some(d), Some(h)) if d > 0.0 && h >= 0.0 => Ok((d, h)),
+                _ => Err(bad(item, "is not a distance > 0 and a height ≥ 0")),
+            }
+        })
+        .collect()
 }
 
 /// The model-atmosphere table (no `--atmosphere`).

@@ -38,6 +38,7 @@ pub mod model_table;
 pub mod model_trace;
 pub mod quadrature;
 pub mod report;
+pub mod sight;
 pub mod sun;
 pub mod terrestrial;
 pub mod terrestrial_table;

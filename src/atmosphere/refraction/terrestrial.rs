@@ -120,6 +120,9 @@ pub enum Reach {
 pub struct Path {
     /// Where the ray is.
     pub reach: Reach,
+    /// Where it passed its perigee, if it did before the angle asked for: the central angle
+    /// from the start, rad.
+    pub perigee_angle_rad: Option<f64>,
     /// Evaluations of the refractivity.
     pub evaluations: u64,
 }
@@ -142,7 +145,36 @@ pub fn follow<F: RadialIndex>(
     if let Some(e) = ray.error.get() {
         return Err(e.to_string());
     }
-    Ok(Path { reach: reach?, evaluations: ray.count.get() })
+    Ok(Path { reach: reach?, perigee_angle_rad: ray.perigee_angle.get(), evaluations: ray.count.get() })
+}
+
+/// Where a ray launched down from height `h0_m` at elevation `e0_rad` < 0 turns up: its
+/// perigee's height (m) and central angle from the start (rad), the descent integrated to
+/// `tol_rad`; `None` when it meets the ground first.
+pub fn perigee<F: RadialIndex>(
+    air: &RadialAir<F>,
+    h0_m: f64,
+    e0_rad: f64,
+    tol_rad: f64,
+) -> Result<Option<(f64, f64)>, String> {
+    check(air, h0_m, e0_rad, 0.0, tol_rad)?;
+    if e0_rad >= 0.0 {
+        return Err(format!("elevation {e0_rad} rad: a perigee needs a ray launched down (< 0)"));
+    }
+    let ray = Ray::new(air, h0_m, e0_rad);
+    let x_ground = -h0_m;
+    let found = if ray.slope(x_ground).1 > 0.0 {
+        None
+    } else {
+        let x_p = ray.perigee(x_ground);
+        ray.x_t.set(x_p);
+        ray.near.set(Some(ray.taylor(x_p, 0.0)));
+        Some((h0_m + x_p, ray.integral(ray.t_of(0.0), 0.0, tol_rad)))
+    };
+    match ray.error.get() {
+        Some(e) => Err(e.to_string()),
+        None => Ok(found),
+    }
 }
 
 fn check<F>(air: &RadialAir<F>, h0: f64, e0: f64, angle: f64, tol: f64) -> Result<(), String> {
@@ -191,6 +223,8 @@ struct Ray<'a, F> {
     x_t: Cell<f64>,
     /// g near the base of the integration as its Taylor polynomial.
     near: Cell<Option<Near>>,
+    /// The central angle of the perigee, once passed.
+    perigee_angle: Cell<Option<f64>>,
     count: Cell<u64>,
     error: Cell<Option<&'static str>>,
 }
@@ -212,6 +246,7 @@ impl<'a, F: RadialIndex> Ray<'a, F> {
             down: e0 < 0.0,
             x_t: Cell::new(0.0),
             near: Cell::new(None),
+            perigee_angle: Cell::new(None),
             count: Cell::new(1),
             error: Cell::new(None),
         };
@@ -397,7 +432,10 @@ impl<'a, F: RadialIndex> Ray<'a, F> {
         self.near.set(Some(self.taylor(x_p, 0.0)));
         match self.solve(self.t_of(0.0), 0.0, angle, tol) {
             Solved::At(t) => Ok(self.aloft(t, -1.0)),
-            Solved::Beyond(phi) => self.climb(0.0, angle - phi, tol),
+            Solved::Beyond(phi) => {
+                self.perigee_angle.set(Some(phi));
+                self.climb(0.0, angle - phi, tol)
+            }
         }
     }
 

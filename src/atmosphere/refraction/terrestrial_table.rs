@@ -1,12 +1,18 @@
-//! The table of `morgana refraction --ground-distances-km`: where rays leaving the observer at
-//! given apparent altitudes are at given distances along the ground ([`super::terrestrial`]),
-//! beside the straight line through the same start, as text and as CSV
-//! (`apparent_altitude_deg,ground_distance_km,height_m,elevation_deg,straight_height_m,lift_m`).
+//! The tables of terrestrial refraction, as text and as CSV:
+//! - `morgana refraction --ground-distances-km`: where rays leaving the observer at given
+//!   apparent altitudes are at given distances along the ground ([`super::terrestrial`]),
+//!   beside the straight line through the same start
+//!   (`apparent_altitude_deg,ground_distance_km,height_m,elevation_deg,straight_height_m,lift_m,ground_at_km`);
+//! - `morgana refraction --targets`: at what apparent elevations points at given distances and
+//!   heights are seen, and how much the horizon hides there ([`super::sight`];
+//!   `distance_km,height_m,hidden_height_m,straight_elevation_deg,image,apparent_elevation_deg,refraction_arcsec`).
 //!
 //! The straight line leaving radius r₀ at elevation e is r(φ) = r₀ cos e / cos(φ + e) at central
 //! angle φ (its nearest point to the centre is at φ = −e); the *lift* is how much higher the
 //! refracted ray is than that line at the same ground distance.
 
+use super::ARCSEC_PER_RAD;
+use super::sight::{Horizon, hidden_height, horizon, images, straight_elevation};
 use super::terrestrial::{RadialAir, RadialIndex, Reach, follow};
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
@@ -96,6 +102,18 @@ pub fn terrestrial_table<F: RadialIndex>(
     Ok(TerrestrialTable { title, observer_height_m, rows })
 }
 
+/// The observer's height must lie in the air.
+fn check_height<F>(air: &RadialAir<F>, h0: f64) -> Result<()> {
+    let top_m = air.top_m;
+    if !(h0.is_finite() && (0.0..top_m).contains(&h0)) {
+        return Err(Error::input(
+            None,
+            format!("--observer-height-m: {h0} is out of range; expected 0 ≤ h < {top_m} m (the top of the air)"),
+        ));
+    }
+    Ok(())
+}
+
 /// One ray at one distance.
 fn row<F: RadialIndex>(air: &RadialAir<F>, h0: f64, altitude_deg: f64, distance_km: f64) -> Result<TerrestrialRow> {
     let (r_e, e0) = (air.ground_radius_m, altitude_deg.to_radians());
@@ -170,6 +188,133 @@ impl TerrestrialTable {
                 ),
                 Place::Ground { at_km } => writeln!(text, "{a},{d},,,,,{at_km:.9}"),
             };
+        }
+        super::write_csv(path, &text)
+    }
+}
+
+/// One target of `--targets`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SightRow {
+    /// Distance along the ground, km.
+    pub distance_km: f64,
+    /// Height above the ground, m.
+    pub height_m: f64,
+    /// How high the horizon hides things at that distance, m.
+    pub hidden_height_m: f64,
+    /// Elevation of the straight line to it, degrees.
+    pub straight_elevation_deg: f64,
+    /// The apparent elevations it is seen at, degrees, ascending (empty: hidden).
+    pub images_deg: Vec<f64>,
+}
+
+/// The lines of sight from one observer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SightTable {
+    /// What air, what wavelength.
+    pub title: String,
+    /// Observer's height above the ground, m.
+    pub observer_height_m: f64,
+    /// Ground radius, m.
+    pub ground_radius_m: f64,
+    /// The horizon (`None`: the observer is on the ground).
+    pub horizon: Option<Horizon>,
+    /// One row per target.
+    pub rows: Vec<SightRow>,
+}
+
+/// The lines of sight from `observer_height_m` to each (distance km, height m) of `targets`.
+pub fn sight_table<F: RadialIndex>(
+    air: &RadialAir<F>,
+    title: String,
+    observer_height_m: f64,
+    targets: &[(f64, f64)],
+) -> Result<SightTable> {
+    check_height(air, observer_height_m)?;
+    let r_e = air.ground_radius_m;
+    let fail = |e: String| Error::input(None, format!("--targets: {e}"));
+    let horizon = horizon(air, observer_height_m).map_err(fail)?;
+    let mut rows = Vec::with_capacity(targets.len());
+    for &(d, h) in targets {
+        let phi = d * 1e3 / r_e;
+        let at = |e: String| fail(format!("{d}:{h}: {e}"));
+        rows.push(SightRow {
+            distance_km: d,
+            height_m: h,
+            hidden_height_m: hidden_height(air, observer_height_m, phi).map_err(at)?,
+            straight_elevation_deg: straight_elevation(r_e, observer_height_m, phi, h).to_degrees(),
+            images_deg: images(air, observer_height_m, phi, h).map_err(at)?.iter().map(|e| e.to_degrees()).collect(),
+        });
+    }
+    Ok(SightTable { title, observer_height_m, ground_radius_m: r_e, horizon, rows })
+}
+
+impl SightTable {
+    /// The table as text: the horizon, then one line per target and image.
+    pub fn to_text(&self) -> String {
+        let mut s = format!(
+            "lines of sight (Bouguer's invariant by quadrature): {}, observer at {} m\n",
+            self.title, self.observer_height_m
+        );
+        let _ = match self.horizon {
+            Some(h) => writeln!(
+                s,
+                "horizon {:.6} km away, dip {:.6}° (without refraction {:.6} km, {:.6}°)",
+                h.angle_rad * self.ground_radius_m / 1e3,
+                -h.elevation_rad.to_degrees(),
+                self.geometric_horizon_rad() * self.ground_radius_m / 1e3,
+                self.geometric_horizon_rad().to_degrees()
+            ),
+            None => writeln!(s, "the observer is on the ground: the horizon is at the observer's feet"),
+        };
+        s.push_str(
+            "distance_km      height_m  hidden_height_m  straight_elev_deg  apparent_elev_deg  refraction_arcsec\n",
+        );
+        for r in &self.rows {
+            if r.images_deg.is_empty() {
+                let _ = writeln!(
+                    s,
+                    "{:>11}  {:>12}  {:>15.6}  {:>17.6}  hidden below the horizon",
+                    r.distance_km, r.height_m, r.hidden_height_m, r.straight_elevation_deg
+                );
+            }
+            for e in &r.images_deg {
+                let _ = writeln!(
+                    s,
+                    "{:>11}  {:>12}  {:>15.6}  {:>17.6}  {e:>17.6}  {:>17.3}",
+                    r.distance_km,
+                    r.height_m,
+                    r.hidden_height_m,
+                    r.straight_elevation_deg,
+                    (e - r.straight_elevation_deg) * 3600.0
+                );
+            }
+        }
+        s
+    }
+
+    /// arccos(R/r₀): the horizon's central angle, and the dip, without refraction.
+    fn geometric_horizon_rad(&self) -> f64 {
+        let h0 = self.observer_height_m;
+        2.0 * (0.5 * h0 / (self.ground_radius_m + h0)).sqrt().asin()
+    }
+
+    /// Writes the CSV atomically to `path`: one row per image, numbered from the lowest (a
+    /// hidden target: one row with the image columns empty).
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
+        let mut text = String::from(
+            "distance_km,height_m,hidden_height_m,straight_elevation_deg,image,apparent_elevation_deg,refraction_arcsec\n",
+        );
+        for r in &self.rows {
+            let lead =
+                format!("{},{},{:.9},{:.12}", r.distance_km, r.height_m, r.hidden_height_m, r.straight_elevation_deg);
+            if r.images_deg.is_empty() {
+                let _ = writeln!(text, "{lead},,,");
+            }
+            for (i, e) in r.images_deg.iter().enumerate() {
+                let refraction = (e - r.straight_elevation_deg).to_radians() * ARCSEC_PER_RAD;
+                let _ = writeln!(text, "{lead},{},{e:.12},{refraction:.6}", i + 1);
+            }
         }
         super::write_csv(path, &text)
     }
