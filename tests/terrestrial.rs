@@ -295,3 +295,49 @@ fn the_command_writes_the_terrestrial_table() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Hard cases: 3 000 random rays (start heights 0–80 km, elevations from −89° to 89° with a
+/// third of them within 0.01° of level, central angles up to 0.2 rad, including exactly 0) through
+/// USA76, the hot road and the inversion: every answer is finite and in range — a height between
+/// the ground and where a straight line could reach, an elevation within ±90°, a ground angle
+/// within the angle asked — or a stated error (a duct, a ray that leaves and never gets that far).
+#[test]
+fn random_rays_give_finite_answers_or_clear_errors() {
+    let mut rng = morgana::rng::Rng::for_task(7, morgana::rng::Stream::Eye, 0);
+    for name in ["usa76", "hot_road", "inversion"] {
+        let atmosphere = Atmosphere::builtin(name).unwrap();
+        let air = radial_air(&atmosphere, LAMBDA).unwrap();
+        let (mut ok, mut refused) = (0, 0);
+        for i in 0..1000 {
+            let h0 = if i % 4 == 0 { 0.0 } else { rng.uniform() * rng.uniform() * 80_000.0 };
+            let e_deg = if i % 3 == 0 { (rng.uniform() - 0.5) * 0.02 } else { (rng.uniform() - 0.5) * 178.0 };
+            let phi = if i % 10 == 0 { 0.0 } else { rng.uniform() * 0.2 };
+            match follow(&air, h0, e_deg.to_radians(), phi, 1e-10) {
+                Ok(p) => {
+                    ok += 1;
+                    match p.reach {
+                        Reach::Aloft { height_m, elevation_rad } => {
+                            assert!(height_m.is_finite() && height_m >= -1e-6, "{name} {h0} {e_deg} {phi}: {p:?}");
+                            assert!(
+                                elevation_rad.abs() <= std::f64::consts::FRAC_PI_2,
+                                "{name} {h0} {e_deg} {phi}: {p:?}"
+                            );
+                        }
+                        Reach::Ground { angle_rad } => {
+                            assert!(
+                                angle_rad.is_finite() && (0.0..=phi + 1e-12).contains(&angle_rad),
+                                "{name} {h0} {e_deg} {phi}: {p:?}"
+                            )
+                        }
+                    }
+                }
+                Err(e) => {
+                    refused += 1;
+                    assert!(e.contains("duct") || e.contains("never gets"), "{name} {h0} {e_deg} {phi}: {e}");
+                }
+            }
+        }
+        eprintln!("{name}: {ok} answered, {refused} refused");
+        assert!(ok > 500, "{name}: {ok}");
+    }
+}

@@ -36,6 +36,8 @@ __all__ = [
     "SceneError",
     "render",
     "refraction",
+    "terrestrial",
+    "lines_of_sight",
     "trace",
     "luminaire",
     "tonemap",
@@ -363,6 +365,59 @@ def refraction(
         sun_lower_limb_deg=float(sun_lower_limb_deg),
     )
     for k in ("apparent_altitude_deg", "true_altitude_deg", "refraction_arcsec", "bennett_arcsec", "saemundsson_arcsec"):
+        d[k] = np.asarray(d[k], dtype=np.float64)
+    return d
+
+
+def terrestrial(
+    atmosphere: str,
+    apparent_altitudes_deg: Sequence[float],
+    ground_distances_km: Sequence[float],
+    wavelength_nm: float = 550.0,
+    observer_height_m: float = 0.0,
+) -> Dict[str, Any]:
+    """Terrestrial refraction: where rays from the observer are along the ground, as ``morgana
+    refraction --ground-distances-km`` computes it (Bouguer's invariant by quadrature).
+
+    ``atmosphere`` is a built-in name or an atmosphere TOML file with a round Earth and a
+    height-only index; a ray that turns back inside the air (a duct) raises ValueError. Returns a
+    dict with ``apparent_altitude_deg`` and ``ground_distance_km`` as given, and arrays of shape
+    (altitudes, distances): ``height_m``, ``elevation_deg`` and ``straight_height_m`` (the
+    straight line from the same start; NaN where it never gets there) — NaN where the ray met the
+    ground first — and ``ground_at_km``, where it did (NaN where it is aloft).
+    """
+    alts = [float(a) for a in apparent_altitudes_deg]
+    dists = [float(x) for x in ground_distances_km]
+    d = _native.terrestrial(
+        os.fspath(atmosphere), alts, dists, wavelength_nm=float(wavelength_nm), observer_height_m=float(observer_height_m)
+    )
+    for k in ("apparent_altitude_deg", "ground_distance_km"):
+        d[k] = np.asarray(d[k], dtype=np.float64)
+    for k in ("height_m", "elevation_deg", "straight_height_m", "ground_at_km"):
+        d[k] = np.asarray(d[k], dtype=np.float64).reshape(len(alts), len(dists))
+    return d
+
+
+def lines_of_sight(
+    atmosphere: str,
+    targets: Sequence[Tuple[float, float]],
+    wavelength_nm: float = 550.0,
+    observer_height_m: float = 2.0,
+) -> Dict[str, Any]:
+    """Lines of sight over the round Earth, as ``morgana refraction --targets`` computes them.
+
+    ``targets`` are (distance along the ground in km, height above the ground in m) pairs.
+    Returns a dict: ``horizon_km`` and ``dip_deg`` (the horizon's distance and dip; 0 for an
+    observer on the ground); arrays ``distance_km``, ``height_m``, ``hidden_height_m`` (how
+    high the horizon hides things at that distance) and ``straight_elevation_deg``; and
+    ``images_deg``: for each target the list of apparent elevations it is seen at (empty: hidden
+    below the horizon; several: a mirage).
+    """
+    pairs = [(float(a), float(b)) for a, b in targets]
+    d = _native.lines_of_sight(
+        os.fspath(atmosphere), pairs, wavelength_nm=float(wavelength_nm), observer_height_m=float(observer_height_m)
+    )
+    for k in ("distance_km", "height_m", "hidden_height_m", "straight_elevation_deg"):
         d[k] = np.asarray(d[k], dtype=np.float64)
     return d
 

@@ -59,6 +59,19 @@ def refraction(
     observer_height_m: float = 0.0,
     sun_lower_limb_deg: float = 0.0,
 ) -> Dict[str, Any]: ...
+def terrestrial(
+    atmosphere: str,
+    apparent_altitudes_deg: Sequence[float],
+    ground_distances_km: Sequence[float],
+    wavelength_nm: float = 550.0,
+    observer_height_m: float = 0.0,
+) -> Dict[str, Any]: ...
+def lines_of_sight(
+    atmosphere: str,
+    targets: Sequence[Tuple[float, float]],
+    wavelength_nm: float = 550.0,
+    observer_height_m: float = 2.0,
+) -> Dict[str, Any]: ...
 def trace(
     scene: NativeScene,
     origin: Sequence[float],

@@ -21,6 +21,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<render::NativeResult>()?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(tools::refraction, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::terrestrial, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::lines_of_sight, m)?)?;
     m.add_function(wrap_pyfunction!(tools::trace, m)?)?;
     m.add_function(wrap_pyfunction!(tools::luminaire, m)?)?;
     m.add_function(wrap_pyfunction!(tools::tonemap, m)?)?;

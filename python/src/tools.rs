@@ -7,6 +7,8 @@ use crate::scene::NativeScene;
 use glam::DVec3;
 use morgana::atmosphere::refraction::report::table;
 use morgana::atmosphere::refraction::sun::{SUN_DIAMETER_RAD, flattened_disc};
+use morgana::atmosphere::refraction::terrestrial::radial_air;
+use morgana::atmosphere::refraction::terrestrial_table::{Place, sight_table, terrestrial_table};
 use morgana::atmosphere::refraction::{ARCSEC_PER_RAD, Settings, Tracer};
 use morgana::raypath::trace::{End, Limits, trace as trace_ray};
 use morgana::tonemap::SceneImage;
@@ -66,6 +68,92 @@ pub fn refraction<'py>(
                 d.set_item("sun", s)?;
             }
         }
+        Ok(d)
+    })
+}
+
+/// Terrestrial refraction: where rays are along the ground
+/// (`morgana refraction --ground-distances-km`).
+#[pyfunction]
+#[pyo3(signature = (atmosphere, apparent_altitudes_deg, ground_distances_km, wavelength_nm=550.0, observer_height_m=0.0))]
+pub fn terrestrial<'py>(
+    py: Python<'py>,
+    atmosphere: String,
+    apparent_altitudes_deg: Vec<f64>,
+    ground_distances_km: Vec<f64>,
+    wavelength_nm: f64,
+    observer_height_m: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    guard(|| {
+        let atm = morgana::atmosphere::resolve(&atmosphere).map_err(|e| located_error(py, e))?;
+        let air = radial_air(&atm, wavelength_nm).map_err(|e| PyValueError::new_err(format!("{atmosphere}: {e}")))?;
+        let title = atm.name.clone();
+        let t = terrestrial_table(&air, title, observer_height_m, &apparent_altitudes_deg, &ground_distances_km)
+            .map_err(arg_error)?;
+        let pick = |f: &dyn Fn(&Place) -> Option<f64>| -> Vec<f64> {
+            t.rows.iter().map(|r| f(&r.place).unwrap_or(f64::NAN)).collect()
+        };
+        let d = PyDict::new(py);
+        d.set_item("apparent_altitude_deg", apparent_altitudes_deg.clone())?;
+        d.set_item("ground_distance_km", ground_distances_km.clone())?;
+        d.set_item(
+            "height_m",
+            pick(&|p| match p {
+                Place::Aloft { height_m, .. } => Some(*height_m),
+                _ => None,
+            }),
+        )?;
+        d.set_item(
+            "elevation_deg",
+            pick(&|p| match p {
+                Place::Aloft { elevation_deg, .. } => Some(*elevation_deg),
+                _ => None,
+            }),
+        )?;
+        d.set_item(
+            "straight_height_m",
+            pick(&|p| match p {
+                Place::Aloft { straight_height_m, .. } => *straight_height_m,
+                _ => None,
+            }),
+        )?;
+        d.set_item(
+            "ground_at_km",
+            pick(&|p| match p {
+                Place::Ground { at_km } => Some(*at_km),
+                _ => None,
+            }),
+        )?;
+        Ok(d)
+    })
+}
+
+/// Lines of sight to targets on the Earth (`morgana refraction --targets`).
+#[pyfunction]
+#[pyo3(signature = (atmosphere, targets, wavelength_nm=550.0, observer_height_m=2.0))]
+pub fn lines_of_sight<'py>(
+    py: Python<'py>,
+    atmosphere: String,
+    targets: Vec<(f64, f64)>,
+    wavelength_nm: f64,
+    observer_height_m: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    if let Some((d, h)) = targets.iter().find(|(d, h)| !(d.is_finite() && *d > 0.0 && h.is_finite() && *h >= 0.0)) {
+        return Err(PyValueError::new_err(format!("target ({d} km, {h} m): expected a distance > 0 and a height ≥ 0")));
+    }
+    guard(|| {
+        let atm = morgana::atmosphere::resolve(&atmosphere).map_err(|e| located_error(py, e))?;
+        let air = radial_air(&atm, wavelength_nm).map_err(|e| PyValueError::new_err(format!("{atmosphere}: {e}")))?;
+        let t = sight_table(&air, atm.name.clone(), observer_height_m, &targets).map_err(arg_error)?;
+        let d = PyDict::new(py);
+        let r_e = t.ground_radius_m;
+        d.set_item("horizon_km", t.horizon.map_or(0.0, |h| h.angle_rad * r_e / 1e3))?;
+        d.set_item("dip_deg", t.horizon.map_or(0.0, |h| -h.elevation_rad.to_degrees()))?;
+        d.set_item("distance_km", t.rows.iter().map(|r| r.distance_km).collect::<Vec<_>>())?;
+        d.set_item("height_m", t.rows.iter().map(|r| r.height_m).collect::<Vec<_>>())?;
+        d.set_item("hidden_height_m", t.rows.iter().map(|r| r.hidden_height_m).collect::<Vec<_>>())?;
+        d.set_item("straight_elevation_deg", t.rows.iter().map(|r| r.straight_elevation_deg).collect::<Vec<_>>())?;
+        d.set_item("images_deg", t.rows.iter().map(|r| r.images_deg.clone()).collect::<Vec<_>>())?;
         Ok(d)
     })
 }

@@ -1,4 +1,5 @@
-"""refraction, trace, luminaire and tonemap give what their `morgana` commands give."""
+"""refraction, terrestrial, lines_of_sight, trace, luminaire and tonemap give what their `morgana`
+commands give."""
 
 import csv
 import io
@@ -35,6 +36,36 @@ def test_refraction_matches_the_cli_table(tmp_path, cli):
         morgana.refraction("usa76", [91])
     with pytest.raises(ValueError):
         morgana.refraction("no_such_atmosphere", [0])
+
+
+def test_terrestrial_matches_the_cli_table(tmp_path, cli):
+    alts, dists = [-0.5, 0.5], [1, 100]
+    out = tmp_path / "t.csv"
+    cli("refraction", "--atmosphere", "usa76", "--observer-height-m", "10", "--apparent-altitudes-deg=-0.5,0.5",
+        "--ground-distances-km", "1,100", "--csv", out)
+    c = csv_columns(out.read_text())
+    r = morgana.terrestrial("usa76", alts, dists, observer_height_m=10)
+    assert r["height_m"].shape == (2, 2)
+    # The CSV prints 9 decimals of metres; rows are altitudes outermost.
+    np.testing.assert_allclose(r["height_m"].ravel(), c["height_m"], atol=6e-10, equal_nan=True)
+    np.testing.assert_allclose(r["ground_at_km"].ravel(), c["ground_at_km"], atol=6e-10, equal_nan=True)
+    assert np.isnan(r["height_m"][0, 1]) and r["ground_at_km"][0, 1] > 1  # 0.5 deg down meets the sea
+    with pytest.raises(ValueError, match="duct"):
+        morgana.terrestrial("inversion", [0], [10], observer_height_m=25)
+
+
+def test_lines_of_sight_match_the_cli(tmp_path, cli):
+    out = tmp_path / "s.csv"
+    cli("refraction", "--atmosphere", "usa76", "--observer-height-m", "2", "--targets", "10:5,40:30", "--csv", out)
+    c = csv_columns(out.read_text())
+    r = morgana.lines_of_sight("usa76", [(10, 5), (40, 30)], observer_height_m=2)
+    np.testing.assert_allclose(r["hidden_height_m"], c["hidden_height_m"], atol=6e-10)
+    assert len(r["images_deg"][0]) == 1 and r["images_deg"][1] == []  # the second is hidden
+    assert abs(r["images_deg"][0][0] - c["apparent_elevation_deg"][0]) < 6e-13
+    # An eye 2 m up: the horizon ~5.5 km away with standard refraction (3.57 sqrt(h) km without).
+    assert 5.0 < r["horizon_km"] < 6.0
+    with pytest.raises(ValueError):
+        morgana.lines_of_sight("usa76", [(0, 5)])
 
 
 def test_trace_matches_the_cli_path(tmp_path, cli):
