@@ -8,8 +8,8 @@ use crate::atmosphere::dispersion::Ciddor;
 use crate::atmosphere::refraction::model::{
     MODEL_EARTH_RADIUS_M, ModelAtmosphere, Observer, Refractivity, TOP_M, TROPOPAUSE_M,
 };
-use crate::atmosphere::refraction::model_table::{ModelMethod, model_table};
-use crate::atmosphere::refraction::report::{dispersion, sun_text, table};
+use crate::atmosphere::refraction::model_table::{ModelMethod, QUADRATURE_TOL_RAD, model_table};
+use crate::atmosphere::refraction::report::{dispersion, quadrature_table, sun_text, table};
 use crate::atmosphere::refraction::terrestrial::{RadialAir, RadialIndex, radial_air};
 use crate::atmosphere::refraction::terrestrial_table::{sight_table, terrestrial_table};
 use crate::atmosphere::refraction::{Settings, Tracer};
@@ -61,9 +61,11 @@ pub struct RefractionArgs {
     /// Model atmosphere: the refractivity law.
     #[arg(long, value_enum, conflicts_with = "atmosphere", default_value_t = RefractivityArg::Ciddor)]
     pub refractivity: RefractivityArg,
-    /// Model atmosphere: quadrature of the refraction integral or the ray trace.
-    #[arg(long, value_enum, conflicts_with = "atmosphere", default_value_t = MethodArg::Quadrature)]
-    pub method: MethodArg,
+    /// Quadrature of the refraction integral or the ray trace [default: quadrature for the model
+    /// atmosphere, trace with --atmosphere; there quadrature is Bouguer's invariant through the
+    /// file's air, rays it does not follow (into the ground, ducted) traced].
+    #[arg(long, value_enum)]
+    pub method: Option<MethodArg>,
     /// Model atmosphere: a table over apparent zenith distances FROM,TO,STEP in degrees (0–90),
     /// e.g. 0,90,0.1; replaces --apparent-altitudes-deg.
     #[arg(long, value_delimiter = ',', conflicts_with = "atmosphere")]
@@ -119,7 +121,13 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
     Tracer::new(&atmosphere, args.wavelength_nm, 0.0, Settings::default()).map_err(|e| e.at_flag("--wavelength-nm"))?;
     let tracer = Tracer::new(&atmosphere, args.wavelength_nm, args.observer_height_m, Settings::default())
         .map_err(|e| e.at_flag("--observer-height-m"))?;
-    let t = table(&tracer, &args.apparent_altitudes_deg)?;
+    let t = if args.method == Some(MethodArg::Quadrature) {
+        let air = radial_air(&atmosphere, args.wavelength_nm)
+            .map_err(|e| Error::input(None, format!("--method quadrature: {e}; use --method trace")))?;
+        quadrature_table(&tracer, &air, &args.apparent_altitudes_deg, QUADRATURE_TOL_RAD)?
+    } else {
+        table(&tracer, &args.apparent_altitudes_deg)?
+    };
     let mut out = t.to_text();
     if let Some(ls) = args.wavelengths_nm.as_deref().filter(|l| !l.is_empty()) {
         for &l in ls {
@@ -148,7 +156,7 @@ fn run_terrestrial(args: &RefractionArgs) -> Result<String> {
     if args.zenith_table_deg.is_some() {
         return refuse("--zenith-table-deg");
     }
-    if args.method == MethodArg::Trace {
+    if args.method == Some(MethodArg::Trace) {
         return refuse("--method trace");
     }
     if let Some(name) = &args.atmosphere {
@@ -231,8 +239,8 @@ fn run_model(args: &RefractionArgs) -> Result<String> {
     let model = model_atmosphere(args)?;
     let zeniths = zenith_list(args)?;
     let method = match args.method {
-        MethodArg::Quadrature => ModelMethod::Quadrature,
-        MethodArg::Trace => ModelMethod::Trace,
+        Some(MethodArg::Quadrature) | None => ModelMethod::Quadrature,
+        Some(MethodArg::Trace) => ModelMethod::Trace,
     };
     let t = model_table(&model, &zeniths, method)?;
     let mut out = t.to_text();

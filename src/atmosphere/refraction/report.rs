@@ -5,6 +5,7 @@
 
 use super::formulas::{bennett_rad, conditions_factor, saemundsson_rad};
 use super::sun::{Flattening, SUN_DIAMETER_RAD, flattened_disc};
+use super::terrestrial::{RadialAir, RadialIndex, true_altitude};
 use super::{ARCSEC_PER_RAD, Outcome, Trace, Tracer};
 use crate::error::Result;
 use std::fmt::Write as _;
@@ -23,6 +24,10 @@ pub struct Row {
     pub bennett_rad: Option<f64>,
     /// Saemundsson's refraction at the traced true altitude and the observer's conditions, rad.
     pub saemundsson_rad: Option<f64>,
+    /// `Some(evaluations)` when the row came from Bouguer's quadrature
+    /// ([`super::terrestrial::true_altitude`]; `trace` then holds its outcome, no path length
+    /// and no steps), `None` when it was traced.
+    pub quadrature_evaluations: Option<u64>,
 }
 
 /// The refraction table of one observer.
@@ -46,17 +51,54 @@ pub struct Table {
 
 /// Traces every apparent altitude (degrees) of `altitudes_deg`.
 pub fn table(tracer: &Tracer, altitudes_deg: &[f64]) -> Result<Table> {
+    table_with(tracer, altitudes_deg, |_| Ok(None))
+}
+
+/// Every apparent altitude of `altitudes_deg` by Bouguer's quadrature through `air` (the
+/// tracer's atmosphere at its wavelength, [`super::terrestrial::radial_air`]) to `tol_rad`; a
+/// ray the quadrature does not follow — into the ground, or turned back by a duct — is traced.
+pub fn quadrature_table<F: RadialIndex>(
+    tracer: &Tracer,
+    air: &RadialAir<F>,
+    altitudes_deg: &[f64],
+    tol_rad: f64,
+) -> Result<Table> {
+    let h0 = tracer.atmosphere().earth.height(tracer.observer());
+    table_with(tracer, altitudes_deg, |a| match true_altitude(air, h0, a, tol_rad) {
+        Ok(Some((t, evaluations))) => Ok(Some((t, evaluations))),
+        Ok(None) | Err(_) => Ok(None),
+    })
+}
+
+/// The table, each row from `quadrature` (true altitude and evaluations) where it answers, else
+/// traced.
+fn table_with(
+    tracer: &Tracer,
+    altitudes_deg: &[f64],
+    quadrature: impl Fn(f64) -> Result<Option<(f64, u64)>>,
+) -> Result<Table> {
     let atm = tracer.atmosphere();
     let air = atm.air(tracer.observer());
     let (pressure_hpa, temperature_c) = (air.pressure_pa / 100.0, air.temperature_k - 273.15);
     let factor = conditions_factor(pressure_hpa, temperature_c);
     let mut rows = Vec::with_capacity(altitudes_deg.len());
     for &a in altitudes_deg {
-        let trace = tracer.trace(a.to_radians())?;
+        let by_quadrature = quadrature(a.to_radians())?;
+        let trace = match by_quadrature {
+            Some((true_altitude_rad, _)) => Trace {
+                apparent_altitude_rad: a.to_radians(),
+                outcome: Outcome::Escaped { true_altitude_rad },
+                path_length_m: f64::NAN,
+                ode_steps: 0,
+                ode_rejected: 0,
+            },
+            None => tracer.trace(a.to_radians())?,
+        };
         let bennett_rad = (a >= 0.0).then(|| factor * bennett_rad(a));
         let saemundsson_rad =
             trace.true_altitude_rad().map(f64::to_degrees).filter(|t| *t >= -1.0).map(|t| factor * saemundsson_rad(t));
-        rows.push(Row { apparent_altitude_deg: a, trace, bennett_rad, saemundsson_rad });
+        let quadrature_evaluations = by_quadrature.map(|q| q.1);
+        rows.push(Row { apparent_altitude_deg: a, trace, bennett_rad, saemundsson_rad, quadrature_evaluations });
     }
     Ok(Table {
         atmosphere: atm.name.clone(),
@@ -83,6 +125,9 @@ impl Table {
             self.factor
         );
         s.push_str("apparent_deg      true_deg  refraction_arcsec  refraction_arcmin  bennett_arcsec  saemundsson_arcsec  ode_steps\n");
+        if self.rows.iter().any(|r| r.quadrature_evaluations.is_some()) {
+            s.push_str("(by Bouguer's quadrature: the last column is its evaluations of n, marked q; rays it does not follow are traced)\n");
+        }
         for r in &self.rows {
             s.push_str(&row_text(r));
             s.push('\n');
@@ -118,7 +163,7 @@ fn row_text(r: &Row) -> String {
                 rr * ARCSEC_PER_RAD / 60.0,
                 arcsec(r.bennett_rad),
                 arcsec(r.saemundsson_rad),
-                r.trace.ode_steps
+                r.quadrature_evaluations.map_or_else(|| r.trace.ode_steps.to_string(), |n| format!("{n}q"))
             )
         }
         Outcome::Ground { distance_m } => {

@@ -59,6 +59,8 @@ use std::cell::Cell;
 /// Deepest halving of the adaptive quadrature (intervals of 1/4096 of a piece: the substituted
 /// integrand is smooth, so only rounding noise would ask for more).
 const MAX_DEPTH: u32 = 12;
+/// How far above its base g′ is sampled for the Taylor form, m (module notes).
+const NUDGE_M: f64 = 1e-9;
 /// What a ray that turns back in the air is told.
 const DUCT: &str = "the ray turns back inside the air (a duct: n·r falls with height on its path), where Bouguer's quadrature does not follow it; trace the ray";
 /// Longest reach of the Taylor form of g about a perigee or a level start, m; a thousandth of
@@ -146,6 +148,47 @@ pub fn follow<F: RadialIndex>(
         return Err(e.to_string());
     }
     Ok(Path { reach: reach?, perigee_angle_rad: ray.perigee_angle.get(), evaluations: ray.count.get() })
+}
+
+/// Astronomical refraction by the same quadrature: the true altitude (rad) of the star seen at
+/// apparent altitude `e0_rad` from height `h0_m`, and the evaluations it took; `None` when the
+/// ray meets the ground. The ray climbs (through its perigee if launched down) to the top,
+/// sweeping the central angle Φ; there it leaves n_top for vacuum keeping n r cos e = c, so it
+/// goes on at e_v = arccos(c/r_top) above the local horizontal, which Φ has turned from the
+/// observer's: true = e_v − Φ, the refraction R = e₀ − true. sin e_v comes from
+/// (r_top − c)(r_top + c)/r_top², with r_top − c = (top − h₀) − N₀ r₀ + 2 n₀ r₀ sin²(e₀/2)
+/// free of cancellation.
+pub fn true_altitude<F: RadialIndex>(
+    air: &RadialAir<F>,
+    h0_m: f64,
+    e0_rad: f64,
+    tol_rad: f64,
+) -> Result<Option<(f64, u64)>, String> {
+    check(air, h0_m, e0_rad, 0.0, tol_rad)?;
+    let ray = Ray::new(air, h0_m, e0_rad);
+    let t_top = |r: &Ray<F>| r.t_of(air.top_m - h0_m);
+    let swept = if e0_rad < 0.0 {
+        let x_ground = -h0_m;
+        if ray.slope(x_ground).1 > 0.0 {
+            None
+        } else {
+            let x_p = ray.perigee(x_ground);
+            ray.x_t.set(x_p);
+            ray.near.set(Some(ray.taylor(x_p, 0.0)));
+            Some(ray.integral(ray.t_of(0.0), 0.0, tol_rad) + ray.integral(0.0, t_top(&ray), tol_rad))
+        }
+    } else {
+        Some(ray.integral(ray.t_of(0.0), t_top(&ray), tol_rad))
+    };
+    if let Some(e) = ray.error.get() {
+        return Err(e.to_string());
+    }
+    Ok(swept.map(|phi| {
+        let r_top = air.ground_radius_m + air.top_m;
+        let gap = (air.top_m - h0_m) - ray.big_n0 * ray.r0 + ray.g0;
+        let e_v = ((gap * (2.0 * r_top - gap)).sqrt() / r_top).min(1.0).asin();
+        (e_v - phi, ray.count.get())
+    }))
 }
 
 /// Where a ray launched down from height `h0_m` at elevation `e0_rad` < 0 turns up: its
@@ -283,7 +326,10 @@ impl<'a, F: RadialIndex> Ray<'a, F> {
         let mut delta = NEAR_M;
         let mut near = Near { x_b, g_b, d1: 0.0, d2: 0.0, d3: 0.0, reach: 0.0 };
         for _ in 0..2 {
-            let (a, b, c) = (self.slope(x_b).0, self.slope(x_b + delta).0, self.slope(x_b + 2.0 * delta).0);
+            // g′ just above x_b, on the side the ray travels: where x_b is a kink (a profile's
+            // lowest knot at the ground) the derivative at it may be the one below.
+            let a = self.slope(x_b + NUDGE_M).0;
+            let (b, c) = (self.slope(x_b + delta).0, self.slope(x_b + 2.0 * delta).0);
             let (d2, d3) = ((-3.0 * a + 4.0 * b - c) / (2.0 * delta), (a - 2.0 * b + c) / (delta * delta));
             near = Near { x_b, g_b, d1: a, d2, d3, reach: delta };
             let scale = if d3 == 0.0 { f64::INFINITY } else { (d2 / d3).abs() };
