@@ -42,6 +42,16 @@ impl BaseProfile {
         }
     }
 
+    /// Altitudes between which the profile is analytic, m: the kinks, and a table's every row
+    /// (where the second derivatives of its cubics jump). A quadrature over height wants its
+    /// pieces there; a ray integrator needs only the kinks.
+    pub fn smooth_piece_ends_m(&self) -> Vec<f64> {
+        match self {
+            BaseProfile::Usa76 => self.kink_heights_m(),
+            BaseProfile::Table(t) => t.knot_altitudes_m().to_vec(),
+        }
+    }
+
     /// A lower bound of the temperature below `top_m`, K.
     pub fn min_temperature_below(&self, top_m: f64) -> f64 {
         match self {

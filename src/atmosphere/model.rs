@@ -229,6 +229,17 @@ impl Atmosphere {
         k
     }
 
+    /// Heights below the top between which n is analytic, ascending, m: [`Self::kink_heights_m`]
+    /// and a table profile's every row (for quadratures over height).
+    pub fn smooth_piece_ends_m(&self) -> Vec<f64> {
+        let mut k = self.kink_heights_m();
+        k.extend(self.base.smooth_piece_ends_m());
+        k.retain(|h| *h < self.top_m);
+        k.sort_by(f64::total_cmp);
+        k.dedup();
+        k
+    }
+
     /// Everything below the top: the ball of radius R + top (spherical Earth) or the half-space
     /// h ≤ top (flat Earth).
     pub fn gradient_region(&self) -> GradientRegion {

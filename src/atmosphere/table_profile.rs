@@ -59,6 +59,11 @@ impl TableProfile {
         self.temperature.domain()
     }
 
+    /// The table's altitudes, m: between two the profile is smooth (T and ln P one cubic each).
+    pub fn knot_altitudes_m(&self) -> &[f64] {
+        self.temperature.knots().0
+    }
+
     /// The lowest tabulated temperature (the interpolant does not go below it).
     pub fn min_temperature(&self) -> f64 {
         self.temperature.value_range().0

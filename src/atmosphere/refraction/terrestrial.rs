@@ -92,7 +92,8 @@ impl<F: Fn(f64) -> (f64, f64)> RadialIndex for F {
 pub struct RadialAir<F> {
     /// The index.
     pub refractivity: F,
-    /// Heights where dn/dh jumps (layer boundaries), m, ascending.
+    /// Heights where the index is not analytic — dn/dh jumps (layer boundaries) or a higher
+    /// derivative does (a table's rows) — m, ascending: the quadrature's pieces end there.
     pub kink_heights_m: Vec<f64>,
     /// Radius of the ground, m: a ray that falls to it ends there.
     pub ground_radius_m: f64,
@@ -587,7 +588,7 @@ pub fn radial_air(
             let (q, dq) = atmosphere.reduced_refractivity(h);
             (k * q, k * dq)
         },
-        kink_heights_m: atmosphere.kink_heights_m(),
+        kink_heights_m: atmosphere.smooth_piece_ends_m(),
         ground_radius_m: s.radius_m,
         top_m: atmosphere.top_m(),
     })
