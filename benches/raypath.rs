@@ -156,7 +156,7 @@ fn bouguer_height(env: &Environment, tol: f64) -> (f64, u64) {
     match follow(&air, H0, ELEVATION_DEG.to_radians(), DISTANCE / RADIUS, tol) {
         Ok(p) => match p.reach {
             Reach::Aloft { height_m, .. } => (height_m, p.evaluations),
-            Reach::Ground { .. } => (f64::NAN, p.evaluations),
+            Reach::Ground { .. } | Reach::Away { .. } => (f64::NAN, p.evaluations),
         },
         Err(_) => (f64::NAN, 0),
     }

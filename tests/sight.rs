@@ -157,3 +157,51 @@ fn the_command_writes_the_lines_of_sight() {
     assert!(!bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("DISTANCE_KM:HEIGHT_M"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Hard cases: 150 random observers and targets (eyes 0–3 000 m, targets 0.01–300 km away and
+/// 0–5 000 m up, the eye on the ground one time in four) through USA76, the hot road and the
+/// inversion: every horizon, hidden height and image is in range — the hidden height ≥ 0 (∞
+/// where the grazing ray leaves the air short of the target), images within ±90°, each image's
+/// ray reaching its point within 1 µm — or an error that names a duct.
+#[test]
+fn random_lines_of_sight_are_finite_or_clear_errors() {
+    let mut rng = morgana::rng::Rng::for_task(11, morgana::rng::Stream::Eye, 0);
+    for name in ["usa76", "hot_road", "inversion"] {
+        let atmosphere = Atmosphere::builtin(name).unwrap();
+        let air = radial_air(&atmosphere, 550.0).unwrap();
+        let mut answered = 0;
+        for i in 0..50 {
+            let h0 = if i % 4 == 0 { 0.0 } else { rng.uniform() * rng.uniform() * 3000.0 };
+            let d = 10.0 + rng.uniform() * rng.uniform() * 300_000.0;
+            let target = rng.uniform() * rng.uniform() * 5000.0;
+            let phi = d / air.ground_radius_m;
+            let result = horizon(&air, h0).and_then(|h| {
+                let hidden = hidden_height(&air, h0, phi)?;
+                Ok((h, hidden, images(&air, h0, phi, target)?))
+            });
+            match result {
+                Ok((h, hidden, seen)) => {
+                    answered += 1;
+                    if let Some(h) = h {
+                        assert!(
+                            h.elevation_rad <= 0.0 && h.angle_rad.is_finite() && h.angle_rad >= 0.0,
+                            "{name} {h0}: {h:?}"
+                        );
+                    }
+                    // ∞: the grazing ray leaves the air short of that distance; all is hidden.
+                    assert!(hidden >= 0.0, "{name} {h0} {d}: hidden {hidden}");
+                    for e in seen {
+                        assert!(e.abs() < std::f64::consts::FRAC_PI_2, "{name}: {e}");
+                        let p = follow(&air, h0, e, phi, 1e-12).unwrap();
+                        let Reach::Aloft { height_m, .. } = p.reach else { panic!("{name} {h0} {d} {target}: {p:?}") };
+                        assert!((height_m - target).abs() < 1e-6 + 1e-9 * d, "{name} {h0} {d} {target}: {height_m}");
+                    }
+                }
+                Err(e) => assert!(e.contains("duct"), "{name} {h0} {d} {target}: {e}"),
+            }
+        }
+        eprintln!("{name}: {answered} of 50 answered");
+        // Through the inversion, lines of sight that cross its duct are refused.
+        assert!(answered >= if name == "inversion" { 10 } else { 45 }, "{name}: {answered}");
+    }
+}

@@ -384,7 +384,8 @@ def terrestrial(
     dict with ``apparent_altitude_deg`` and ``ground_distance_km`` as given, and arrays of shape
     (altitudes, distances): ``height_m``, ``elevation_deg`` and ``straight_height_m`` (the
     straight line from the same start; NaN where it never gets there) — NaN where the ray met the
-    ground first — and ``ground_at_km``, where it did (NaN where it is aloft).
+    ground first or left the air upward short of the distance — and ``ground_at_km``, where it
+    met the ground (NaN otherwise).
     """
     alts = [float(a) for a in apparent_altitudes_deg]
     dists = [float(x) for x in ground_distances_km]

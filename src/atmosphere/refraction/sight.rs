@@ -69,6 +69,7 @@ pub fn hidden_height<F: RadialIndex>(air: &RadialAir<F>, h0_m: f64, angle_rad: f
     match follow(air, h0_m, e, angle_rad, TOL_RAD)?.reach {
         Reach::Aloft { height_m, .. } => Ok(height_m),
         Reach::Ground { .. } => Err("the grazing ray met the ground again (a duct beyond the horizon)".to_string()),
+        Reach::Away { .. } => Ok(f64::INFINITY),
     }
 }
 
@@ -88,6 +89,8 @@ pub fn images<F: RadialIndex>(
         Ok(match follow(air, h0_m, e, angle_rad, TOL_RAD)?.reach {
             Reach::Aloft { height_m: h, .. } => h - height_m,
             Reach::Ground { .. } => -1.0 - height_m,
+            // Up and away, above every point at that angle.
+            Reach::Away { .. } => 1.0,
         })
     };
     let geometric = straight_elevation(air.ground_radius_m, h0_m, angle_rad, height_m);

@@ -111,6 +111,11 @@ pub enum Reach {
         /// Elevation of the ray above the local horizontal there, rad (negative: descending).
         elevation_rad: f64,
     },
+    /// It leaves the air upward on a straight line that never gets that far round the Earth.
+    Away {
+        /// The central angle its straight line tends to, rad.
+        max_angle_rad: f64,
+    },
     /// It met the ground first, at this central angle from the start, rad.
     Ground {
         /// Central angle from the start to where it met the ground, rad.
@@ -133,8 +138,7 @@ pub struct Path {
 /// The ray leaving height `h0_m` at elevation `e0_rad` (|e0| < π/2), followed through central
 /// angle `angle_rad` ≥ 0, the angle integrals to `tol_rad` (module notes). An error when the
 /// ray turns back in the air (a duct: n·r falls with height somewhere on its path, so the
-/// invariant allows a second turning point), when a value is out of range, or when a straight
-/// ray above the top never gets that far round.
+/// invariant allows a second turning point) or when a value is out of range.
 pub fn follow<F: RadialIndex>(
     air: &RadialAir<F>,
     h0_m: f64,
@@ -522,10 +526,7 @@ impl<'a, F: RadialIndex> Ray<'a, F> {
                 let a0 = (self.c / r_top).clamp(-1.0, 1.0).acos();
                 let e = angle - phi + a0;
                 if e >= std::f64::consts::FRAC_PI_2 {
-                    return Err(format!(
-                        "the ray leaves the air and never gets {angle} rad round the Earth (at most {} rad)",
-                        phi + std::f64::consts::FRAC_PI_2 - a0
-                    ));
+                    return Ok(Reach::Away { max_angle_rad: phi + std::f64::consts::FRAC_PI_2 - a0 });
                 }
                 Ok(Reach::Aloft { height_m: self.c / e.cos() - self.air.ground_radius_m, elevation_rad: e })
             }

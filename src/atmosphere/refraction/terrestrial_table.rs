@@ -33,6 +33,11 @@ pub enum Place {
         /// Height of the straight line from the same start, m (`None`: it never gets there).
         straight_height_m: Option<f64>,
     },
+    /// The ray leaves the air upward and never gets this far round; at most this far, km.
+    Away {
+        /// The ground distance its straight line above the air tends to, km.
+        max_km: f64,
+    },
     /// The ray met the ground first, this far from the observer's foot, km.
     Ground {
         /// Distance along the ground to where it met it, km.
@@ -126,6 +131,7 @@ fn row<F: RadialIndex>(air: &RadialAir<F>, h0: f64, altitude_deg: f64, distance_
             Place::Aloft { height_m, elevation_deg: elevation_rad.to_degrees(), straight_height_m: straight }
         }
         Reach::Ground { angle_rad } => Place::Ground { at_km: angle_rad * r_e / 1e3 },
+        Reach::Away { max_angle_rad } => Place::Away { max_km: max_angle_rad * r_e / 1e3 },
     };
     Ok(TerrestrialRow {
         apparent_altitude_deg: altitude_deg,
@@ -166,13 +172,19 @@ impl TerrestrialTable {
                     "{:>16}  {:>11}  meets the ground {at_km:.6} km from the observer{:>34}",
                     r.apparent_altitude_deg, r.ground_distance_km, r.evaluations
                 ),
+                Place::Away { max_km } => writeln!(
+                    s,
+                    "{:>16}  {:>11}  leaves the air upward and never gets that far (at most {max_km:.3} km){:>12}",
+                    r.apparent_altitude_deg, r.ground_distance_km, r.evaluations
+                ),
             };
         }
         s
     }
 
     /// Writes the CSV atomically to `path`; a ray that met the ground first has empty height,
-    /// elevation and lift, and its `ground_at_km`.
+    /// elevation and lift, and its `ground_at_km`; one that leaves the air and never gets that
+    /// far round has every column after the distance empty.
     pub fn write_csv(&self, path: &Path) -> Result<()> {
         let mut text = String::from(
             "apparent_altitude_deg,ground_distance_km,height_m,elevation_deg,straight_height_m,lift_m,ground_at_km\n",
@@ -187,6 +199,7 @@ impl TerrestrialTable {
                     straight_height_m.map_or(String::new(), |v| format!("{:.9}", height_m - v)),
                 ),
                 Place::Ground { at_km } => writeln!(text, "{a},{d},,,,,{at_km:.9}"),
+                Place::Away { .. } => writeln!(text, "{a},{d},,,,,"),
             };
         }
         super::write_csv(path, &text)
