@@ -205,3 +205,31 @@ fn random_lines_of_sight_are_finite_or_clear_errors() {
         assert!(answered >= if name == "inversion" { 10 } else { 45 }, "{name}: {answered}");
     }
 }
+
+/// A point far above the air and nearly overhead (100 km up, 5 km along the ground; a satellite,
+/// say) is seen, along a ray that reaches it — the rays just steeper leave the air short of its
+/// ground distance, which must not read as the horizon's edge — and its refraction, relative to the
+/// straight line to it, is below the astronomical refraction at that zenith distance (about
+/// 58″·tan z) by the ray's offset over its length: between 80 % and 100 % of it.
+#[test]
+fn a_point_high_overhead_is_seen() {
+    use morgana::atmosphere::refraction::{Settings, Tracer};
+    let usa76 = Atmosphere::usa76();
+    let air = radial_air(&usa76, 550.0).unwrap();
+    let (h0, phi, target) = (2.0, 5e3 / air.ground_radius_m, 1e5);
+    let seen = images(&air, h0, phi, target).unwrap();
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    let p = follow(&air, h0, seen[0], phi, 1e-12).unwrap();
+    let Reach::Aloft { height_m, .. } = p.reach else { panic!("{p:?}") };
+    assert!((height_m - target).abs() < 1e-3, "{height_m}");
+    let refraction = seen[0] - straight_elevation(air.ground_radius_m, h0, phi, target);
+    let astronomical =
+        Tracer::new(&usa76, 550.0, h0, Settings::default()).unwrap().refraction_rad(seen[0]).unwrap().unwrap();
+    let ratio = refraction / astronomical;
+    eprintln!(
+        "refraction {:.4}″, astronomical {:.4}″, ratio {ratio:.4}",
+        refraction * 206_264.8,
+        astronomical * 206_264.8
+    );
+    assert!((0.8..1.0).contains(&ratio), "{ratio}");
+}

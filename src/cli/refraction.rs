@@ -91,7 +91,7 @@ pub struct RefractionArgs {
     /// distances along the ground (km, comma-separated) — its height, its elevation, and the
     /// straight line's height beside it — by quadrature of Bouguer's invariant (air whose index
     /// depends on height alone; a duct on a ray's path is an error).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub ground_distances_km: Option<Vec<f64>>,
     /// Lines of sight instead: for each target DISTANCE_KM:HEIGHT_M (comma-separated, e.g.
     /// 50:300,120:1500) the apparent elevation(s) at which it is seen (several in a mirage, none

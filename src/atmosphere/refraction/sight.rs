@@ -10,11 +10,14 @@
 //!   is below the horizon. In air without refraction e_g is the dip arccos(R/r₀).
 //! - A point at height H and central angle φ is seen along every ray that reaches it: every root
 //!   of f(e) = h(e, φ) − H over the launch elevation e. In standard air f grows with e and there is
-//!   one root; where rays cross — the hot road's inferior mirage, a superior mirage — there can be
-//!   two or three, the mirage's images. The roots are bracketed on a grid of elevations
+//!   one root; where rays cross — over a thin hot layer, in a superior mirage — there can be two
+//!   or three, the mirage's images. The roots are bracketed on a grid of elevations
 //!   [`GRID_DEG`] apart over ±[`SPAN_DEG`] about the straight line's elevation (a ray that meets
-//!   the ground first counts as below the point) and each is refined by bisection to 10⁻¹² rad;
-//!   images closer together than the grid are not told apart.
+//!   the ground first counts as below the point, one that leaves the air upward short of it as
+//!   above) and each is refined by bisection to 10⁻¹² rad; a sign change with a ray in the
+//!   ground or away on one side (the horizon's edge) is no image, and images closer together
+//!   than the grid are not told apart. Where the grazing ray itself leaves the air short of a distance, the
+//!   hidden height there is ∞.
 
 use super::terrestrial::{RadialAir, RadialIndex, Reach, follow, perigee};
 
@@ -85,12 +88,13 @@ pub fn images<F: RadialIndex>(
     if !(angle_rad.is_finite() && angle_rad > 0.0 && height_m.is_finite() && height_m >= 0.0) {
         return Err(format!("target at {angle_rad} rad, {height_m} m: expected an angle > 0 and a height ≥ 0"));
     }
-    let miss = |e: f64| -> Result<f64, String> {
+    // How far above the point the ray from e passes, and whether it is in the air there.
+    let miss = |e: f64| -> Result<(f64, bool), String> {
         Ok(match follow(air, h0_m, e, angle_rad, TOL_RAD)?.reach {
-            Reach::Aloft { height_m: h, .. } => h - height_m,
-            Reach::Ground { .. } => -1.0 - height_m,
+            Reach::Aloft { height_m: h, .. } => (h - height_m, true),
+            Reach::Ground { .. } => (-1.0 - height_m, false),
             // Up and away, above every point at that angle.
-            Reach::Away { .. } => 1.0,
+            Reach::Away { .. } => (1.0, false),
         })
     };
     let geometric = straight_elevation(air.ground_radius_m, h0_m, angle_rad, height_m);
@@ -101,11 +105,12 @@ pub fn images<F: RadialIndex>(
     let values = grid.iter().map(|&e| miss(e)).collect::<Result<Vec<_>, _>>()?;
     let mut roots = Vec::new();
     for i in 0..steps {
-        if (values[i] < 0.0) != (values[i + 1] < 0.0) {
-            let e = bisect(&miss, grid[i], grid[i + 1], values[i] < 0.0)?;
-            // A sign change where the rays below meet the ground and those above pass over
-            // the point is the horizon's edge, not a ray to the point.
-            if miss(e)?.abs() <= 1e-6 + 1e-9 * angle_rad * air.ground_radius_m {
+        let ((va, fa), (vb, fb)) = (values[i], values[i + 1]);
+        if (va < 0.0) != (vb < 0.0) {
+            // A sign change between rays that end in the ground or away and rays in the air is
+            // an edge, not a ray to the point: a root needs rays in the air on both sides.
+            let (e, in_air) = bisect(&miss, (grid[i], fa), (grid[i + 1], fb), va < 0.0)?;
+            if in_air {
                 roots.push(e);
             }
         }
@@ -123,15 +128,23 @@ pub fn straight_elevation(r_e: f64, h0: f64, phi: f64, height: f64) -> f64 {
     ((height - h0) - 2.0 * r_t * half * half).atan2(r_t * phi.sin())
 }
 
-/// The root of `miss` between `a` and `b` (`rising`: negative at `a`), to 10⁻¹² rad.
-fn bisect(miss: &dyn Fn(f64) -> Result<f64, String>, mut a: f64, mut b: f64, rising: bool) -> Result<f64, String> {
+/// The sign change of `miss` between `a` and `b` (each with whether its ray is in the air;
+/// `rising`: negative at `a`), to 10⁻¹² rad, and whether the rays on both sides of it are in the
+/// air.
+fn bisect(
+    miss: &dyn Fn(f64) -> Result<(f64, bool), String>,
+    (mut a, mut in_a): (f64, bool),
+    (mut b, mut in_b): (f64, bool),
+    rising: bool,
+) -> Result<(f64, bool), String> {
     while b - a > 1e-12 {
         let m = 0.5 * (a + b);
-        if (miss(m)? < 0.0) == rising {
-            a = m;
+        let (v, in_m) = miss(m)?;
+        if (v < 0.0) == rising {
+            (a, in_a) = (m, in_m);
         } else {
-            b = m;
+            (b, in_b) = (m, in_m);
         }
     }
-    Ok(0.5 * (a + b))
+    Ok((0.5 * (a + b), in_a && in_b))
 }

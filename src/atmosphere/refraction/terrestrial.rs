@@ -15,8 +15,8 @@
 //! its perigee r_p, where g(r_p) = 0, then climbs; one launched up climbs from the start. Where
 //! n·r falls with height somewhere (a duct) g can return to zero above the perigee and the ray
 //! turn back down: a node of the quadrature with g ≤ 0, or a g′ ≤ 0 where the perigee is
-//! sought, is reported as an error (the ray trace follows such rays). Where g → 0 the integrand has a 1/√(r − r_p) singularity; the
-//! substitution r = r_t + t² makes it finite,
+//! sought, is reported as an error (the ray trace follows such rays). Where g → 0 the integrand
+//! has a 1/√(r − r_p) singularity; the substitution r = r_t + t² makes it finite,
 //!
 //! ```text
 //!     dφ = 2 t c / (r D) dt,        → √(2c/g′(r_p)) / r_p at t = 0 when r_t = r_p,
@@ -26,7 +26,8 @@
 //! meets the ground first) the root of g linearised at the start, r_t = r₀ − g₀/g′₀
 //! (g′ = n + r dn/dr): near where the integrand's singularity lies, so that the substituted
 //! integrand is smooth along the whole path. The angle Φ(T) = ∫ 2tc/(rD) dt from the start to T
-//! is split where dn/dr jumps (layer boundaries) and integrated by adaptive Gauss–Kronrod (7–15,
+//! is split where the index is not analytic ([`RadialAir::kink_heights_m`]: layer boundaries, a
+//! table's rows) and integrated by adaptive Gauss–Kronrod (7–15,
 //! [`crate::quadrature::adaptive_gauss_kronrod_to_depth`]) to `tol_rad`. The end T with Φ(T) = φ is
 //! found by Newton's method (dΦ/dT is the integrand) from a guess by the trapezoid rule, each
 //! correction's short stretch integrated by Simpson's rule (over a fiftieth of the path or
@@ -39,9 +40,12 @@
 //! level, g is its cubic Taylor polynomial from differences of g′ instead: there g is the small
 //! difference of rounded values that 1/√g would amplify. Only N is sampled at the quadrature's
 //! nodes; dn/dh only at the start, the perigee and the Taylor polynomial's three points.
-//! Above the top of the air n = 1 and the path is straight:
-//! the invariant becomes r cos e = c (Snell's law at the top keeps it), and
-//! φ = arccos(c/r) − arccos(c/r_top) beyond the top.
+//! Above the top of the air n = 1 and the path is straight: the invariant becomes r cos e = c
+//! (Snell's law at the top keeps it), and φ = arccos(c/r) − arccos(c/r_top) beyond the top; a
+//! ray whose straight line never gets to the angle asked is [`Reach::Away`].
+//!
+//! [`follow`] answers where a ray is at an angle; [`perigee`] where a descending ray turns up;
+//! [`true_altitude`] carries the quadrature to the top for astronomical refraction.
 //!
 //! Checks (`tests/terrestrial.rs`): the closed form for n ∝ r^(−k) (e = e₀ + (1 − k)φ exactly),
 //! the ray equation ([`crate::ode`], Dormand–Prince at rtol 10⁻¹⁵) through USA76 and the hot

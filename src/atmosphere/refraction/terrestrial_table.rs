@@ -95,8 +95,14 @@ pub fn terrestrial_table<F: RadialIndex>(
             format!("--apparent-altitudes-deg: {a} is out of range; expected −90 < a < 90"),
         ));
     }
-    if let Some(d) = distances_km.iter().find(|d| !(d.is_finite() && **d >= 0.0)) {
-        return Err(Error::input(None, format!("--ground-distances-km: {d} is out of range; expected a distance ≥ 0")));
+    let half_way_km = std::f64::consts::PI * air.ground_radius_m / 1e3;
+    if let Some(d) = distances_km.iter().find(|d| !(d.is_finite() && (0.0..=half_way_km).contains(*d))) {
+        return Err(Error::input(
+            None,
+            format!(
+                "--ground-distances-km: {d} is out of range; expected 0 … {half_way_km:.0} km (half-way round the Earth)"
+            ),
+        ));
     }
     let mut rows = Vec::with_capacity(altitudes_deg.len() * distances_km.len());
     for &a in altitudes_deg {
@@ -246,6 +252,10 @@ pub fn sight_table<F: RadialIndex>(
     check_height(air, observer_height_m)?;
     let r_e = air.ground_radius_m;
     let fail = |e: String| Error::input(None, format!("--targets: {e}"));
+    let half_way_km = std::f64::consts::PI * r_e / 1e3;
+    if let Some((d, _)) = targets.iter().find(|(d, _)| *d > half_way_km) {
+        return Err(fail(format!("{d} km is beyond half-way round the Earth ({half_way_km:.0} km)")));
+    }
     let horizon = horizon(air, observer_height_m).map_err(fail)?;
     let mut rows = Vec::with_capacity(targets.len());
     for &(d, h) in targets {
