@@ -64,10 +64,7 @@ pub fn quadrature_table<F: RadialIndex>(
     tol_rad: f64,
 ) -> Result<Table> {
     let h0 = tracer.atmosphere().earth.height(tracer.observer());
-    table_with(tracer, altitudes_deg, |a| match true_altitude(air, h0, a, tol_rad) {
-        Ok(Some((t, evaluations))) => Ok(Some((t, evaluations))),
-        Ok(None) | Err(_) => Ok(None),
-    })
+    table_with(tracer, altitudes_deg, |a| Ok(true_altitude(air, h0, a, tol_rad).ok().flatten()))
 }
 
 /// The table, each row from `quadrature` (true altitude and evaluations) where it answers, else

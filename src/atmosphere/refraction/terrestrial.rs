@@ -177,14 +177,11 @@ pub fn true_altitude<F: RadialIndex>(
     let ray = Ray::new(air, h0_m, e0_rad);
     let t_top = |r: &Ray<F>| r.t_of(air.top_m - h0_m);
     let swept = if e0_rad < 0.0 {
-        let x_ground = -h0_m;
-        if ray.slope(x_ground).1 > 0.0 {
-            None
-        } else {
-            let x_p = ray.perigee(x_ground);
-            ray.x_t.set(x_p);
-            ray.near.set(Some(ray.taylor(x_p, 0.0)));
-            Some(ray.integral(ray.t_of(0.0), 0.0, tol_rad) + ray.integral(0.0, t_top(&ray), tol_rad))
+        match ray.descend() {
+            Descent::Ground { .. } => None,
+            Descent::Perigee(_) => {
+                Some(ray.integral(ray.t_of(0.0), 0.0, tol_rad) + ray.integral(0.0, t_top(&ray), tol_rad))
+            }
         }
     } else {
         Some(ray.integral(ray.t_of(0.0), t_top(&ray), tol_rad))
@@ -214,14 +211,9 @@ pub fn perigee<F: RadialIndex>(
         return Err(format!("elevation {e0_rad} rad: a perigee needs a ray launched down (< 0)"));
     }
     let ray = Ray::new(air, h0_m, e0_rad);
-    let x_ground = -h0_m;
-    let found = if ray.slope(x_ground).1 > 0.0 {
-        None
-    } else {
-        let x_p = ray.perigee(x_ground);
-        ray.x_t.set(x_p);
-        ray.near.set(Some(ray.taylor(x_p, 0.0)));
-        Some((h0_m + x_p, ray.integral(ray.t_of(0.0), 0.0, tol_rad)))
+    let found = match ray.descend() {
+        Descent::Ground { .. } => None,
+        Descent::Perigee(x_p) => Some((h0_m + x_p, ray.integral(ray.t_of(0.0), 0.0, tol_rad))),
     };
     match ray.error.get() {
         Some(e) => Err(e.to_string()),
@@ -247,6 +239,14 @@ fn check<F>(air: &RadialAir<F>, h0: f64, e0: f64, angle: f64, tol: f64) -> Resul
         return Err(format!("tolerance {tol} rad: expected > 0"));
     }
     Ok(())
+}
+
+/// How a ray launched down descends ([`Ray::descend`]).
+enum Descent {
+    /// It turns up at this height above the start, m.
+    Perigee(f64),
+    /// It meets the ground first, where g and g′ are these.
+    Ground { g: f64, slope: f64 },
 }
 
 /// Where a solve ended.
@@ -466,25 +466,35 @@ impl<'a, F: RadialIndex> Ray<'a, F> {
         (self.integral(t, next, 0.1 * tol), h_next)
     }
 
+    /// For a ray launched down: where it turns up, with the substitution centred on its perigee
+    /// and g's Taylor form about it; or, when it meets the ground first, g and g′ there.
+    fn descend(&self) -> Descent {
+        let x_ground = -self.h0;
+        let (slope, g) = self.slope(x_ground);
+        if g > 0.0 {
+            return Descent::Ground { g, slope };
+        }
+        let x_p = self.perigee(x_ground);
+        self.x_t.set(x_p);
+        self.near.set(Some(self.taylor(x_p, 0.0)));
+        Descent::Perigee(x_p)
+    }
+
     /// Where the ray is at central angle `angle`.
     fn reach(&self, angle: f64, tol: f64) -> Result<Reach, String> {
         if !self.down {
             return self.climb(self.t_of(0.0), angle, tol);
         }
-        let x_ground = -self.h0;
-        let (slope_ground, g_ground) = self.slope(x_ground);
-        if g_ground > 0.0 {
+        if let Descent::Ground { g, slope } = self.descend() {
             // It meets the ground before its perigee: centre the substitution on the root of g
             // linearised there.
-            self.x_t.set(x_ground - g_ground / slope_ground);
+            let x_ground = -self.h0;
+            self.x_t.set(x_ground - g / slope);
             return Ok(match self.solve(self.t_of(0.0), self.t_of(x_ground), angle, tol) {
                 Solved::At(t) => self.aloft(t, -1.0),
                 Solved::Beyond(phi) => Reach::Ground { angle_rad: phi },
             });
         }
-        let x_p = self.perigee(x_ground);
-        self.x_t.set(x_p);
-        self.near.set(Some(self.taylor(x_p, 0.0)));
         match self.solve(self.t_of(0.0), 0.0, angle, tol) {
             Solved::At(t) => Ok(self.aloft(t, -1.0)),
             Solved::Beyond(phi) => {
