@@ -5,6 +5,7 @@
 use glam::DVec3;
 use morgana::atmosphere::Atmosphere;
 use morgana::atmosphere::refraction::formulas::{bennett_rad, conditions_factor, saemundsson_rad};
+use morgana::atmosphere::refraction::refractor::Refractor;
 use morgana::atmosphere::refraction::sun::{SUN_DIAMETER_RAD, flattened_disc};
 use morgana::atmosphere::refraction::{ARCSEC_PER_RAD, Outcome, Settings, Tracer};
 use morgana::atmosphere::usa76::G0;
@@ -243,7 +244,8 @@ fn the_sun_on_the_horizon_is_flattened_to_about_five_sixths() {
     // by up to 8% (the near-horizon spread above), ±0.02 in the ratio.
     let atm = usa76();
     let t = Tracer::new(&atm, LAMBDA_NM, 0.0, Settings::default()).expect("tracer");
-    let f = flattened_disc(&t, 0.0, SUN_DIAMETER_RAD).expect("trace").expect("both limbs escape");
+    let f =
+        flattened_disc(&Refractor::trace(t.clone()), 0.0, SUN_DIAMETER_RAD).expect("trace").expect("both limbs escape");
     let d = SUN_DIAMETER_RAD.to_degrees();
     // Bennett: a − R_B(a) = t_U by bisection (a − R_B(a) increases with a).
     let k = conditions_factor(1013.25, 15.0);

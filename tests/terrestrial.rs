@@ -392,27 +392,44 @@ fn astronomical_refraction_by_quadrature_equals_the_ray_trace() {
     eprintln!("largest difference {worst:.2e}″");
 }
 
-/// `morgana refraction --atmosphere A --method quadrature` writes the traced table's numbers
-/// (within the CSV's 10⁻⁴″) for USA76, and through the inversion, where some rays are ducted and
-/// some go into the ground, traces those and says which rows are the quadrature's.
+/// `morgana refraction --atmosphere A` answers by Bouguer's quadrature unless told
+/// `--method trace`, and writes the traced table's numbers (within the CSV's 10⁻⁴″) for USA76;
+/// through the inversion, where some rays are ducted and some go into the ground, it traces
+/// those and says which rows are the quadrature's. The dispersion table and the flattened sun
+/// come out as the trace's to their printed digits (0.01″; 10⁻⁴° and 10⁻⁴ in the ratio).
 #[test]
-fn the_command_computes_astronomical_refraction_by_quadrature() {
+fn the_command_computes_astronomical_refraction_by_quadrature_by_default() {
     let dir = std::env::temp_dir().join(format!("morgana-astro-q-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let altitudes = "--apparent-altitudes-deg=-1,-0.2,0,0.05,0.3,1,3,10,30,60,90";
     let read = |name: &str, extra: &[&str]| {
         let csv = dir.join(format!("{name}.csv"));
-        let out = morgana().args(["refraction", altitudes, "--csv"]).arg(&csv).args(extra).output().unwrap();
+        let out = morgana()
+            .args(["refraction", altitudes, "--wavelengths-nm", "450,650", "--csv"])
+            .arg(&csv)
+            .args(extra)
+            .output()
+            .unwrap();
         assert!(out.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
         let text = std::fs::read_to_string(&csv).unwrap();
         let column: Vec<Option<f64>> =
             text.lines().skip(1).map(|l| l.split(',').nth(2).and_then(|v| v.parse().ok())).collect();
         (column, String::from_utf8(out.stdout).unwrap())
     };
+    // The numbers of the dispersion table and the sun's line, in order.
+    let numbers_after = |text: &str, from: &str| -> Vec<f64> {
+        let tail = &text[text.find(from).unwrap_or_else(|| panic!("no {from:?} in {text}"))..];
+        tail.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+            .filter_map(|w| w.parse::<f64>().ok())
+            .collect()
+    };
     for atmosphere in ["usa76", "inversion"] {
-        let (traced, _) = read("t", &["--atmosphere", atmosphere]);
-        let (quad, text) = read("q", &["--atmosphere", atmosphere, "--method", "quadrature"]);
+        let (traced, traced_text) = read("t", &["--atmosphere", atmosphere, "--method", "trace"]);
+        let (quad, text) = read("q", &["--atmosphere", atmosphere]);
+        let (asked, _) = read("a", &["--atmosphere", atmosphere, "--method", "quadrature"]);
+        assert_eq!(quad, asked, "{atmosphere}: the default is the quadrature");
         assert!(text.contains("Bouguer's quadrature") && text.contains('q'), "{text}");
+        assert!(!traced_text.contains("Bouguer's quadrature"), "{traced_text}");
         for (t, q) in traced.iter().zip(&quad) {
             match (t, q) {
                 (Some(t), Some(q)) => assert!((t - q).abs() <= 1.5e-4, "{atmosphere}: {t} vs {q}"),
@@ -421,6 +438,11 @@ fn the_command_computes_astronomical_refraction_by_quadrature() {
             }
         }
         assert!(traced.iter().any(Option::is_some));
+        let (t, q) = (numbers_after(&traced_text, "dispersion:"), numbers_after(&text, "dispersion:"));
+        assert!(t.len() == q.len() && t.len() > 20, "{atmosphere}: {t:?} vs {q:?}");
+        for (x, y) in t.iter().zip(&q) {
+            assert!((x - y).abs() <= 0.0101, "{atmosphere}: {x} vs {y}\n{traced_text}\n{text}");
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -345,12 +345,16 @@ def refraction(
     wavelength_nm: float = 550.0,
     observer_height_m: float = 0.0,
     sun_lower_limb_deg: float = 0.0,
+    method: Optional[str] = None,
 ) -> Dict[str, Any]:
     """Astronomical refraction through an atmosphere, as ``morgana refraction`` computes it.
 
     ``atmosphere`` is a built-in name (usa76, hot_road, inversion, fata_morgana, tropical) or an
-    atmosphere TOML file. Returns a dict: ``apparent_altitude_deg``, ``true_altitude_deg``,
-    ``refraction_arcsec`` (traced; NaN where the ray does not escape), ``bennett_arcsec`` and
+    atmosphere TOML file. ``method`` is ``"quadrature"`` (Bouguer's invariant; rays into the
+    ground or ducted are traced), ``"trace"`` (the ray equation for every ray) or None: the
+    quadrature where the air depends on height alone, else the trace. Returns a dict:
+    ``method`` (the one used), ``apparent_altitude_deg``, ``true_altitude_deg``,
+    ``refraction_arcsec`` (NaN where the ray does not escape), ``bennett_arcsec`` and
     ``saemundsson_arcsec`` (the classical formulas at the observer's conditions; NaN where they
     do not apply) as arrays; ``pressure_hpa`` and ``temperature_c`` at the observer; and ``sun``:
     the 0.53° sun with its lower limb seen at ``sun_lower_limb_deg`` (``lower_apparent_deg``,
@@ -363,6 +367,7 @@ def refraction(
         wavelength_nm=float(wavelength_nm),
         observer_height_m=float(observer_height_m),
         sun_lower_limb_deg=float(sun_lower_limb_deg),
+        method=method,
     )
     for k in ("apparent_altitude_deg", "true_altitude_deg", "refraction_arcsec", "bennett_arcsec", "saemundsson_arcsec"):
         d[k] = np.asarray(d[k], dtype=np.float64)

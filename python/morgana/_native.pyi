@@ -58,6 +58,7 @@ def refraction(
     wavelength_nm: float = 550.0,
     observer_height_m: float = 0.0,
     sun_lower_limb_deg: float = 0.0,
+    method: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def terrestrial(
     atmosphere: str,

@@ -5,6 +5,7 @@ use crate::errors::{arg_error, guard, located_error, must_exist};
 use crate::render::NativeResult;
 use crate::scene::NativeScene;
 use glam::DVec3;
+use morgana::atmosphere::refraction::refractor::{Method, Refractor};
 use morgana::atmosphere::refraction::report::table;
 use morgana::atmosphere::refraction::sun::{SUN_DIAMETER_RAD, flattened_disc};
 use morgana::atmosphere::refraction::terrestrial::radial_air;
@@ -20,7 +21,7 @@ use std::path::PathBuf;
 
 /// Astronomical refraction through an atmosphere (`morgana refraction`).
 #[pyfunction]
-#[pyo3(signature = (atmosphere, apparent_altitudes_deg, wavelength_nm=550.0, observer_height_m=0.0, sun_lower_limb_deg=0.0))]
+#[pyo3(signature = (atmosphere, apparent_altitudes_deg, wavelength_nm=550.0, observer_height_m=0.0, sun_lower_limb_deg=0.0, method=None))]
 pub fn refraction<'py>(
     py: Python<'py>,
     atmosphere: String,
@@ -28,7 +29,18 @@ pub fn refraction<'py>(
     wavelength_nm: f64,
     observer_height_m: f64,
     sun_lower_limb_deg: f64,
+    method: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let method = match method.as_deref() {
+        None => None,
+        Some("quadrature") => Some(Method::Quadrature),
+        Some("trace") => Some(Method::Trace),
+        Some(other) => {
+            return Err(PyValueError::new_err(format!(
+                "method: unknown \"{other}\"; expected \"quadrature\", \"trace\" or None (quadrature where the air allows it)"
+            )));
+        }
+    };
     if let Some(a) =
         apparent_altitudes_deg.iter().chain([&sun_lower_limb_deg]).find(|a| !(a.is_finite() && a.abs() <= 90.0))
     {
@@ -40,13 +52,17 @@ pub fn refraction<'py>(
             .map_err(|e| arg_error(e.at_flag("wavelength_nm")))?;
         let tracer = Tracer::new(&atm, wavelength_nm, observer_height_m, Settings::default())
             .map_err(|e| arg_error(e.at_flag("observer_height_m")))?;
-        let t = table(&tracer, &apparent_altitudes_deg).map_err(arg_error)?;
+        let refractor = Refractor::new(tracer, method)
+            .map_err(|e| PyValueError::new_err(format!("method=\"quadrature\": {e}; use method=\"trace\"")))?;
+        let t = table(&refractor, &apparent_altitudes_deg).map_err(arg_error)?;
         let d = PyDict::new(py);
         d.set_item("atmosphere", &t.atmosphere)?;
         d.set_item("wavelength_nm", t.wavelength_nm)?;
         d.set_item("observer_height_m", t.observer_height_m)?;
         d.set_item("pressure_hpa", t.pressure_hpa)?;
         d.set_item("temperature_c", t.temperature_c)?;
+        let by = if refractor.method() == Method::Quadrature { "quadrature" } else { "trace" };
+        d.set_item("method", by)?;
         let col = |f: &dyn Fn(&morgana::atmosphere::refraction::report::Row) -> Option<f64>| -> Vec<f64> {
             t.rows.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect()
         };
@@ -55,7 +71,7 @@ pub fn refraction<'py>(
         d.set_item("refraction_arcsec", col(&|r| r.trace.refraction_rad().map(|x| x * ARCSEC_PER_RAD)))?;
         d.set_item("bennett_arcsec", col(&|r| r.bennett_rad.map(|x| x * ARCSEC_PER_RAD)))?;
         d.set_item("saemundsson_arcsec", col(&|r| r.saemundsson_rad.map(|x| x * ARCSEC_PER_RAD)))?;
-        let sun = flattened_disc(&tracer, sun_lower_limb_deg.to_radians(), SUN_DIAMETER_RAD).map_err(arg_error)?;
+        let sun = flattened_disc(&refractor, sun_lower_limb_deg.to_radians(), SUN_DIAMETER_RAD).map_err(arg_error)?;
         match sun {
             None => d.set_item("sun", py.None())?,
             Some(f) => {

@@ -36,6 +36,24 @@ def test_refraction_matches_the_cli_table(tmp_path, cli):
         morgana.refraction("usa76", [91])
     with pytest.raises(ValueError):
         morgana.refraction("no_such_atmosphere", [0])
+    with pytest.raises(ValueError, match="method"):
+        morgana.refraction("usa76", [0], method="bouguer")
+
+
+def test_refraction_by_quadrature_and_by_trace_agree(tmp_path, cli):
+    # The default is Bouguer's quadrature, as the command's; method="trace" is the ray equation,
+    # as `--method trace`. The two agree within the trace's own error (tests/terrestrial.rs).
+    altitudes = [-0.5, 0, 0.5, 1, 5, 45, 90]
+    out = tmp_path / "t.csv"
+    cli("refraction", "--atmosphere", "usa76", "--apparent-altitudes-deg", ",".join(map(str, altitudes)),
+        "--method", "trace", "--csv", out)
+    c = csv_columns(out.read_text())
+    q, t = morgana.refraction("usa76", altitudes), morgana.refraction("usa76", altitudes, method="trace")
+    assert (q["method"], t["method"]) == ("quadrature", "trace")
+    assert morgana.refraction("usa76", altitudes, method="quadrature")["method"] == "quadrature"
+    np.testing.assert_allclose(t["refraction_arcsec"], c["refraction_arcsec"], atol=6e-5, equal_nan=True)
+    np.testing.assert_allclose(q["refraction_arcsec"], t["refraction_arcsec"], atol=2e-3, equal_nan=True)
+    assert abs(q["sun"]["ratio"] - t["sun"]["ratio"]) < 1e-6
 
 
 def test_terrestrial_matches_the_cli_table(tmp_path, cli):

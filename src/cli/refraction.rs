@@ -8,8 +8,9 @@ use crate::atmosphere::dispersion::Ciddor;
 use crate::atmosphere::refraction::model::{
     MODEL_EARTH_RADIUS_M, ModelAtmosphere, Observer, Refractivity, TOP_M, TROPOPAUSE_M,
 };
-use crate::atmosphere::refraction::model_table::{ModelMethod, QUADRATURE_TOL_RAD, model_table};
-use crate::atmosphere::refraction::report::{dispersion, quadrature_table, sun_text, table};
+use crate::atmosphere::refraction::model_table::{ModelMethod, model_table};
+use crate::atmosphere::refraction::refractor::{Method, Refractor};
+use crate::atmosphere::refraction::report::{dispersion, sun_text, table};
 use crate::atmosphere::refraction::terrestrial::{RadialAir, RadialIndex, radial_air};
 use crate::atmosphere::refraction::terrestrial_table::{sight_table, terrestrial_table};
 use crate::atmosphere::refraction::{Settings, Tracer};
@@ -61,9 +62,10 @@ pub struct RefractionArgs {
     /// Model atmosphere: the refractivity law.
     #[arg(long, value_enum, conflicts_with = "atmosphere", default_value_t = RefractivityArg::Ciddor)]
     pub refractivity: RefractivityArg,
-    /// Quadrature of the refraction integral or the ray trace [default: quadrature for the model
-    /// atmosphere, trace with --atmosphere; there quadrature is Bouguer's invariant through the
-    /// file's air, rays it does not follow (into the ground, ducted) traced].
+    /// Quadrature of the refraction integral or the ray trace [default: quadrature; with
+    /// --atmosphere that is Bouguer's invariant through the file's air, rays it does not follow
+    /// (into the ground, ducted) traced, and the trace where the air is not spherically
+    /// symmetric (a flat Earth, edits along the ground)].
     #[arg(long, value_enum)]
     pub method: Option<MethodArg>,
     /// Model atmosphere: a table over apparent zenith distances FROM,TO,STEP in degrees (0–90),
@@ -121,21 +123,21 @@ pub fn run(args: &RefractionArgs) -> Result<String> {
     Tracer::new(&atmosphere, args.wavelength_nm, 0.0, Settings::default()).map_err(|e| e.at_flag("--wavelength-nm"))?;
     let tracer = Tracer::new(&atmosphere, args.wavelength_nm, args.observer_height_m, Settings::default())
         .map_err(|e| e.at_flag("--observer-height-m"))?;
-    let t = if args.method == Some(MethodArg::Quadrature) {
-        let air = radial_air(&atmosphere, args.wavelength_nm)
-            .map_err(|e| Error::input(None, format!("--method quadrature: {e}; use --method trace")))?;
-        quadrature_table(&tracer, &air, &args.apparent_altitudes_deg, QUADRATURE_TOL_RAD)?
-    } else {
-        table(&tracer, &args.apparent_altitudes_deg)?
-    };
+    let method = args.method.map(|m| match m {
+        MethodArg::Quadrature => Method::Quadrature,
+        MethodArg::Trace => Method::Trace,
+    });
+    let refractor = Refractor::new(tracer, method)
+        .map_err(|e| Error::input(None, format!("--method quadrature: {e}; use --method trace")))?;
+    let t = table(&refractor, &args.apparent_altitudes_deg)?;
     let mut out = t.to_text();
     if let Some(ls) = args.wavelengths_nm.as_deref().filter(|l| !l.is_empty()) {
         for &l in ls {
-            tracer.at_wavelength(l).map_err(|e| e.at_flag("--wavelengths-nm"))?;
+            refractor.at_wavelength(l).map_err(|e| e.at_flag("--wavelengths-nm"))?;
         }
-        out.push_str(&dispersion(&tracer, &args.apparent_altitudes_deg, ls)?.to_text());
+        out.push_str(&dispersion(&refractor, &args.apparent_altitudes_deg, ls)?.to_text());
     }
-    out.push_str(&sun_text(&tracer)?);
+    out.push_str(&sun_text(&refractor)?);
     if let Some(path) = &args.csv {
         t.write_csv(path)?;
         out.push_str(&format!("wrote {}\n", path.display()));

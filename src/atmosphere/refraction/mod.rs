@@ -37,6 +37,7 @@ pub mod model;
 pub mod model_table;
 pub mod model_trace;
 pub mod quadrature;
+pub mod refractor;
 pub mod report;
 pub mod sight;
 pub mod sun;

@@ -4,9 +4,9 @@
 //! does not escape), the dispersion between wavelengths and the flattened sun.
 
 use super::formulas::{bennett_rad, conditions_factor, saemundsson_rad};
+use super::refractor::{Answer, Refractor};
 use super::sun::{Flattening, SUN_DIAMETER_RAD, flattened_disc};
-use super::terrestrial::{RadialAir, RadialIndex, true_altitude};
-use super::{ARCSEC_PER_RAD, Outcome, Trace, Tracer};
+use super::{ARCSEC_PER_RAD, Outcome, Trace};
 use crate::error::Result;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -49,52 +49,19 @@ pub struct Table {
     pub rows: Vec<Row>,
 }
 
-/// Traces every apparent altitude (degrees) of `altitudes_deg`.
-pub fn table(tracer: &Tracer, altitudes_deg: &[f64]) -> Result<Table> {
-    table_with(tracer, altitudes_deg, |_| Ok(None))
-}
-
-/// Every apparent altitude of `altitudes_deg` by Bouguer's quadrature through `air` (the
-/// tracer's atmosphere at its wavelength, [`super::terrestrial::radial_air`]) to `tol_rad`; a
-/// ray the quadrature does not follow — into the ground, or turned back by a duct — is traced.
-pub fn quadrature_table<F: RadialIndex>(
-    tracer: &Tracer,
-    air: &RadialAir<F>,
-    altitudes_deg: &[f64],
-    tol_rad: f64,
-) -> Result<Table> {
-    let h0 = tracer.atmosphere().earth.height(tracer.observer());
-    table_with(tracer, altitudes_deg, |a| Ok(true_altitude(air, h0, a, tol_rad).ok().flatten()))
-}
-
-/// The table, each row from `quadrature` (true altitude and evaluations) where it answers, else
-/// traced.
-fn table_with(
-    tracer: &Tracer,
-    altitudes_deg: &[f64],
-    quadrature: impl Fn(f64) -> Result<Option<(f64, u64)>>,
-) -> Result<Table> {
+/// Every apparent altitude (degrees) of `altitudes_deg`, by the refractor's method.
+pub fn table(refractor: &Refractor, altitudes_deg: &[f64]) -> Result<Table> {
+    let tracer = refractor.tracer();
     let atm = tracer.atmosphere();
     let air = atm.air(tracer.observer());
     let (pressure_hpa, temperature_c) = (air.pressure_pa / 100.0, air.temperature_k - 273.15);
     let factor = conditions_factor(pressure_hpa, temperature_c);
     let mut rows = Vec::with_capacity(altitudes_deg.len());
     for &a in altitudes_deg {
-        let by_quadrature = quadrature(a.to_radians())?;
-        let trace = match by_quadrature {
-            Some((true_altitude_rad, _)) => Trace {
-                apparent_altitude_rad: a.to_radians(),
-                outcome: Outcome::Escaped { true_altitude_rad },
-                path_length_m: f64::NAN,
-                ode_steps: 0,
-                ode_rejected: 0,
-            },
-            None => tracer.trace(a.to_radians())?,
-        };
+        let Answer { trace, quadrature_evaluations } = refractor.answer(a.to_radians())?;
         let bennett_rad = (a >= 0.0).then(|| factor * bennett_rad(a));
         let saemundsson_rad =
             trace.true_altitude_rad().map(f64::to_degrees).filter(|t| *t >= -1.0).map(|t| factor * saemundsson_rad(t));
-        let quadrature_evaluations = by_quadrature.map(|q| q.1);
         rows.push(Row { apparent_altitude_deg: a, trace, bennett_rad, saemundsson_rad, quadrature_evaluations });
     }
     Ok(Table {
@@ -186,9 +153,9 @@ pub struct Dispersion {
     pub rows: Vec<(f64, Vec<Option<f64>>)>,
 }
 
-/// Traces each apparent altitude at each wavelength.
-pub fn dispersion(tracer: &Tracer, altitudes_deg: &[f64], wavelengths_nm: &[f64]) -> Result<Dispersion> {
-    let tracers = wavelengths_nm.iter().map(|&l| tracer.at_wavelength(l)).collect::<Result<Vec<_>>>()?;
+/// Each apparent altitude at each wavelength, by the refractor's method.
+pub fn dispersion(refractor: &Refractor, altitudes_deg: &[f64], wavelengths_nm: &[f64]) -> Result<Dispersion> {
+    let tracers = wavelengths_nm.iter().map(|&l| refractor.at_wavelength(l)).collect::<Result<Vec<_>>>()?;
     let mut rows = Vec::with_capacity(altitudes_deg.len());
     for &a in altitudes_deg {
         let rs = tracers.iter().map(|t| t.refraction_rad(a.to_radians())).collect::<Result<Vec<_>>>()?;
@@ -226,8 +193,8 @@ impl Dispersion {
 }
 
 /// The sun (0.53°) with its lower limb at apparent altitude 0, as text.
-pub fn sun_text(tracer: &Tracer) -> Result<String> {
-    Ok(match flattened_disc(tracer, 0.0, SUN_DIAMETER_RAD)? {
+pub fn sun_text(refractor: &Refractor) -> Result<String> {
+    Ok(match flattened_disc(refractor, 0.0, SUN_DIAMETER_RAD)? {
         Some(f) => flattening_text(&f),
         None => "sun with its lower limb on the horizon: a limb's ray does not escape (no figure)\n".to_string(),
     })

@@ -16,7 +16,7 @@
 //! - A. T. Young 2004, "Sunset science. IV. Low-altitude refraction", Astron. J. 127:3622 (the
 //!   flattened sun as a measure of the refraction gradient).
 
-use super::Tracer;
+use super::refractor::Refractor;
 use crate::error::Result;
 
 /// The sun's mean angular diameter used here, 0.53°, rad.
@@ -39,13 +39,13 @@ pub struct Flattening {
 
 /// The refracted disc of angular diameter `diameter_rad` whose lower limb is seen at
 /// `lower_apparent_rad`; `None` if a limb's ray does not escape the atmosphere.
-pub fn flattened_disc(tracer: &Tracer, lower_apparent_rad: f64, diameter_rad: f64) -> Result<Option<Flattening>> {
-    let Some(r_low) = tracer.refraction_rad(lower_apparent_rad)? else { return Ok(None) };
+pub fn flattened_disc(refractor: &Refractor, lower_apparent_rad: f64, diameter_rad: f64) -> Result<Option<Flattening>> {
+    let Some(r_low) = refractor.refraction_rad(lower_apparent_rad)? else { return Ok(None) };
     let lower_true_rad = lower_apparent_rad - r_low;
     let upper_true_rad = lower_true_rad + diameter_rad;
     // Refraction falls with altitude, so a_U lies between a_L and a_L + D.
     let hi = (lower_apparent_rad + diameter_rad).min(std::f64::consts::FRAC_PI_2);
-    let Some(upper_apparent_rad) = apparent_for_true(tracer, upper_true_rad, lower_apparent_rad, hi)? else {
+    let Some(upper_apparent_rad) = apparent_for_true(refractor, upper_true_rad, lower_apparent_rad, hi)? else {
         return Ok(None);
     };
     Ok(Some(Flattening {
@@ -60,8 +60,8 @@ pub fn flattened_disc(tracer: &Tracer, lower_apparent_rad: f64, diameter_rad: f6
 /// The apparent altitude in [`lo`, `hi`] (rad) at which a star of true altitude `true_rad` is
 /// seen: the root of g(a) = a − R(a) − t, by the Illinois variant of regula falsi to 10⁻¹¹ rad.
 /// `None` when g does not change sign over the bracket or a ray in it does not escape.
-pub fn apparent_for_true(tracer: &Tracer, true_rad: f64, lo: f64, hi: f64) -> Result<Option<f64>> {
-    let g = |a: f64| -> Result<Option<f64>> { Ok(tracer.trace(a)?.true_altitude_rad().map(|t| t - true_rad)) };
+pub fn apparent_for_true(refractor: &Refractor, true_rad: f64, lo: f64, hi: f64) -> Result<Option<f64>> {
+    let g = |a: f64| -> Result<Option<f64>> { Ok(refractor.true_altitude_rad(a)?.map(|t| t - true_rad)) };
     let (Some(mut ga), Some(mut gb)) = (g(lo)?, g(hi)?) else { return Ok(None) };
     let (mut a, mut b) = (lo, hi);
     if ga == 0.0 {

@@ -583,7 +583,7 @@ impl Near {
 pub fn radial_air(
     atmosphere: &crate::atmosphere::Atmosphere,
     wavelength_nm: f64,
-) -> Result<RadialAir<impl RadialIndex + '_>, String> {
+) -> Result<RadialAir<AtmosphereIndex<'_>>, String> {
     let crate::atmosphere::Earth::Spherical(s) = &atmosphere.earth else {
         return Err(format!(
             "atmosphere \"{}\" has a flat Earth: terrestrial refraction needs a round one",
@@ -599,12 +599,25 @@ pub fn radial_air(
     atmosphere.dispersion.check_range((wavelength_nm, wavelength_nm))?;
     let k = atmosphere.dispersion.gladstone_dale_m3_per_kg(wavelength_nm);
     Ok(RadialAir {
-        refractivity: move |h: f64| {
-            let (q, dq) = atmosphere.reduced_refractivity(h);
-            (k * q, k * dq)
-        },
+        refractivity: AtmosphereIndex { atmosphere, k },
         kink_heights_m: atmosphere.smooth_piece_ends_m(),
         ground_radius_m: s.radius_m,
         top_m: atmosphere.top_m(),
     })
+}
+
+/// The index of an atmosphere's air at one wavelength as a function of height:
+/// n − 1 = K(λ)·q(h), q its reduced refractivity (density over the reference density) and K the
+/// dispersion law's Gladstone–Dale factor ([`radial_air`]).
+#[derive(Clone, Copy, Debug)]
+pub struct AtmosphereIndex<'a> {
+    atmosphere: &'a crate::atmosphere::Atmosphere,
+    k: f64,
+}
+
+impl RadialIndex for AtmosphereIndex<'_> {
+    fn refractivity_slope(&self, h_m: f64) -> (f64, f64) {
+        let (q, dq) = self.atmosphere.reduced_refractivity(h_m);
+        (self.k * q, self.k * dq)
+    }
 }
