@@ -5,6 +5,7 @@ use glam::DVec3;
 use morgana::atmosphere::RadialTable;
 use morgana::media::refractive_index::IndexField;
 use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::photon_map::{PhotonPath, PhotonRecord};
 use morgana::raypath::shell::LayeredShell;
 use morgana::raypath::{Event, Propagator, RayState};
 use morgana::scene::{Scene, load_scene_str};
@@ -28,6 +29,22 @@ fn sunset_sea_with(extra: &str, edits: &[(&str, &str)]) -> Scene {
     load_scene_str(&text, Path::new(path), Path::new("examples"), "sunset_sea")
         .unwrap_or_else(|e| panic!("{path}: {e}"))
 }
+
+/// `examples/mirage_hot_road.toml` (air as the world medium, no top sphere) with each (from, to)
+/// of `edits` replaced in its text.
+fn mirage_with(edits: &[(&str, &str)]) -> Scene {
+    let path = "examples/mirage_hot_road.toml";
+    let mut text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replace(from, to);
+    }
+    load_scene_str(&text, Path::new(path), Path::new("examples"), "mirage_hot_road")
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// One coordinate of a stored photon.
+type Coordinate = fn(&PhotonRecord) -> f64;
 
 fn air(scene: &Scene) -> u32 {
     scene.world.media.iter().position(|m| m.name == "air").expect("air") as u32
@@ -137,4 +154,105 @@ fn a_photon_pass_ends_the_same_with_and_without_the_shell() {
     let (a, b) = (with.surface.len() as f64 / emitted as f64, without.surface.len() as f64 / emitted as f64);
     let sigma = ((a * (1.0 - a) + b * (1.0 - b)) / emitted as f64).sqrt();
     assert!((a - b).abs() < 4.0 * sigma, "stored: {a} with, {b} without");
+}
+
+/// Air that is the world medium has no top sphere; its shell's top is then its atmosphere's
+/// (86 km in `mirage_hot_road`), open to the world above, where n = 1 and, the air being clear,
+/// nothing absorbs. The bottom is 1 m above the farthest corner of the highest shape's box from
+/// the Earth's centre: the skyline's, 120 m up 15 km away, R + 120 + 15 045²/(2R) = R + 137.8 m
+/// (its farthest corner), so 138.8 m less the box's own offsets — between 130 and 140 m.
+/// Absorbing air whose density is uniform would absorb above the top too: no shell there.
+#[test]
+fn world_air_has_a_shell_open_above_its_atmospheres_top() {
+    let scene = mirage_with(&[]);
+    let prop = Propagator::new(&scene.world, scene.curved()).with_layered_shell((400.0, 700.0));
+    let shell = prop.layered_shell().expect("a shell");
+    assert_eq!(shell.medium(), air(&scene));
+    let (low, top) = shell.heights_m();
+    assert!((130.0..140.0).contains(&low) && (top - 86_000.0).abs() < 1e-6, "{low} {top}");
+    let absorbing = mirage_with(&[("sigma_a = 0.0\nsigma_s = 0.0", "sigma_a = 1e-6\nsigma_s = 0.0")]);
+    let prop = Propagator::new(&absorbing.world, absorbing.curved()).with_layered_shell((400.0, 700.0));
+    assert!(prop.layered_shell().is_none(), "uniform absorbing air above the top");
+}
+
+/// `enter` moves a path from above an open top straight onto the top sphere, 1 µm inside it,
+/// on its own line; a path that starts inside the top, leaves it, or misses it is left alone.
+#[test]
+fn a_path_from_above_enters_the_open_top_on_its_own_line() {
+    let scene = mirage_with(&[]);
+    let prop = Propagator::new(&scene.world, scene.curved()).with_layered_shell((400.0, 700.0));
+    let shell = prop.layered_shell().expect("a shell");
+    let centre = DVec3::new(0.0, -R, 0.0);
+    let r_top = R + 86_000.0;
+    for (from, dir) in [
+        (DVec3::new(3.0e5, 2.0e6, -1.0e5), DVec3::new(-0.1, -1.0, 0.05)),
+        (DVec3::new(0.0, 1.0e7, 0.0), DVec3::new(0.0, -1.0, 0.0)),
+        // Grazing: aimed 1 km inside the top's edge.
+        (DVec3::new(-5.0e6, 86_000.0 - 1000.0, 0.0), DVec3::new(1.0, 0.0, 0.0)),
+    ] {
+        let dir = dir.normalize();
+        let p = shell.enter(from, dir).unwrap_or_else(|| panic!("{from} {dir}: no entry"));
+        let off_line = (p - from).cross(dir).length();
+        let r = (p - centre).length();
+        assert!((r - (r_top - 1e-6)).abs() < 1e-7, "{from}: r − r_top = {}", r - r_top);
+        // Off the line by the radial nudge at most (all of it for a grazing path).
+        assert!(off_line < 1.001e-6 && (p - from).dot(dir) > 0.0, "{from}: {off_line} m off its line");
+    }
+    let up = DVec3::Y;
+    assert!(shell.enter(DVec3::new(0.0, 1000.0, 0.0), -up).is_none(), "starts inside the top");
+    assert!(shell.enter(DVec3::new(0.0, 2.0e5, 0.0), up).is_none(), "going away");
+    assert!(shell.enter(DVec3::new(-5.0e6, 2.0e5, 0.0), DVec3::X).is_none(), "passes above the top");
+}
+
+/// The photon pass of `mirage_hot_road` (sun and sky photons starting far above the air) ends
+/// the same with and without the open shell: the shares of the emitted power absorbed at the
+/// surfaces and escaped within their binomial noise (4 σ), the photons stored per photon emitted
+/// within 4 σ of a count whose variance is at most its mean, and where and how the sun's photons
+/// first land — the mean of each coordinate of their positions and directions — within 4
+/// standard errors of the difference (±6.4 m in x: entry points moved 10 m sideways fail it);
+/// every photon that reaches the top crosses it in one move.
+#[test]
+fn a_photon_pass_from_above_an_open_top_ends_the_same_with_and_without_it() {
+    let scene = mirage_with(&[]);
+    let mut pass = PassSettings::of(&scene);
+    let emitted = 20_000u64;
+    let (with, st_with) = shoot(&scene.world, &pass, MapKind::Global, emitted, 5, &|_| {});
+    pass.layered_shell = false;
+    let (without, st_without) = shoot(&scene.world, &pass, MapKind::Global, emitted, 5, &|_| {});
+    assert!(st_with.shell_descents > emitted * 9 / 10, "the shell was used: {}", st_with.shell_descents);
+    assert_eq!(st_without.shell_descents, 0);
+    let total = st_with.power_per_photon_w * emitted as f64;
+    let share = |w: f64| w / total;
+    for (name, a, b) in [
+        ("absorbed at surfaces", st_with.absorbed_surface_w, st_without.absorbed_surface_w),
+        ("escaped", st_with.escaped_w, st_without.escaped_w),
+    ] {
+        let (pa, pb) = (share(a), share(b));
+        let sigma = ((pa * (1.0 - pa) + pb * (1.0 - pb)) / emitted as f64).sqrt().max(1.0 / emitted as f64);
+        assert!((pa - pb).abs() < 4.0 * sigma, "{name}: {pa} with, {pb} without (σ {sigma})");
+    }
+    let (a, b) = (with.surface.len() as f64 / emitted as f64, without.surface.len() as f64 / emitted as f64);
+    assert!((a - b).abs() < 4.0 * ((a + b) / emitted as f64).sqrt(), "stored: {a} with, {b} without");
+    let coordinates: [(&str, Coordinate); 5] = [
+        ("x", |p| p.position.x),
+        ("z", |p| p.position.z),
+        ("dir x", |p| p.dir.x),
+        ("dir y", |p| p.dir.y),
+        ("dir z", |p| p.dir.z),
+    ];
+    for (name, c) in coordinates {
+        // The sun's photons where they first land (at its elevation of 40°, on the road or the
+        // skyline): their spread is the targets', where the sky's and the reflected ones' is
+        // kilometres.
+        let sun_elevation = 40f64.to_radians().sin();
+        let on_road = |p: &&PhotonRecord| p.path == PhotonPath::Direct && (p.dir.y + sun_elevation).abs() < 1e-3;
+        let stats = |ps: &[PhotonRecord]| {
+            let xs: Vec<f64> = ps.iter().filter(on_road).map(c).collect();
+            let n = xs.len() as f64;
+            let mean = xs.iter().sum::<f64>() / n;
+            (mean, xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n)
+        };
+        let ((ma, va), (mb, vb)) = (stats(&with.surface), stats(&without.surface));
+        assert!((ma - mb).abs() < 4.0 * (va + vb).sqrt(), "{name}: {ma} with, {mb} without (se {})", (va + vb).sqrt());
+    }
 }

@@ -161,10 +161,13 @@ pub fn trace(
     // counts photons: the shell's medium then keeps none).
     let shell = prop.layered_shell();
     for _ in 0..MAX_PHOTON_BOUNCES {
-        if let Some(s) = shell.filter(|s| state.medium == Some(s.medium()))
-            && !cross_shell(&f, s, &mut state, rng, st)
-        {
-            return;
+        if let Some(s) = shell.filter(|s| state.medium == Some(s.medium())) {
+            if let Some(top) = s.enter(state.position, state.dir) {
+                state.position = top;
+            }
+            if !cross_shell(&f, s, &mut state, rng, st) {
+                return;
+            }
         }
         let event = prop.next_event_with(&state, &mut |c| {
             let m = world.medium(c.medium)?;

@@ -6,7 +6,12 @@
 //! A medium fills the shell r_low ≤ r ≤ r_top about the centre c of a spherical Earth: its top
 //! is a sphere about c with the medium inside, r_low lies 1 m above every other shape (their
 //! bounding boxes' farthest corners from c, or the radius of a sphere about c), and in between
-//! there is nothing else. Its index depends on height alone ([`RadialTable`]: n = 1 + K(λ)·q(h),
+//! there is nothing else. Air that is the world medium (`[world] medium`, no top sphere) has
+//! an *open* top, its atmosphere's: above it n = 1 and no shape lies there, so a path from
+//! above goes straight, and if the medium is clear or its density ends at the top nothing is
+//! absorbed on the way; a photon from above is moved straight onto the top sphere
+//! ([`LayeredShell::enter`]) and crosses the shell from there. `mirage_hot_road` and
+//! `mirage_superior`, whose sun and sky photons start far above the air, are such scenes. Its index depends on height alone ([`RadialTable`]: n = 1 + K(λ)·q(h),
 //! Gladstone–Dale), with n·r increasing with r throughout (no duct); it absorbs but does not
 //! scatter and has no inelastic component, and its extinction is σ_t(λ)·d(r) with a density d
 //! of r alone ([`crate::media::density::Density::is_radial_about`]).
@@ -63,6 +68,9 @@ use std::f64::consts::FRAC_PI_2;
 /// How far below the top sphere a path may start and still cross the shell in one move, m (it
 /// starts at the top's spawn offset after crossing it).
 const ENTRY_SLACK_M: f64 = 1.0;
+/// How far inside an open top [`LayeredShell::enter`] puts a path, m (far below the table's
+/// millimetre bound on where a path arrives).
+const ENTRY_NUDGE_M: f64 = 1e-6;
 /// The gap between the highest other shape and the shell's bottom, m.
 const BOTTOM_GAP_M: f64 = 1.0;
 /// Most intervals of a table in z_low.
@@ -106,6 +114,8 @@ pub struct LayeredShell {
     earth_radius: f64,
     r_low: f64,
     r_top: f64,
+    /// The top is the atmosphere's, open to the world medium above it ([`LayeredShell::enter`]).
+    open_top: bool,
     /// q at the bottom.
     q_low: f64,
     table: RadialTable,
@@ -123,11 +133,13 @@ struct Node {
     d: f64,
 }
 
-/// The shell's geometry: what fills it, about which centre, between which radii.
+/// The shell's geometry: what fills it, about which centre, between which radii, and whether
+/// its top is a shape's sphere or the atmosphere's top, open to the world medium above it.
 struct Bounds {
     centre: DVec3,
     r_low: f64,
     r_top: f64,
+    open_top: bool,
 }
 
 impl LayeredShell {
@@ -141,8 +153,10 @@ impl LayeredShell {
         rtol: f64,
     ) -> Option<LayeredShell> {
         let m = &world.media[medium as usize];
-        let bounds = Self::bounds(world, medium, table.earth())?;
-        Self::between(m, medium, table, bounds.centre, (bounds.r_low, bounds.r_top), range_nm, rtol)
+        let top_m = *table.knot_heights_m().last()?;
+        let bounds = Self::bounds(world, medium, table.earth(), top_m)?;
+        let shell = Self::between(m, medium, table, bounds.centre, (bounds.r_low, bounds.r_top), range_nm, rtol)?;
+        Some(LayeredShell { open_top: bounds.open_top, ..shell })
     }
 
     /// The shell of medium `m` (index `medium`) between radii `r_low` and `r_top` about
@@ -170,6 +184,7 @@ impl LayeredShell {
             earth_radius: s.radius_m,
             r_low,
             r_top,
+            open_top: false,
             q_low: table.exact(r_low - s.radius_m).0,
             table: table.clone(),
             density: m.density.clone(),
@@ -202,38 +217,47 @@ impl LayeredShell {
     }
 
     /// The heights above the ground of the bottom and top of the shell medium `medium` of
-    /// `world` would have, from the scene alone (no table is built, so a shell may still be
-    /// refused where its table would not reach the bound): for the effect plan's words.
-    pub fn candidate(world: &World, medium: u32) -> Option<(f64, f64)> {
+    /// `world` would have, and whether its top is open (the atmosphere's, with the world medium
+    /// above), from the scene alone (no table is built, so a shell may still be refused where
+    /// its table would not reach the bound): for the effect plan's words.
+    pub fn candidate(world: &World, medium: u32) -> Option<(f64, f64, bool)> {
         let m = &world.media[medium as usize];
         let Some(crate::media::refractive_index::IndexField::Atmosphere(a)) = &m.index else { return None };
         let centre = a.radial_centre()?;
         if !(matches!(a.base, crate::atmosphere::BaseProfile::Usa76) && Self::medium_allows(m, centre)) {
             return None;
         }
-        let b = Self::bounds(world, medium, &a.earth)?;
+        let b = Self::bounds(world, medium, &a.earth, a.top_m())?;
         let Earth::Spherical(s) = &a.earth else { return None };
-        Some((b.r_low - s.radius_m, b.r_top - s.radius_m))
+        Some((b.r_low - s.radius_m, b.r_top - s.radius_m, b.open_top))
     }
 
-    /// The shell's radii in `world` for medium `medium`: `None` when no sphere about the Earth's
-    /// centre has it inside, or something lies between the top and 1 m above everything else.
-    fn bounds(world: &World, medium: u32, earth: &Earth) -> Option<Bounds> {
+    /// The shell's radii in `world` for medium `medium` whose atmosphere ends `top_m` above the
+    /// ground: the top is the smallest sphere about the Earth's centre with the medium inside,
+    /// or, for the world medium where none is, the atmosphere's top when nothing above it can
+    /// absorb ([`LayeredShell::open_top_allowed`]). `None` when there is neither, or something
+    /// lies between the top and 1 m above everything else.
+    fn bounds(world: &World, medium: u32, earth: &Earth, top_m: f64) -> Option<Bounds> {
         let Earth::Spherical(s) = earth else { return None };
         let about = |sh: &Shape| match sh {
             Shape::Sphere(sp) if (sp.center - s.centre).length() <= 1e-3 => Some(sp.radius),
             _ => None,
         };
-        let r_top = world
+        let closed = world
             .shapes
             .iter()
             .zip(&world.prims)
             .filter(|(_, p)| p.interior == Some(medium) && p.exterior != Some(medium))
             .filter_map(|(sh, _)| about(sh))
             .fold(f64::INFINITY, f64::min);
-        if !r_top.is_finite() {
+        let open_top = !closed.is_finite();
+        let r_top = if !open_top {
+            closed
+        } else if world.global_medium == Some(medium) && Self::open_top_allowed(&world.media[medium as usize], top_m) {
+            s.radius_m + top_m
+        } else {
             return None;
-        }
+        };
         let mut highest = s.radius_m;
         for sh in &world.shapes {
             let r = match about(sh) {
@@ -244,7 +268,38 @@ impl LayeredShell {
             highest = highest.max(r);
         }
         let r_low = highest + BOTTOM_GAP_M;
-        (r_low < r_top).then_some(Bounds { centre: s.centre, r_low, r_top })
+        (r_low < r_top).then_some(Bounds { centre: s.centre, r_low, r_top, open_top })
+    }
+
+    /// Whether the world medium `m` may have an open top at `top_m`: above it n = 1 (the
+    /// atmosphere's), so a path there is straight, and nothing absorbs — the medium is clear,
+    /// or its density is an air profile that ends at or below the top.
+    fn open_top_allowed(m: &Medium, top_m: f64) -> bool {
+        match &m.density {
+            _ if m.is_clear() => true,
+            crate::media::density::Density::AirProfile(a) => a.top_m() <= top_m,
+            _ => false,
+        }
+    }
+
+    /// Where a path of the world medium at `position` going `dir` from above an open top meets
+    /// the top sphere, just inside it: straight, as it would go there (n = 1, no shape and
+    /// nothing absorbing above the top), so that [`LayeredShell::descend`] can take it on.
+    /// `None` when the top is a shape's, the path starts inside the top sphere, or misses it.
+    pub fn enter(&self, position: DVec3, dir: DVec3) -> Option<DVec3> {
+        if !self.open_top {
+            return None;
+        }
+        let rel = position - self.centre;
+        let (a, b) = (dir.length_squared(), rel.dot(dir));
+        let c = (rel.length() - self.r_top) * (rel.length() + self.r_top);
+        let disc = b * b - a * c;
+        if !(c > 0.0 && b < 0.0 && disc > 0.0) {
+            return None;
+        }
+        // The nearer root t = (−b − √disc)/a, written as c/(−b + √disc) to avoid cancellation.
+        let p = rel + dir * (c / (-b + disc.sqrt()));
+        Some(self.centre + p * ((self.r_top - ENTRY_NUDGE_M) / p.length()))
     }
 
     /// The medium whose shell this is.

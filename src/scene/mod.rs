@@ -714,12 +714,17 @@ fn decide_plan(
     if plan.curved_paths.on && integrator.method == Method::PhotonMap && sensors.is_empty() {
         let shell = (0..world.media.len() as u32)
             .find_map(|i| crate::raypath::shell::LayeredShell::candidate(world, i).map(|h| (i, h)));
-        if let Some((i, (low, top))) = shell {
+        if let Some((i, (low, top, open))) = shell {
+            let name = &world.media[i as usize].name;
+            let entry = if open {
+                format!("come down to the top of \"{name}\"'s atmosphere (straight, from above, where n = 1)")
+            } else {
+                format!("enter \"{name}\" through its top going down")
+            };
             plan.curved_paths.why += &format!(
-                "; photons that enter \"{}\" through its top going down cross it from {top:.0} m to {low:.0} m above \
-                 the ground in one move each, by Bouguer's invariant (where its table reaches the integrator's rtol; report.json counts the \
-                 crossings as shell_descents)",
-                world.media[i as usize].name
+                "; photons that {entry} cross it from {top:.0} m to {low:.0} m above the ground in one move each, by \
+                 Bouguer's invariant (where its table reaches the integrator's rtol; report.json counts the crossings as \
+                 shell_descents)"
             );
         }
     }
