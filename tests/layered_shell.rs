@@ -256,3 +256,49 @@ fn a_photon_pass_from_above_an_open_top_ends_the_same_with_and_without_it() {
         assert!((ma - mb).abs() < 4.0 * (va + vb).sqrt(), "{name}: {ma} with, {mb} without (se {})", (va + vb).sqrt());
     }
 }
+
+/// Paths from `mirage_hot_road`'s camera (10 m up) that climb out of its clear air — grazing at
+/// 0.05° to nearly straight up, at 400, 550 and 700 nm — escape in the direction the same path
+/// stepped through the whole atmosphere escapes in, when they leave the shell (136 m to 86 km)
+/// upward in one move by Bouguer's invariant; the propagator counts each such ascent. Paths
+/// that meet the skyline on the way are the same event either way.
+#[test]
+fn paths_that_climb_out_escape_where_the_stepped_paths_do() {
+    // The angle between two unit vectors, accurate at small angles (atan2 of |a × b| and a·b).
+    let angle_between = |a: DVec3, b: DVec3| a.cross(b).length().atan2(a.dot(b));
+    let scene = mirage_with(&[]);
+    let stepped = Propagator::new(&scene.world, scene.curved());
+    let quick = Propagator::new(&scene.world, scene.curved()).with_upward_shell((400.0, 700.0));
+    assert!(quick.layered_shell().is_some() && stepped.layered_shell().is_none());
+    let (mut worst, mut escapes) = (0.0f64, 0u64);
+    for elevation_deg in [0.05, 0.2, 0.5, 1.0, 3.0, 10.0, 45.0, 89.9] {
+        for azimuth_deg in [0.0, 3.0, 100.0, 200.0] {
+            for lambda in [400.0, 550.0, 700.0] {
+                let (e, a) = (f64::to_radians(elevation_deg), f64::to_radians(azimuth_deg));
+                let dir = DVec3::new(e.cos() * a.sin(), e.sin(), -e.cos() * a.cos());
+                let state = RayState {
+                    position: DVec3::new(0.0, 10.0, 0.0),
+                    dir,
+                    wavelength_nm: Some(lambda),
+                    medium: Some(air(&scene)),
+                };
+                match (stepped.next_event(&state), quick.next_event(&state)) {
+                    (Event::Escape { dir: d0 }, Event::Escape { dir: d1 }) => {
+                        let angle = angle_between(d0, d1);
+                        worst = worst.max(angle);
+                        escapes += 1;
+                        assert!(angle < 1e-7, "{elevation_deg}°, {azimuth_deg}°, {lambda} nm: {angle} rad apart");
+                    }
+                    (Event::Surface { hit: h0, .. }, Event::Surface { hit: h1, .. }) => {
+                        assert_eq!(h0.prim, h1.prim);
+                        assert!((h0.point - h1.point).length() < 1e-6);
+                    }
+                    other => panic!("{elevation_deg}°, {azimuth_deg}°, {lambda} nm: {other:?}"),
+                }
+            }
+        }
+    }
+    assert!(escapes > 60, "{escapes} escapes");
+    assert_eq!(quick.work.totals().shell_ascents, escapes);
+    eprintln!("{escapes} escapes; largest angle between the directions {worst:.2e} rad");
+}

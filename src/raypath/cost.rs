@@ -16,6 +16,7 @@ pub struct CurvedWork {
     chords: AtomicU64,
     lost: AtomicU64,
     trapped: AtomicU64,
+    ascents: AtomicU64,
 }
 
 /// A snapshot of [`CurvedWork`], as `report.json` records it.
@@ -37,6 +38,10 @@ pub struct CurvedWorkTotals {
     /// ([`super::far`]).
     #[serde(default)]
     pub trapped: u64,
+    /// Paths that left the layered upper air upward in one move, by Bouguer's invariant
+    /// ([`super::shell::LayeredShell::ascend`]).
+    #[serde(default)]
+    pub shell_ascents: u64,
 }
 
 impl CurvedWork {
@@ -59,6 +64,11 @@ impl CurvedWork {
         self.trapped.fetch_add(1, Relaxed);
     }
 
+    /// Counts a path that left the layered upper air upward in one move.
+    pub fn ascent(&self) {
+        self.ascents.fetch_add(1, Relaxed);
+    }
+
     /// The counts so far.
     pub fn totals(&self) -> CurvedWorkTotals {
         CurvedWorkTotals {
@@ -69,6 +79,7 @@ impl CurvedWork {
             chords: self.chords.load(Relaxed),
             lost: self.lost.load(Relaxed),
             trapped: self.trapped.load(Relaxed),
+            shell_ascents: self.ascents.load(Relaxed),
         }
     }
 }
@@ -83,6 +94,7 @@ impl CurvedWorkTotals {
         self.chords += o.chords;
         self.lost += o.lost;
         self.trapped += o.trapped;
+        self.shell_ascents += o.shell_ascents;
     }
 }
 

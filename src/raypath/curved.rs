@@ -36,6 +36,8 @@ const MAX_LEGS: usize = 10_000;
 struct Walk {
     position: DVec3,
     dir: DVec3,
+    /// The wavelength the path follows, nm.
+    wavelength_nm: f64,
     /// Path length so far, m.
     travelled: f64,
     medium: u32,
@@ -77,6 +79,7 @@ pub(super) fn next_event(
     let mut walk = Walk {
         position: state.position,
         dir: state.dir,
+        wavelength_nm: lambda,
         travelled: 0.0,
         medium,
         chords: 0,
@@ -186,6 +189,9 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
         if let Some(e) = chords_of(prop, &step, settings.arc_tolerance_m, w, visit) {
             return Leg::Done(e);
         }
+        if let Some(e) = leave_upward(prop, &step, w) {
+            return Leg::Done(e);
+        }
         w.position = state.y.r;
         w.dir = state.y.direction();
         if prop.outside_world(w.position) {
@@ -201,6 +207,19 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
             return Leg::Done(Event::Escape { dir: w.dir });
         }
     }
+}
+
+/// The escape of a path whose `step` crossed the bottom of an open, clear layered shell going
+/// up ([`Propagator::upward_shell`]): located on the step's dense output, it is carried to the
+/// shell's top by Bouguer's invariant ([`super::shell::LayeredShell::ascend`]) and goes on
+/// straight from there, where n = 1 and nothing lies. The step's chords past the bottom were
+/// already handed out: in clear air above every shape they meet nothing and nothing happens.
+fn leave_upward(prop: &Propagator, step: &Step, w: &Walk) -> Option<Event> {
+    let shell = prop.upward_shell(w.medium)?;
+    let theta = shell.bottom_crossing(|t| step.position_at(t))?;
+    let a = shell.ascend(step.position_at(theta), step.direction_at(theta), w.wavelength_nm)?;
+    prop.work.ascent();
+    Some(Event::Escape { dir: a.dir })
 }
 
 /// Hands the chords of one step to the scene and the visitor; the event, if one happens on

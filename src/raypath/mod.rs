@@ -202,6 +202,22 @@ impl<'a> Propagator<'a> {
         self
     }
 
+    /// This propagator with the layered upper air of [`Propagator::with_layered_shell`] where
+    /// paths may leave it upward in one move — its top open, its medium clear
+    /// ([`shell::LayeredShell::open_and_clear`]) — and without it elsewhere, where the tables
+    /// would serve no path (an eye pass: its paths do not come down from above the air).
+    pub fn with_upward_shell(self, range_nm: (f64, f64)) -> Propagator<'a> {
+        let wanted = (0..self.world.media.len() as u32).any(|i| {
+            self.clear[i as usize] && shell::LayeredShell::candidate(self.world, i).is_some_and(|(_, _, open)| open)
+        });
+        if wanted { self.with_layered_shell(range_nm) } else { self }
+    }
+
+    /// The layered upper air of medium `medium` if paths there leave it upward in one move.
+    fn upward_shell(&self, medium: u32) -> Option<&shell::LayeredShell> {
+        self.shell.as_deref().filter(|s| s.medium() == medium && s.open_and_clear(self.clear[medium as usize]))
+    }
+
     /// The layered upper air, if [`Propagator::with_layered_shell`] found one.
     pub fn layered_shell(&self) -> Option<&shell::LayeredShell> {
         self.shell.as_deref()

@@ -11,7 +11,17 @@
 //! above goes straight, and if the medium is clear or its density ends at the top nothing is
 //! absorbed on the way; a photon from above is moved straight onto the top sphere
 //! ([`LayeredShell::enter`]) and crosses the shell from there. `mirage_hot_road` and
-//! `mirage_superior`, whose sun and sky photons start far above the air, are such scenes. Its index depends on height alone ([`RadialTable`]: n = 1 + K(λ)·q(h),
+//! `mirage_superior`, whose sun and sky photons start far above the air, are such scenes.
+//!
+//! # Upward
+//! The invariant holds both ways: a path that leaves the bottom going up at zenith z_low sweeps
+//! the same Δθ to the top as one that arrives there at z_low ([`LayeredShell::ascend`]). Where
+//! the top is open and the air clear, a path that climbs through the bottom — an eye path to
+//! the sky, a photon reflected upward — can meet nothing more and lose nothing on the way, so it
+//! escapes from there in the direction it has at the top (sin z_top = b/(n_top·r_top)), with no
+//! steps; the crossing is located on the step's dense output ([`LayeredShell::bottom_crossing`]).
+//! (With an absorbing medium or a closed top the path is still stepped: its transmittance, per
+//! wavelength of an eye path's bundle, or what lies outside the top would have to be carried.) Its index depends on height alone ([`RadialTable`]: n = 1 + K(λ)·q(h),
 //! Gladstone–Dale), with n·r increasing with r throughout (no duct); it absorbs but does not
 //! scatter and has no inelastic component, and its extinction is σ_t(λ)·d(r) with a density d
 //! of r alone ([`crate::media::density::Density::is_radial_about`]).
@@ -71,6 +81,9 @@ const ENTRY_SLACK_M: f64 = 1.0;
 /// How far inside an open top [`LayeredShell::enter`] puts a path, m (far below the table's
 /// millimetre bound on where a path arrives).
 const ENTRY_NUDGE_M: f64 = 1e-6;
+/// Bisections of a step in [`LayeredShell::bottom_crossing`], and the radius it stops within, m.
+const BISECTIONS: usize = 64;
+const CROSSING_TOL_M: f64 = 1e-9;
 /// The gap between the highest other shape and the shell's bottom, m.
 const BOTTOM_GAP_M: f64 = 1.0;
 /// Most intervals of a table in z_low.
@@ -103,6 +116,17 @@ pub struct Descent {
     /// The unit direction there.
     pub dir: DVec3,
     /// The density column C crossed on the way, m: the optical depth is σ_t(λ)·C.
+    pub column_m: f64,
+}
+
+/// Where a path that leaves the shell's bottom going up reaches its top.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ascent {
+    /// The point on the top sphere, m.
+    pub position: DVec3,
+    /// The unit direction there (above an open top, where n = 1, the path goes on straight).
+    pub dir: DVec3,
+    /// The density column C crossed on the way, m.
     pub column_m: f64,
 }
 
@@ -471,7 +495,7 @@ impl LayeredShell {
         }
         let across = dir - cos0 * up;
         let sin0 = across.length();
-        let k = self.table.k(wavelength_nm);
+        let k = self.k_within(wavelength_nm)?;
         let (n0, n_low) = (1.0 + k * self.q(r0), 1.0 + k * self.q_low);
         let b = n0 * r0 * sin0;
         let u_low = n_low * self.r_low;
@@ -494,6 +518,88 @@ impl LayeredShell {
             dir: (sin_z * t_low - cos_z * up_low).normalize(),
             column_m: column.max(0.0),
         })
+    }
+
+    /// Whether paths going up from the shell's bottom may be handed to [`LayeredShell::ascend`]
+    /// and end there: the top is open (above it the path goes straight to infinity) and the
+    /// medium is clear (nothing is absorbed on the way, so nothing is lost by not stepping).
+    pub fn open_and_clear(&self, clear: bool) -> bool {
+        self.open_top && clear
+    }
+
+    /// The step fraction θ at which a path crosses the shell's bottom going up, given its
+    /// positions `at(θ)` on a step (θ ∈ [0, 1]; the integrator's dense output): the step
+    /// starts below r_low and ends at or above it. Bisection to 10⁻⁹ m of the radius.
+    pub fn bottom_crossing(&self, at: impl Fn(f64) -> DVec3) -> Option<f64> {
+        let r = |theta: f64| (at(theta) - self.centre).length() - self.r_low;
+        if !(r(0.0) < 0.0 && r(1.0) >= 0.0) {
+            return None;
+        }
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..BISECTIONS {
+            let mid = 0.5 * (lo + hi);
+            let f = r(mid);
+            if f.abs() <= CROSSING_TOL_M {
+                return Some(mid);
+            }
+            if f < 0.0 { lo = mid } else { hi = mid }
+        }
+        Some(hi)
+    }
+
+    /// Where a path at `position` on the shell's bottom (within 1 m of it) going
+    /// up along `dir` at `wavelength_nm` reaches the top — the mirror of
+    /// [`LayeredShell::descend`]: the same Δθ and C of the path that meets the bottom at the same
+    /// zenith angle z_low, read from the same tables. `None` when the path is not at the bottom
+    /// going up, does not reach down to it (b ≥ n_low·r_low: it is near tangent above it), or
+    /// its wavelength is outside the tables' range.
+    pub fn ascend(&self, position: DVec3, dir: DVec3, wavelength_nm: f64) -> Option<Ascent> {
+        let rel = position - self.centre;
+        let r0 = rel.length();
+        if (r0 - self.r_low).abs() > ENTRY_SLACK_M {
+            return None;
+        }
+        let up = rel / r0;
+        let cos0 = dir.dot(up);
+        if cos0 <= 0.0 {
+            return None;
+        }
+        let across = dir - cos0 * up;
+        let sin0 = across.length();
+        let k = self.k_within(wavelength_nm)?;
+        let (n0, n_low) = (1.0 + k * self.q(r0), 1.0 + k * self.q_low);
+        let b = n0 * r0 * sin0;
+        let u_low = n_low * self.r_low;
+        if b >= u_low {
+            return None;
+        }
+        let cos_z = ((u_low - b) * (u_low + b)).sqrt() / u_low;
+        let w = 1.0 - (cos_z.atan2(b / u_low) / FRAC_PI_2).powf(1.0 / GRADING as f64);
+        let [theta, column] = self.interpolate(k, w);
+        // The table starts at r_low; the path starts r0 − r_low (≤ 1 m, either way) from it.
+        let gap = r0 - self.r_low;
+        let root = ((n0 * r0 - b) * (n0 * r0 + b)).sqrt();
+        let theta = theta - gap * b / (r0 * root);
+        let column = column - gap * self.density.at(position) * n0 * r0 / root;
+        let u_top = (1.0 + k * self.q(self.r_top)) * self.r_top;
+        let (sin_top, cos_top) = (b / u_top, ((u_top - b) * (u_top + b)).sqrt() / u_top);
+        let t = if sin0 > 0.0 { across / sin0 } else { any_perpendicular(up) };
+        let (s, c) = theta.sin_cos();
+        let (up_top, t_top) = (c * up + s * t, c * t - s * up);
+        Some(Ascent {
+            position: self.centre + self.r_top * up_top,
+            dir: (sin_top * t_top + cos_top * up_top).normalize(),
+            column_m: column.max(0.0),
+        })
+    }
+
+    /// The Gladstone–Dale factor of `wavelength_nm` if the tables span it (they interpolate in
+    /// K between the pass's shortest and longest wavelengths, and are not to extrapolate).
+    fn k_within(&self, wavelength_nm: f64) -> Option<f64> {
+        let k = self.table.k(wavelength_nm);
+        let (lo, hi) = (self.tables[0].k, self.tables[2].k);
+        let slack = 1e-12 * hi;
+        (k >= lo - slack && k <= hi + slack).then_some(k)
     }
 }
 

@@ -147,7 +147,9 @@ impl<'a> EyeTracer<'a> {
         };
         EyeTracer {
             scene,
-            prop: Propagator::new(&scene.world, scene.curved()),
+            // Eye paths that climb out of clear air above every shape leave it in one move.
+            prop: Propagator::new(&scene.world, scene.curved())
+                .with_upward_shell((scene.bands.min_nm, scene.bands.max_nm)),
             maps,
             global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, global_paths)),
             global_all: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, Paths::All)),
