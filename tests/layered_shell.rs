@@ -261,7 +261,9 @@ fn a_photon_pass_from_above_an_open_top_ends_the_same_with_and_without_it() {
 /// 0.05° to nearly straight up, at 400, 550 and 700 nm — escape in the direction the same path
 /// stepped through the whole atmosphere escapes in, when they leave the shell (136 m to 86 km)
 /// upward in one move by Bouguer's invariant; the propagator counts each such ascent. Paths
-/// that meet the skyline on the way are the same event either way.
+/// that meet the skyline on the way are the same event either way. Grazing paths that meet the
+/// bottom within 5·10⁻⁶ rad of tangent, or after a perigee just under it, leave in one move too,
+/// in unit, finite directions within the same bound.
 #[test]
 fn paths_that_climb_out_escape_where_the_stepped_paths_do() {
     // The angle between two unit vectors, accurate at small angles (atan2 of |a × b| and a·b).
@@ -301,4 +303,26 @@ fn paths_that_climb_out_escape_where_the_stepped_paths_do() {
     assert!(escapes > 60, "{escapes} escapes");
     assert_eq!(quick.work.totals().shell_ascents, escapes);
     eprintln!("{escapes} escapes; largest angle between the directions {worst:.2e} rad");
+    // Grazing: level or slightly down from just under the bottom, so the path meets it within
+    // 5·10⁻⁶ rad of tangent (10⁻⁴ m under it, level: cos z ≈ √(2·10⁻⁴/R)), or after a perigee.
+    let (h_low, _) = quick.layered_shell().expect("a shell").heights_m();
+    for (depth_m, elevation_rad) in [(1e-4, 0.0), (1e-2, 0.0), (1.0, 0.0), (1e-3, -1e-6), (0.5, -1e-4)] {
+        let y = h_low - depth_m;
+        let state = RayState {
+            position: DVec3::new(0.0, y, 0.0),
+            dir: DVec3::new(0.0, elevation_rad, -1.0).normalize(),
+            wavelength_nm: Some(550.0),
+            medium: Some(air(&scene)),
+        };
+        match (stepped.next_event(&state), quick.next_event(&state)) {
+            (Event::Escape { dir: d0 }, Event::Escape { dir: d1 }) => {
+                let angle = angle_between(d0, d1);
+                eprintln!("grazing, {depth_m} m under the bottom, {elevation_rad} rad: {angle:.2e} rad apart");
+                assert!(d1.is_finite() && (d1.length() - 1.0).abs() < 1e-12, "{depth_m} m: {d1}");
+                assert!(angle < 1e-7, "{depth_m} m under the bottom, {elevation_rad} rad: {angle} rad apart");
+            }
+            other => panic!("{depth_m} m under the bottom, {elevation_rad} rad: {other:?}"),
+        }
+    }
+    assert_eq!(quick.work.totals().shell_ascents, escapes + 5, "each grazing path left in one move");
 }
