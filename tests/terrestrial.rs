@@ -392,6 +392,43 @@ fn astronomical_refraction_by_quadrature_equals_the_ray_trace() {
     eprintln!("largest difference {worst:.2e}″");
 }
 
+/// Through air whose index varies along the ground (a warm bubble 2 km off) Bouguer's invariant
+/// does not hold: `morgana refraction --atmosphere FILE` then traces every ray, as
+/// `--method trace` does (the same CSV, no quadrature rows), and `--method quadrature` named
+/// explicitly is refused with what to use instead.
+#[test]
+fn air_that_varies_along_the_ground_is_traced() {
+    let dir = std::env::temp_dir().join(format!("morgana-astro-bubble-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let atm = dir.join("bubble.toml");
+    std::fs::write(
+        &atm,
+        "name = \"bubble\"\nbase = \"usa76\"\ndispersion = \"ciddor\"\nco2_ppm = 450\ntop_m = 86000\n\
+         earth = \"spherical\"\n\n[[edit]]\ntype = \"bubble\"\ndT_k = 5.0\ncentre = [2000.0, 200.0, 0.0]\nradius_m = 500.0\n",
+    )
+    .unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let csv = dir.join(format!("{name}.csv"));
+        let out = morgana()
+            .args(["refraction", "--apparent-altitudes-deg=0,0.5,5", "--atmosphere"])
+            .arg(&atm)
+            .arg("--csv")
+            .arg(&csv)
+            .args(extra)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+        (out.status.success(), text, std::fs::read_to_string(&csv).unwrap_or_default())
+    };
+    let (ok, text, by_default) = run("d", &[]);
+    assert!(ok && !text.contains("Bouguer's quadrature"), "{text}");
+    let (ok, _, traced) = run("t", &["--method", "trace"]);
+    assert!(ok && traced == by_default && traced.lines().count() == 4, "{traced}\n{by_default}");
+    let (ok, text, _) = run("q", &["--method", "quadrature"]);
+    assert!(!ok && text.contains("--method quadrature") && text.contains("--method trace"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `morgana refraction --atmosphere A` answers by Bouguer's quadrature unless told
 /// `--method trace`, and writes the traced table's numbers (within the CSV's 10⁻⁴″) for USA76;
 /// through the inversion, where some rays are ducted and some go into the ground, it traces
