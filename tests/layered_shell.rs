@@ -270,7 +270,7 @@ fn paths_that_climb_out_escape_where_the_stepped_paths_do() {
     let angle_between = |a: DVec3, b: DVec3| a.cross(b).length().atan2(a.dot(b));
     let scene = mirage_with(&[]);
     let stepped = Propagator::new(&scene.world, scene.curved());
-    let quick = Propagator::new(&scene.world, scene.curved()).with_upward_shell((400.0, 700.0));
+    let quick = Propagator::new(&scene.world, scene.curved()).with_upward_shell((400.0, 700.0), false);
     assert!(quick.layered_shell().is_some() && stepped.layered_shell().is_none());
     let (mut worst, mut escapes) = (0.0f64, 0u64);
     for elevation_deg in [0.05, 0.2, 0.5, 1.0, 3.0, 10.0, 45.0, 89.9] {
@@ -325,4 +325,69 @@ fn paths_that_climb_out_escape_where_the_stepped_paths_do() {
         }
     }
     assert_eq!(quick.work.totals().shell_ascents, escapes + 5, "each grazing path left in one move");
+}
+
+/// Absorbing air under a shape's top (`sunset_sea`: the camera 2 m up, 1 m above the shell's
+/// bottom; paths reflected off the sea start under it): paths toward the sky at 0.1°–80°, at 400,
+/// 550 and 700 nm, leave the air in one move when the visitors take columns, and meet its top
+/// sphere where the same paths stepped at rtol 10⁻¹² with chords within 1 mm of the arc meet
+/// it — the point within 2·rtol·r_top (13 mm at the scene's rtol 10⁻⁹), the direction within
+/// 10⁻⁷ rad — having handed the visitor the same density column within 10⁻⁶ of it. Without columns (a photon pass's visitors) absorbing
+/// air is stepped as before.
+#[test]
+fn absorbing_air_is_left_upward_in_one_move_with_its_column() {
+    let scene = sunset_sea("");
+    // The oracle: the same paths stepped at rtol 10⁻¹² with chords within 1 mm of the arc.
+    let fine = sunset_sea_with(
+        "",
+        &[("arc_tolerance_m = 0.5", "arc_tolerance_m = 0.001\node_rtol = 1e-12\node_atol = 1e-12")],
+    );
+    let id = air(&scene);
+    let m = &scene.world.media[id as usize];
+    let stepped = Propagator::new(&fine.world, fine.curved());
+    let quick = Propagator::new(&scene.world, scene.curved()).with_upward_shell((400.0, 700.0), true);
+    let refused = Propagator::new(&scene.world, scene.curved()).with_upward_shell((400.0, 700.0), false);
+    assert!(quick.layered_shell().is_some() && refused.layered_shell().is_none());
+    let rtol = scene.curved().expect("curved").rtol;
+    let (mut worst_p, mut worst_d, mut worst_c, mut ascents) = (0.0f64, 0.0f64, 0.0f64, 0u64);
+    for start_y in [2.0, 1e-3] {
+        for elevation_deg in [0.1, 0.3, 1.0, 5.0, 20.0, 80.0] {
+            for lambda in [400.0, 550.0, 700.0] {
+                let e = f64::to_radians(elevation_deg);
+                let state = RayState {
+                    position: DVec3::new(0.0, start_y, 0.0),
+                    dir: DVec3::new(0.0, e.sin(), -e.cos()),
+                    wavelength_nm: Some(lambda),
+                    medium: Some(id),
+                };
+                let follow = |prop: &Propagator| {
+                    let mut column = 0.0;
+                    let event = prop.next_event_with(&state, &mut |c| {
+                        column += c.column_m.unwrap_or_else(|| {
+                            m.density.integral_tabulated(c.origin, c.dir, c.length).expect("an exact integral")
+                        });
+                        None
+                    });
+                    (event, column)
+                };
+                let ((e0, c0), (e1, c1)) = (follow(&stepped), follow(&quick));
+                let (Event::Surface { hit: h0, dir: d0, .. }, Event::Surface { hit: h1, dir: d1, .. }) = (e0, e1)
+                else {
+                    panic!("{start_y} m, {elevation_deg}°, {lambda} nm: {e0:?} / {e1:?}");
+                };
+                assert_eq!(h0.prim, h1.prim, "the top sphere");
+                let dd = d0.cross(d1).length().atan2(d0.dot(d1));
+                let (dp, dc) = ((h0.point - h1.point).length(), (c1 - c0).abs() / c0);
+                (worst_p, worst_d, worst_c) = (worst_p.max(dp), worst_d.max(dd), worst_c.max(dc));
+                assert!(
+                    dp < 2.0 * rtol * (R + 90_000.0) && dd < 1e-7 && dc < 1e-6,
+                    "{start_y} m, {elevation_deg}°, {lambda} nm: {dp} m, {dd} rad, column {dc:e}"
+                );
+                ascents += 1;
+            }
+        }
+    }
+    assert_eq!(quick.work.totals().shell_ascents, ascents);
+    assert_eq!(refused.work.totals().shell_ascents, 0);
+    eprintln!("largest differences: point {worst_p:.2e} m, direction {worst_d:.2e} rad, column {worst_c:.2e}");
 }

@@ -208,6 +208,13 @@ impl<'m> PathDepth<'m> {
         }
     }
 
+    /// Adds a density column ∫d ds already integrated along a curved path (the layered upper
+    /// air's, [`crate::raypath::Chord::column_m`]), m: for a medium whose extinction is
+    /// σ_t(λ)·d.
+    pub fn add_column(&mut self, column_m: f64) {
+        self.column += column_m;
+    }
+
     /// Adds the chord `o + s·dir`, s ∈ [0, t], at `wavelengths_nm` (the same at every call).
     pub fn add(&mut self, wavelengths_nm: &[f64], o: DVec3, dir: DVec3, t: f64, rng: &mut Rng) {
         if t <= 0.0 {

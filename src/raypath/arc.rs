@@ -37,11 +37,12 @@ pub struct ChordOnArc {
 }
 
 impl ChordOnArc {
-    pub fn new(step: &Step, i: usize, count: usize) -> ChordOnArc {
-        let theta0 = i as f64 / count as f64;
-        let theta1 = (i + 1) as f64 / count as f64;
+    /// Chord `i` of `count` on the part θ ∈ [0, `theta_end`] of `step`.
+    pub fn part(step: &Step, i: usize, count: usize, theta_end: f64) -> ChordOnArc {
+        let theta0 = theta_end * i as f64 / count as f64;
+        let theta1 = theta_end * (i + 1) as f64 / count as f64;
         let from = if i == 0 { step.y0().r } else { step.position_at(theta0) };
-        let to = if i + 1 == count { step.y1().r } else { step.position_at(theta1) };
+        let to = if i + 1 == count && theta_end == 1.0 { step.y1().r } else { step.position_at(theta1) };
         ChordOnArc { from, to, theta0, theta1 }
     }
 
@@ -60,7 +61,7 @@ mod tests {
     fn worst_gap(step: &Step, count: usize) -> f64 {
         let mut worst = 0.0f64;
         for i in 0..count {
-            let c = ChordOnArc::new(step, i, count);
+            let c = ChordOnArc::part(step, i, count, 1.0);
             let d = (c.to - c.from).normalize();
             for j in 0..=20 {
                 let theta = c.theta0 + (c.theta1 - c.theta0) * j as f64 / 20.0;

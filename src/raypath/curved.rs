@@ -55,6 +55,9 @@ enum Leg {
     Done(Event),
     /// The path goes on with a leg of the other kind.
     Switch,
+    /// The path goes on from a new point (past the layered upper air), with a leg of the kind
+    /// its region says.
+    Restart,
 }
 
 /// The next event of a path starting at `state` in a medium with index field `field` that
@@ -103,6 +106,7 @@ pub(super) fn next_event(
                 break;
             }
             Leg::Switch => curved = !curved,
+            Leg::Restart => curved = region.contains(walk.position),
         }
     }
     let c = ode.counters();
@@ -126,7 +130,7 @@ fn straight_leg(
     let entry = region.entry_distance(w.position, w.dir, end).filter(|t| *t < end);
     let length = entry.unwrap_or(end);
     w.chords += 1;
-    let chord = Chord { origin: w.position, dir: w.dir, length, medium: Some(w.medium) };
+    let chord = Chord { origin: w.position, dir: w.dir, length, medium: Some(w.medium), column_m: None };
     if let Some(t) = visit(&chord).filter(|t| *t < length) {
         return Leg::Done(Event::Medium {
             position: w.position + t * w.dir,
@@ -167,6 +171,11 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     let Some(settings) = prop.curved else { return Leg::Done(Event::Lost { position: w.position }) };
     let h_cap = settings.max_step_m.min(prop.world_radius);
     let kinks = prop.aids[w.medium as usize].kinks.as_ref();
+    // A path that starts just above the layered upper air's bottom going up (a camera in it)
+    // leaves it in one move.
+    if let Some((shell, a)) = ascent_from(prop.upward_shell(w.medium), w) {
+        return climb(prop, shell, w, w.position, a, visit);
+    }
     // ∇n where the next step starts (the first step's slope, sampled once): the path's curvature.
     let Ok(f0) = ode.prime(sample, &state.y) else { return Leg::Done(Event::Lost { position: w.position }) };
     let mut grad = f0.v;
@@ -186,11 +195,19 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
             return Leg::Done(Event::Lost { position: w.position });
         };
         grad = step.dense.f1.v;
-        if let Some(e) = chords_of(prop, &step, settings.arc_tolerance_m, w, visit) {
+        // Where the step climbs through the layered upper air's bottom, the path is handed out
+        // up to there and leaves the air in one move from there.
+        let climbing = prop.upward_shell(w.medium).and_then(|sh| {
+            let theta = sh.bottom_crossing(|t| step.position_at(t))?;
+            let at = step.position_at(theta);
+            Some((sh, theta, at, sh.ascend(at, step.direction_at(theta), w.wavelength_nm)?))
+        });
+        let theta_end = climbing.map_or(1.0, |c| c.1);
+        if let Some(e) = chords_of(prop, &step, settings.arc_tolerance_m, w, visit, theta_end) {
             return Leg::Done(e);
         }
-        if let Some(e) = leave_upward(prop, &step, w) {
-            return Leg::Done(e);
+        if let Some((sh, _, at, a)) = climbing {
+            return climb(prop, sh, w, at, a, visit);
         }
         w.position = state.y.r;
         w.dir = state.y.direction();
@@ -209,27 +226,67 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     }
 }
 
-/// The escape of a path whose `step` crossed the bottom of an open, clear layered shell going
-/// up ([`Propagator::upward_shell`]): located on the step's dense output, it is carried to the
-/// shell's top by Bouguer's invariant ([`super::shell::LayeredShell::ascend`]) and goes on
-/// straight from there, where n = 1 and nothing lies. The step's chords past the bottom were
-/// already handed out: in clear air above every shape they meet nothing and nothing happens.
-fn leave_upward(prop: &Propagator, step: &Step, w: &Walk) -> Option<Event> {
-    let shell = prop.upward_shell(w.medium)?;
-    let theta = shell.bottom_crossing(|t| step.position_at(t))?;
-    let a = shell.ascend(step.position_at(theta), step.direction_at(theta), w.wavelength_nm)?;
+/// A path that leaves the layered upper air upward from `from` in one move, to where `a` says
+/// it reaches the top ([`super::shell::LayeredShell::ascend`]): in absorbing air the visitor
+/// gets the crossing as one chord with its density column ([`Chord::column_m`]); above an open
+/// top the path then escapes in its direction there, and under a shape's top it goes on from
+/// just inside it (to cross it as a surface). Nothing else lies in the shell (every shape is
+/// below its bottom) and nothing scatters there.
+fn climb(
+    prop: &Propagator,
+    shell: &super::shell::LayeredShell,
+    w: &mut Walk,
+    from: DVec3,
+    a: super::shell::Ascent,
+    visit: &mut dyn FnMut(&Chord) -> Option<f64>,
+) -> Leg {
     prop.work.ascent();
-    Some(Event::Escape { dir: a.dir })
+    let span = a.position - from;
+    let length = span.length();
+    let dir = if length > 0.0 { span / length } else { a.dir };
+    if !prop.is_clear(w.medium) {
+        w.chords += 1;
+        let chord = Chord { origin: from, dir, length, medium: Some(w.medium), column_m: Some(a.column_m) };
+        if let Some(t) = visit(&chord).filter(|t| *t < length) {
+            return Leg::Done(Event::Medium {
+                position: from + t * dir,
+                dir: a.dir,
+                path_length: w.travelled + t,
+                medium: w.medium,
+            });
+        }
+    }
+    w.travelled += length;
+    if shell.open_top() {
+        return Leg::Done(Event::Escape { dir: a.dir });
+    }
+    w.position = a.position - TOP_BACKOFF_M * a.dir;
+    w.dir = a.dir;
+    Leg::Restart
 }
 
-/// Hands the chords of one step to the scene and the visitor; the event, if one happens on
-/// this step.
+/// `shell`'s ascent for a path that starts where `w` is, if it leaves the air in one move.
+fn ascent_from<'s>(
+    shell: Option<&'s super::shell::LayeredShell>,
+    w: &Walk,
+) -> Option<(&'s super::shell::LayeredShell, super::shell::Ascent)> {
+    let shell = shell?;
+    Some((shell, shell.ascend(w.position, w.dir, w.wavelength_nm)?))
+}
+
+/// How far inside a shape's top sphere a path that climbed the layered upper air in one move
+/// goes on from, m (it then meets the sphere as a surface).
+const TOP_BACKOFF_M: f64 = 1e-4;
+
+/// Hands the chords of the part θ ∈ [0, `theta_end`] of one step to the scene and the visitor;
+/// the event, if one happens there.
 fn chords_of(
     prop: &Propagator,
     step: &Step,
     tol_m: f64,
     w: &mut Walk,
     visit: &mut dyn FnMut(&Chord) -> Option<f64>,
+    theta_end: f64,
 ) -> Option<Event> {
     let mut count = chord_count(step, tol_m);
     if count > 1 && prop.is_clear(w.medium) && !geometry_near(prop, step, tol_m) {
@@ -240,7 +297,7 @@ fn chords_of(
     }
     let surfaces = count == 1 || chords_may_hit(prop, step, count);
     for i in 0..count {
-        let c = ChordOnArc::new(step, i, count);
+        let c = ChordOnArc::part(step, i, count, theta_end);
         let d = c.to - c.from;
         let len = d.length();
         if len.is_nan() || len <= 0.0 {
@@ -250,7 +307,7 @@ fn chords_of(
         let hit = if surfaces { prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(c.from, u), len) } else { None };
         let seg = hit.map_or(len, |h| h.t);
         w.chords += 1;
-        let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium) };
+        let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium), column_m: None };
         if let Some(t) = visit(&chord).filter(|t| *t < seg) {
             return Some(Event::Medium {
                 position: c.from + t * u,
@@ -263,7 +320,7 @@ fn chords_of(
             let (h, theta, chord_dir) = refine(prop, step, &c, h, u);
             return Some(surface(step, theta, h, chord_dir, c.from, w));
         }
-        w.travelled += if count == 1 { step.h() } else { len };
+        w.travelled += if count == 1 { theta_end * step.h() } else { len };
         if prop.outside_world(c.to) {
             return Some(Event::Escape { dir: step.direction_at(c.theta1) });
         }

@@ -66,6 +66,11 @@ pub struct Chord {
     pub length: f64,
     /// The medium it runs through (`None`: vacuum).
     pub medium: Option<u32>,
+    /// `Some(C)`: the chord stands for a curved path across the layered upper air, from its
+    /// origin to its end, whose density column ∫d ds is C, m ([`shell::LayeredShell::ascend`]):
+    /// its optical depth is σ_t(λ)·C, not the straight segment's. Only a propagator built with
+    /// [`Propagator::with_upward_shell`]`(.., true)` hands such chords to its visitors.
+    pub column_m: Option<f64>,
 }
 
 /// What light meets next.
@@ -148,6 +153,9 @@ pub struct Propagator<'a> {
     /// The layered upper air photons cross in one move, when the pass asked for it
     /// ([`Propagator::with_layered_shell`]) and the scene has one ([`shell`]).
     shell: Option<Box<shell::LayeredShell>>,
+    /// Whether the visitors take column chords ([`Chord::column_m`]), so that paths may climb
+    /// out of absorbing air in one move too ([`Propagator::with_upward_shell`]).
+    columns: bool,
     /// Integrator work along curved paths.
     pub work: CurvedWork,
 }
@@ -186,6 +194,7 @@ impl<'a> Propagator<'a> {
             far,
             aids,
             shell: None,
+            columns: false,
             work: CurvedWork::default(),
         }
     }
@@ -203,19 +212,20 @@ impl<'a> Propagator<'a> {
     }
 
     /// This propagator with the layered upper air of [`Propagator::with_layered_shell`] where
-    /// paths may leave it upward in one move — its top open, its medium clear
-    /// ([`shell::LayeredShell::open_and_clear`]) — and without it elsewhere, where the tables
-    /// would serve no path (an eye pass: its paths do not come down from above the air).
-    pub fn with_upward_shell(self, range_nm: (f64, f64)) -> Propagator<'a> {
-        let wanted = (0..self.world.media.len() as u32).any(|i| {
-            self.clear[i as usize] && shell::LayeredShell::candidate(self.world, i).is_some_and(|(_, _, open)| open)
-        });
+    /// paths may leave it upward in one move — its air clear, or absorbing where the caller's
+    /// visitors take `columns` ([`Chord::column_m`]) — and without it elsewhere, where the
+    /// tables would serve no path (an eye pass: its paths do not come down from above the air).
+    pub fn with_upward_shell(mut self, range_nm: (f64, f64), columns: bool) -> Propagator<'a> {
+        self.columns = columns;
+        let wanted = (0..self.world.media.len() as u32)
+            .any(|i| (columns || self.clear[i as usize]) && shell::LayeredShell::candidate(self.world, i).is_some());
         if wanted { self.with_layered_shell(range_nm) } else { self }
     }
 
-    /// The layered upper air of medium `medium` if paths there leave it upward in one move.
+    /// The layered upper air of medium `medium` if paths there leave it upward in one move:
+    /// clear air, or absorbing air whose optical depth the visitors take as a column.
     fn upward_shell(&self, medium: u32) -> Option<&shell::LayeredShell> {
-        self.shell.as_deref().filter(|s| s.medium() == medium && s.open_and_clear(self.clear[medium as usize]))
+        self.shell.as_deref().filter(|s| s.medium() == medium && (self.columns || self.clear[medium as usize]))
     }
 
     /// The layered upper air, if [`Propagator::with_layered_shell`] found one.
@@ -284,7 +294,7 @@ impl<'a> Propagator<'a> {
         let hit = self.world.bvh.intersect(&self.world.shapes, &ray, f64::INFINITY);
         if let Some(m) = state.medium {
             let length = hit.map_or_else(|| self.world_exit(state.position, state.dir), |h| h.t);
-            let chord = Chord { origin: state.position, dir: state.dir, length, medium: state.medium };
+            let chord = Chord { origin: state.position, dir: state.dir, length, medium: state.medium, column_m: None };
             if let Some(t) = visit(&chord).filter(|t| *t < length) {
                 return Event::Medium { position: ray.at(t), dir: state.dir, path_length: t, medium: m };
             }

@@ -15,58 +15,18 @@
 //!
 //! # Upward
 //! The invariant holds both ways: a path that leaves the bottom going up at zenith z_low sweeps
-//! the same Δθ to the top as one that arrives there at z_low ([`LayeredShell::ascend`]). Where
-//! the top is open and the air clear, a path that climbs through the bottom — an eye path to
-//! the sky, a photon reflected upward — can meet nothing more and lose nothing on the way, so it
-//! escapes from there in the direction it has at the top (sin z_top = b/(n_top·r_top)), with no
-//! steps; the crossing is located on the step's dense output ([`LayeredShell::bottom_crossing`]).
-//! (With an absorbing medium or a closed top the path is still stepped: its transmittance, per
-//! wavelength of an eye path's bundle, or what lies outside the top would have to be carried.) Its index depends on height alone ([`RadialTable`]: n = 1 + K(λ)·q(h),
-//! Gladstone–Dale), with n·r increasing with r throughout (no duct); it absorbs but does not
-//! scatter and has no inelastic component, and its extinction is σ_t(λ)·d(r) with a density d
-//! of r alone ([`crate::media::density::Density::is_radial_about`]).
-//!
-//! # The invariant
-//! There a path is planar and keeps b = n(r)·r·sin z, z its angle from the upward radial
-//! (Bouguer; Smart 1977, *Textbook on Spherical Astronomy*, ch. III). One that leaves r_top
-//! going down with b < n_low·r_low meets r_low (n·r > b on the way), with sin z_low =
-//! b/(n_low·r_low), having swept the polar angle Δθ and crossed the density column C:
-//!
-//! ```text
-//!     Δθ = ∫ b dr / (r·√(n²r² − b²)),   C = ∫ d(r)·n·r dr / √(n²r² − b²)   (r_low … r_top),
-//! ```
-//!
-//! since ds = n·r·dr/√(n²r² − b²). Its optical depth is τ = σ_t(λ)·C, and (the medium only
-//! absorbs) it arrives with probability e^(−τ) and is otherwise absorbed in the shell. With
-//! r = r_low + t² both integrands stay finite at r_low even for a path tangent there, and
-//! n·r − b = t²·n + r_low·K·(q − q_low) + n_low·r_low·cos²z_low/(1 + sin z_low) avoids the
-//! cancellation of n·r − b near tangency. One composite 16-point Gauss–Legendre rule in t
-//! serves every path (`LayeredShell::nodes`: q and d are evaluated once per node, exactly from
-//! the atmosphere, not from its table): equal panels on each piece between the atmosphere's
-//! kinks, and on the lowest piece panels halving toward t = 0, since the integrands bend at
-//! t ≈ cos z_low·√(r_low/2), at any scale as a path nears tangency. Against adaptive
-//! Gauss–Kronrod to 10⁻¹¹ it agreed within 10⁻¹³ relative away from tangency and 5·10⁻¹⁰ within
-//! 10⁻⁸ rad of it (`sunset_sea`, measured while building this module).
-//!
-//! # The table
-//! Δθ and C depend on λ through K alone, and smoothly on z_low ∈ [0, π/2]; they change fastest
-//! near tangency, so the grid is uniform in w with z_low = (π/2)·w·(2 − w).
-//! For three Gladstone–Dale factors spanning the pass's wavelengths (K of its longest, middle and
-//! shortest), both are tabulated on that grid, doubled until cubic interpolation at every
-//! interval's midpoint is within the bound of the rule's value there; quadratic interpolation in
-//! K at the K of two more wavelengths is checked the same way at every fourth node. The bound,
-//! with ε the integrator's rtol: |Δθ_table − Δθ| ≤ ε rad (6.4 mm at the Earth's radius for
-//! ε = 10⁻⁹; a step of the integrator may move a point by ε·|r|, as much) and
-//! |C_table − C| ≤ 10ε·(C + 1 m), so the probability e^(−τ) of crossing is within 10ε·(τ +
-//! σ_t·1 m) of the exact one, relative: a bias 10⁻⁸ of it, far below the noise of any photon
-//! count. `sunset_sea` needs 1 024 intervals (56 ms for the three tables and the checks). A
-//! shell whose table would need more than [`MAX_INTERVALS`] intervals is not used (paths are
-//! integrated step by step as before).
-//!
-//! `tests/layered_shell.rs` follows paths at 400, 550 and 700 nm from straight down to 10⁻⁵
-//! short of tangent with the ray equation (rtol 10⁻¹¹) to the same bottom: the shell's point is
-//! within 3.3 mm of it, its direction within the 1.5·10⁻⁸ rad floor of the angle, its column
-//! within 3.5·10⁻⁷ (the step-by-step chords' own error near tangency).
+//! the same Δθ to the top, and crosses the same column, as one that arrives there at z_low
+//! ([`LayeredShell::ascend`]). A path that climbs through the bottom — an eye path to the sky, a
+//! photon reflected upward — or starts up to 10 m above it going up (a camera in the shell) can
+//! meet nothing more on its way up and nothing scatters there, so it is moved to the top at
+//! once ([`crate::raypath::Propagator::with_upward_shell`]): above an open top it escapes in its
+//! direction there (sin z_top = b/(n_top·r_top)); under a shape's top it goes on from just
+//! inside it, to cross it as a surface. Where the air absorbs, the visitor is handed the crossing
+//! as one chord carrying its density column ([`crate::raypath::Chord::column_m`]), so its
+//! transmittance is e^(−σ_t(λ)·C) for every wavelength the path carries; only the eye pass's
+//! visitors take such chords (photons climb out in one move through clear air only). The
+//! bottom crossing is located on the step's dense output
+//! ([`LayeredShell::bottom_crossing`]), and only the part of the step below it is handed out.
 
 use crate::atmosphere::{Earth, RadialTable};
 use crate::geometry::Shape;
@@ -81,6 +41,9 @@ const ENTRY_SLACK_M: f64 = 1.0;
 /// How far inside an open top [`LayeredShell::enter`] puts a path, m (far below the table's
 /// millimetre bound on where a path arrives).
 const ENTRY_NUDGE_M: f64 = 1e-6;
+/// How far above the bottom a path going up may start and still leave in one move, m
+/// ([`LayeredShell::ascend`]).
+const ASCEND_GAP_M: f64 = 10.0;
 /// Bisections of a step in [`LayeredShell::bottom_crossing`], and the radius it stops within, m.
 const BISECTIONS: usize = 64;
 const CROSSING_TOL_M: f64 = 1e-9;
@@ -520,11 +483,10 @@ impl LayeredShell {
         })
     }
 
-    /// Whether paths going up from the shell's bottom may be handed to [`LayeredShell::ascend`]
-    /// and end there: the top is open (above it the path goes straight to infinity) and the
-    /// medium is clear (nothing is absorbed on the way, so nothing is lost by not stepping).
-    pub fn open_and_clear(&self, clear: bool) -> bool {
-        self.open_top && clear
+    /// Whether the top is the atmosphere's, open to the world medium above it (a path that
+    /// leaves it goes straight to infinity), rather than a shape's sphere.
+    pub fn open_top(&self) -> bool {
+        self.open_top
     }
 
     /// The step fraction θ at which a path crosses the shell's bottom going up, given its
@@ -547,16 +509,25 @@ impl LayeredShell {
         Some(hi)
     }
 
-    /// Where a path at `position` on the shell's bottom (within 1 m of it) going
-    /// up along `dir` at `wavelength_nm` reaches the top — the mirror of
-    /// [`LayeredShell::descend`]: the same Δθ and C of the path that meets the bottom at the same
-    /// zenith angle z_low, read from the same tables. `None` when the path is not at the bottom
-    /// going up, does not reach down to it (b ≥ n_low·r_low: it is near tangent above it), or
-    /// its wavelength is outside the tables' range.
+    /// Where a path at `position` on the shell's bottom, or up to 10 m above it, going up along
+    /// `dir` at `wavelength_nm` reaches the top — the mirror of [`LayeredShell::descend`]: the
+    /// Δθ and C of the path that meets the bottom at the same zenith angle z_low (the same
+    /// invariant b = n·r·sin z), read from the same tables, less the part below the start.
+    /// That part, over the gap δ = r₀ − r_low, is integrated with g = n²r² − b² taken linear in
+    /// r across it — exact enough at any angle, tangent included, since
+    /// ∫dr/√g = 2δ/(√g₀ + √g_low):
+    ///
+    /// ```text
+    ///     Δθ_gap = 2δ·b / (r_mid·(√g₀ + √g_low)),   C_gap = 2δ·d_mid·n·r_mid / (√g₀ + √g_low).
+    /// ```
+    ///
+    /// `None` when the path is not there going up, does not reach down to the bottom (b ≥
+    /// n_low·r_low: its perigee is above it), or its wavelength is outside the tables' range.
     pub fn ascend(&self, position: DVec3, dir: DVec3, wavelength_nm: f64) -> Option<Ascent> {
         let rel = position - self.centre;
         let r0 = rel.length();
-        if (r0 - self.r_low).abs() > ENTRY_SLACK_M {
+        let gap = r0 - self.r_low;
+        if !(gap.abs() <= ASCEND_GAP_M && r0 < self.r_top) {
             return None;
         }
         let up = rel / r0;
@@ -576,11 +547,11 @@ impl LayeredShell {
         let cos_z = ((u_low - b) * (u_low + b)).sqrt() / u_low;
         let w = 1.0 - (cos_z.atan2(b / u_low) / FRAC_PI_2).powf(1.0 / GRADING as f64);
         let [theta, column] = self.interpolate(k, w);
-        // The table starts at r_low; the path starts r0 − r_low (≤ 1 m, either way) from it.
-        let gap = r0 - self.r_low;
-        let root = ((n0 * r0 - b) * (n0 * r0 + b)).sqrt();
-        let theta = theta - gap * b / (r0 * root);
-        let column = column - gap * self.density.at(position) * n0 * r0 / root;
+        let roots = ((n0 * r0 - b) * (n0 * r0 + b)).sqrt() + u_low * cos_z;
+        let r_mid = self.r_low + 0.5 * gap;
+        let d_mid = self.density.at(self.centre + up * r_mid);
+        let theta = theta - 2.0 * gap * b / (r_mid * roots);
+        let column = column - 2.0 * gap * d_mid * (1.0 + k * self.q(r_mid)) * r_mid / roots;
         let u_top = (1.0 + k * self.q(self.r_top)) * self.r_top;
         let (sin_top, cos_top) = (b / u_top, ((u_top - b) * (u_top + b)).sqrt() / u_top);
         let t = if sin0 > 0.0 { across / sin0 } else { any_perpendicular(up) };

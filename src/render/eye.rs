@@ -149,7 +149,7 @@ impl<'a> EyeTracer<'a> {
             scene,
             // Eye paths that climb out of clear air above every shape leave it in one move.
             prop: Propagator::new(&scene.world, scene.curved())
-                .with_upward_shell((scene.bands.min_nm, scene.bands.max_nm)),
+                .with_upward_shell((scene.bands.min_nm, scene.bands.max_nm), true),
             maps,
             global: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, global_paths)),
             global_all: maps.global.as_ref().map(|m| est(m, s.k, s.max_radius_m, Paths::All)),
@@ -621,6 +621,14 @@ impl<'a> EyeTracer<'a> {
         let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
         let m = &self.scene.world.media[id as usize];
         let lanes = at.lanes;
+        if let Some(column) = c.column_m {
+            // The layered upper air crossed in one move (it only absorbs, σ_t(λ)·d): its
+            // transmittance from the path's density column.
+            for (t, l) in along.tr.iter_mut().zip(&lanes.nm[..lanes.len]) {
+                *t *= (-m.sigma_t(*l) * column).exp();
+            }
+            return;
+        }
         if !m.scatters() {
             // A medium that only absorbs sends nothing toward the eye: its transmittance, in one
             // piece (no steps, no roulette on a deep optical depth).

@@ -82,7 +82,7 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 impl<'a> PathTracer<'a> {
     pub fn new(scene: &'a Scene) -> PathTracer<'a> {
         let range = (scene.bands.min_nm, scene.bands.max_nm);
-        PathTracer { scene, prop: Propagator::new(&scene.world, scene.curved()).with_upward_shell(range) }
+        PathTracer { scene, prop: Propagator::new(&scene.world, scene.curved()).with_upward_shell(range, false) }
     }
 
     /// Integrator work along this tracer's curved paths so far.

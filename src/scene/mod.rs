@@ -726,12 +726,12 @@ fn decide_plan(
                  Bouguer's invariant (where its table reaches the integrator's rtol; report.json counts the crossings as \
                  shell_descents)"
             );
-            if open && world.media[i as usize].is_clear() {
-                plan.curved_paths.why += &format!(
-                    ", and paths that climb out of it through {low:.0} m leave it the same way (its air is clear; report.json: eye_curved.shell_ascents and \
-                     maps[].stats.curved.shell_ascents)"
-                );
-            }
+            let photons_too =
+                if open && world.media[i as usize].is_clear() { " (and photons: its air is clear)" } else { "" };
+            plan.curved_paths.why += &format!(
+                ", and eye paths{photons_too} that climb out of it leave it the same way (report.json: \
+                 eye_curved.shell_ascents, maps[].stats.curved.shell_ascents)"
+            );
         }
     }
     plan

@@ -252,9 +252,10 @@ impl EyeTracer<'_> {
             // The medium only absorbs (see `bundles`): its chords add to the path's optical
             // depth, exponentiated once at the end; a chord elsewhere (none, as paths stop at
             // every surface) is marched.
-            match depth.as_mut().filter(|_| c.medium == absorbing) {
-                Some(d) => d.add(nm, c.origin, c.dir, c.length, rng),
-                None => self.march(c, at, &mut along, rng, sc),
+            match (depth.as_mut().filter(|_| c.medium == absorbing), c.column_m) {
+                (Some(d), Some(column)) => d.add_column(column),
+                (Some(d), None) => d.add(nm, c.origin, c.dir, c.length, rng),
+                (None, _) => self.march(c, at, &mut along, rng, sc),
             }
             length += c.length;
             None
