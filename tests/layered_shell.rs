@@ -4,7 +4,7 @@
 use glam::DVec3;
 use morgana::atmosphere::RadialTable;
 use morgana::media::refractive_index::IndexField;
-use morgana::photon::{MapKind, PassSettings, shoot};
+use morgana::photon::{MapKind, PassSettings, PhotonSink, PhotonStats, shoot};
 use morgana::photon_map::{PhotonPath, PhotonRecord};
 use morgana::raypath::shell::LayeredShell;
 use morgana::raypath::{Event, Propagator, RayState};
@@ -41,6 +41,27 @@ fn mirage_with(edits: &[(&str, &str)]) -> Scene {
     }
     load_scene_str(&text, Path::new(path), Path::new("examples"), "mirage_hot_road")
         .unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// A global photon pass of `scene` with the layered shell and one without it, each of
+/// `emitted` photons from `seed` (the second crosses nothing in one move).
+fn with_and_without(scene: &Scene, emitted: u64, seed: u64) -> ((PhotonSink, PhotonStats), (PhotonSink, PhotonStats)) {
+    let mut pass = PassSettings::of(scene);
+    let with = shoot(&scene.world, &pass, MapKind::Global, emitted, seed, &|_| {});
+    pass.layered_shell = false;
+    let without = shoot(&scene.world, &pass, MapKind::Global, emitted, seed, &|_| {});
+    assert_eq!(without.1.shell_descents, 0);
+    (with, without)
+}
+
+/// Each named pair of powers (W), as shares of `total`, agrees within 4 binomial σ of
+/// `emitted` photons.
+fn assert_shares_agree(pairs: &[(&str, f64, f64)], total: f64, emitted: u64) {
+    for (name, a, b) in pairs {
+        let (pa, pb) = (a / total, b / total);
+        let sigma = ((pa * (1.0 - pa) + pb * (1.0 - pb)) / emitted as f64).sqrt().max(1.0 / emitted as f64);
+        assert!((pa - pb).abs() < 4.0 * sigma, "{name}: {pa} with, {pb} without (σ {sigma})");
+    }
 }
 
 /// One coordinate of a stored photon.
@@ -133,24 +154,18 @@ fn the_invariant_puts_a_path_where_the_ray_equation_does() {
 #[test]
 fn a_photon_pass_ends_the_same_with_and_without_the_shell() {
     let scene = sunset_sea("");
-    let mut pass = PassSettings::of(&scene);
     let emitted = 40_000u64;
-    let (with, st_with) = shoot(&scene.world, &pass, MapKind::Global, emitted, 11, &|_| {});
-    pass.layered_shell = false;
-    let (without, st_without) = shoot(&scene.world, &pass, MapKind::Global, emitted, 11, &|_| {});
+    let ((with, st_with), (without, st_without)) = with_and_without(&scene, emitted, 11);
     assert!(st_with.shell_descents > emitted / 2, "the shell was used: {}", st_with.shell_descents);
-    assert_eq!(st_without.shell_descents, 0);
-    let total = st_with.power_per_photon_w * emitted as f64;
-    let share = |w: f64| w / total;
-    for (name, a, b) in [
-        ("absorbed in the air", st_with.absorbed_medium_w, st_without.absorbed_medium_w),
-        ("absorbed at the sea", st_with.absorbed_surface_w, st_without.absorbed_surface_w),
-        ("escaped", st_with.escaped_w, st_without.escaped_w),
-    ] {
-        let (pa, pb) = (share(a), share(b));
-        let sigma = ((pa * (1.0 - pa) + pb * (1.0 - pb)) / emitted as f64).sqrt().max(1.0 / emitted as f64);
-        assert!((pa - pb).abs() < 4.0 * sigma, "{name}: {pa} with, {pb} without (σ {sigma})");
-    }
+    assert_shares_agree(
+        &[
+            ("absorbed in the air", st_with.absorbed_medium_w, st_without.absorbed_medium_w),
+            ("absorbed at the sea", st_with.absorbed_surface_w, st_without.absorbed_surface_w),
+            ("escaped", st_with.escaped_w, st_without.escaped_w),
+        ],
+        st_with.power_per_photon_w * emitted as f64,
+        emitted,
+    );
     let (a, b) = (with.surface.len() as f64 / emitted as f64, without.surface.len() as f64 / emitted as f64);
     let sigma = ((a * (1.0 - a) + b * (1.0 - b)) / emitted as f64).sqrt();
     assert!((a - b).abs() < 4.0 * sigma, "stored: {a} with, {b} without");
@@ -214,23 +229,17 @@ fn a_path_from_above_enters_the_open_top_on_its_own_line() {
 #[test]
 fn a_photon_pass_from_above_an_open_top_ends_the_same_with_and_without_it() {
     let scene = mirage_with(&[]);
-    let mut pass = PassSettings::of(&scene);
     let emitted = 20_000u64;
-    let (with, st_with) = shoot(&scene.world, &pass, MapKind::Global, emitted, 5, &|_| {});
-    pass.layered_shell = false;
-    let (without, st_without) = shoot(&scene.world, &pass, MapKind::Global, emitted, 5, &|_| {});
+    let ((with, st_with), (without, st_without)) = with_and_without(&scene, emitted, 5);
     assert!(st_with.shell_descents > emitted * 9 / 10, "the shell was used: {}", st_with.shell_descents);
-    assert_eq!(st_without.shell_descents, 0);
-    let total = st_with.power_per_photon_w * emitted as f64;
-    let share = |w: f64| w / total;
-    for (name, a, b) in [
-        ("absorbed at surfaces", st_with.absorbed_surface_w, st_without.absorbed_surface_w),
-        ("escaped", st_with.escaped_w, st_without.escaped_w),
-    ] {
-        let (pa, pb) = (share(a), share(b));
-        let sigma = ((pa * (1.0 - pa) + pb * (1.0 - pb)) / emitted as f64).sqrt().max(1.0 / emitted as f64);
-        assert!((pa - pb).abs() < 4.0 * sigma, "{name}: {pa} with, {pb} without (σ {sigma})");
-    }
+    assert_shares_agree(
+        &[
+            ("absorbed at surfaces", st_with.absorbed_surface_w, st_without.absorbed_surface_w),
+            ("escaped", st_with.escaped_w, st_without.escaped_w),
+        ],
+        st_with.power_per_photon_w * emitted as f64,
+        emitted,
+    );
     let (a, b) = (with.surface.len() as f64 / emitted as f64, without.surface.len() as f64 / emitted as f64);
     assert!((a - b).abs() < 4.0 * ((a + b) / emitted as f64).sqrt(), "stored: {a} with, {b} without");
     let coordinates: [(&str, Coordinate); 5] = [

@@ -93,6 +93,32 @@ pub struct Ascent {
     pub column_m: f64,
 }
 
+/// Which way along a path [`LayeredShell::on_path`] reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Way {
+    Down,
+    Up,
+}
+
+/// A path at radius r0 in the shell: its invariant b = n0·r0·sin z0 and what the tables say
+/// of the path through the bottom at the same b.
+struct OnPath {
+    r0: f64,
+    /// The unit radial at the path's point, and the unit horizontal along its plane.
+    up: DVec3,
+    tangent: DVec3,
+    /// Gladstone–Dale factor, n at r0, the invariant, and n_low·r_low.
+    k: f64,
+    n0: f64,
+    b: f64,
+    u_low: f64,
+    /// cos z_low at the bottom.
+    cos_z: f64,
+    /// Δθ (rad) and C (m) from the bottom to the top.
+    theta: f64,
+    column: f64,
+}
+
 /// A medium's layered upper air (see the module notes).
 #[derive(Clone, Debug)]
 pub struct LayeredShell {
@@ -446,14 +472,39 @@ impl LayeredShell {
     /// 1 m of it) and meets the bottom; `None` otherwise (the path is then followed
     /// step by step).
     pub fn descend(&self, position: DVec3, dir: DVec3, wavelength_nm: f64) -> Option<Descent> {
-        let rel = position - self.centre;
-        let r0 = rel.length();
+        let r0 = (position - self.centre).length();
         if !(r0 <= self.r_top && r0 >= self.r_top - ENTRY_SLACK_M) {
             return None;
         }
+        let p = self.on_path(position, dir, wavelength_nm, Way::Down)?;
+        // The table starts at r_top; the path starts r_top − r0 (≤ 1 m) lower.
+        let gap = self.r_top - p.r0;
+        let root = ((p.n0 * p.r0 - p.b) * (p.n0 * p.r0 + p.b)).sqrt();
+        let theta = p.theta - gap * p.b / (p.r0 * root);
+        let column = p.column - gap * self.density.at(position) * p.n0 * p.r0 / root;
+        let (s, c) = theta.sin_cos();
+        let (up_low, t_low) = (c * p.up + s * p.tangent, c * p.tangent - s * p.up);
+        Some(Descent {
+            position: self.centre + self.r_low * up_low,
+            dir: (p.b / p.u_low * t_low - p.cos_z * up_low).normalize(),
+            column_m: column.max(0.0),
+        })
+    }
+
+    /// The invariant of a path at `position` going `dir` at `wavelength_nm` the `way` asked,
+    /// and the tables' Δθ and C for it (from the bottom to the top); `None` when it goes the
+    /// other way, does not reach down to the bottom (b ≥ n_low·r_low), or its wavelength is
+    /// outside the tables' range.
+    fn on_path(&self, position: DVec3, dir: DVec3, wavelength_nm: f64, way: Way) -> Option<OnPath> {
+        let rel = position - self.centre;
+        let r0 = rel.length();
         let up = rel / r0;
         let cos0 = dir.dot(up);
-        if cos0 >= 0.0 {
+        let going = match way {
+            Way::Down => cos0 < 0.0,
+            Way::Up => cos0 > 0.0,
+        };
+        if !going {
             return None;
         }
         let across = dir - cos0 * up;
@@ -465,22 +516,11 @@ impl LayeredShell {
         if b >= u_low {
             return None;
         }
-        let (sin_z, cos_z) = (b / u_low, ((u_low - b) * (u_low + b)).sqrt() / u_low);
-        let w = 1.0 - (cos_z.atan2(sin_z) / FRAC_PI_2).powf(1.0 / GRADING as f64);
+        let cos_z = ((u_low - b) * (u_low + b)).sqrt() / u_low;
+        let w = 1.0 - (cos_z.atan2(b / u_low) / FRAC_PI_2).powf(1.0 / GRADING as f64);
         let [theta, column] = self.interpolate(k, w);
-        // The table starts at r_top; the path starts r_top − r0 (≤ 1 m) lower.
-        let gap = self.r_top - r0;
-        let root = ((n0 * r0 - b) * (n0 * r0 + b)).sqrt();
-        let theta = theta - gap * b / (r0 * root);
-        let column = column - gap * self.density.at(position) * n0 * r0 / root;
-        let t = if sin0 > 0.0 { across / sin0 } else { any_perpendicular(up) };
-        let (s, c) = theta.sin_cos();
-        let (up_low, t_low) = (c * up + s * t, c * t - s * up);
-        Some(Descent {
-            position: self.centre + self.r_low * up_low,
-            dir: (sin_z * t_low - cos_z * up_low).normalize(),
-            column_m: column.max(0.0),
-        })
+        let tangent = if sin0 > 0.0 { across / sin0 } else { any_perpendicular(up) };
+        Some(OnPath { r0, up, tangent, k, n0, b, u_low, cos_z, theta, column })
     }
 
     /// Whether the top is the atmosphere's, open to the world medium above it (a path that
@@ -524,39 +564,20 @@ impl LayeredShell {
     /// `None` when the path is not there going up, does not reach down to the bottom (b ≥
     /// n_low·r_low: its perigee is above it), or its wavelength is outside the tables' range.
     pub fn ascend(&self, position: DVec3, dir: DVec3, wavelength_nm: f64) -> Option<Ascent> {
-        let rel = position - self.centre;
-        let r0 = rel.length();
-        let gap = r0 - self.r_low;
-        if !(gap.abs() <= ASCEND_GAP_M && r0 < self.r_top) {
+        let gap = (position - self.centre).length() - self.r_low;
+        if !(gap.abs() <= ASCEND_GAP_M && gap + self.r_low < self.r_top) {
             return None;
         }
-        let up = rel / r0;
-        let cos0 = dir.dot(up);
-        if cos0 <= 0.0 {
-            return None;
-        }
-        let across = dir - cos0 * up;
-        let sin0 = across.length();
-        let k = self.k_within(wavelength_nm)?;
-        let (n0, n_low) = (1.0 + k * self.q(r0), 1.0 + k * self.q_low);
-        let b = n0 * r0 * sin0;
-        let u_low = n_low * self.r_low;
-        if b >= u_low {
-            return None;
-        }
-        let cos_z = ((u_low - b) * (u_low + b)).sqrt() / u_low;
-        let w = 1.0 - (cos_z.atan2(b / u_low) / FRAC_PI_2).powf(1.0 / GRADING as f64);
-        let [theta, column] = self.interpolate(k, w);
-        let roots = ((n0 * r0 - b) * (n0 * r0 + b)).sqrt() + u_low * cos_z;
+        let p = self.on_path(position, dir, wavelength_nm, Way::Up)?;
+        let roots = ((p.n0 * p.r0 - p.b) * (p.n0 * p.r0 + p.b)).sqrt() + p.u_low * p.cos_z;
         let r_mid = self.r_low + 0.5 * gap;
-        let d_mid = self.density.at(self.centre + up * r_mid);
-        let theta = theta - 2.0 * gap * b / (r_mid * roots);
-        let column = column - 2.0 * gap * d_mid * (1.0 + k * self.q(r_mid)) * r_mid / roots;
-        let u_top = (1.0 + k * self.q(self.r_top)) * self.r_top;
-        let (sin_top, cos_top) = (b / u_top, ((u_top - b) * (u_top + b)).sqrt() / u_top);
-        let t = if sin0 > 0.0 { across / sin0 } else { any_perpendicular(up) };
+        let d_mid = self.density.at(self.centre + p.up * r_mid);
+        let theta = p.theta - 2.0 * gap * p.b / (r_mid * roots);
+        let column = p.column - 2.0 * gap * d_mid * (1.0 + p.k * self.q(r_mid)) * r_mid / roots;
+        let u_top = (1.0 + p.k * self.q(self.r_top)) * self.r_top;
+        let (sin_top, cos_top) = (p.b / u_top, ((u_top - p.b) * (u_top + p.b)).sqrt() / u_top);
         let (s, c) = theta.sin_cos();
-        let (up_top, t_top) = (c * up + s * t, c * t - s * up);
+        let (up_top, t_top) = (c * p.up + s * p.tangent, c * p.tangent - s * p.up);
         Some(Ascent {
             position: self.centre + self.r_top * up_top,
             dir: (sin_top * t_top + cos_top * up_top).normalize(),
