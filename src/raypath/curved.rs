@@ -198,7 +198,7 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
         // Where the step climbs through the layered upper air's bottom, the path is handed out
         // up to there and leaves the air in one move from there.
         let climbing = prop.upward_shell(w.medium).and_then(|sh| {
-            let theta = sh.bottom_crossing(|t| step.position_at(t))?;
+            let theta = sh.bottom_crossing(step.y0().r, step.y1().r, |t| step.position_at(t))?;
             let at = step.position_at(theta);
             Some((sh, theta, at, sh.ascend(at, step.direction_at(theta), w.wavelength_nm)?))
         });

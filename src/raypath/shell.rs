@@ -529,14 +529,16 @@ impl LayeredShell {
         self.open_top
     }
 
-    /// The step fraction θ at which a path crosses the shell's bottom going up, given its
-    /// positions `at(θ)` on a step (θ ∈ [0, 1]; the integrator's dense output): the step
-    /// starts below r_low and ends at or above it. Bisection to 10⁻⁹ m of the radius.
-    pub fn bottom_crossing(&self, at: impl Fn(f64) -> DVec3) -> Option<f64> {
-        let r = |theta: f64| (at(theta) - self.centre).length() - self.r_low;
-        if !(r(0.0) < 0.0 && r(1.0) >= 0.0) {
+    /// The step fraction θ at which a path crosses the shell's bottom going up on a step from
+    /// `from` to `to`, given its positions `at(θ)` (θ ∈ [0, 1]; the integrator's dense output):
+    /// the step starts below r_low and ends at or above it. Bisection to 10⁻⁹ m of the radius.
+    pub fn bottom_crossing(&self, from: DVec3, to: DVec3, at: impl Fn(f64) -> DVec3) -> Option<f64> {
+        let r = |p: DVec3| (p - self.centre).length_squared();
+        let r_low_sq = self.r_low * self.r_low;
+        if !(r(from) < r_low_sq && r(to) >= r_low_sq) {
             return None;
         }
+        let r = |theta: f64| (at(theta) - self.centre).length() - self.r_low;
         let (mut lo, mut hi) = (0.0, 1.0);
         for _ in 0..BISECTIONS {
             let mid = 0.5 * (lo + hi);
