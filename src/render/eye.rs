@@ -147,7 +147,8 @@ impl<'a> EyeTracer<'a> {
         };
         EyeTracer {
             scene,
-            // Eye paths that climb out of clear air above every shape leave it in one move.
+            // Eye paths that climb out of the layered upper air above every shape leave it in one
+            // move; in absorbing air `march` and the bundles' guides take its density column.
             prop: Propagator::new(&scene.world, scene.curved())
                 .with_upward_shell((scene.bands.min_nm, scene.bands.max_nm), true),
             maps,
