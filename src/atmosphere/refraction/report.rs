@@ -1,5 +1,5 @@
-//! The table of `morgana refraction`: traced refraction per apparent altitude beside the
-//! classical formulas carried to the observer's pressure and temperature, the CSV
+//! The table of `morgana refraction`: the refraction per apparent altitude (by Bouguer's
+//! quadrature or traced, [`super::refractor`]) beside the classical formulas carried to the observer's pressure and temperature, the CSV
 //! (`apparent_altitude_deg,true_altitude_deg,refraction_arcsec`; both values empty for a ray that
 //! does not escape), the dispersion between wavelengths and the flattened sun.
 
@@ -18,7 +18,7 @@ use std::path::Path;
 pub struct Row {
     /// Apparent altitude of the ray at the observer, degrees.
     pub apparent_altitude_deg: f64,
-    /// The traced ray.
+    /// The ray's outcome (traced, or the quadrature's: see `quadrature_evaluations`).
     pub trace: Trace,
     /// Bennett's refraction at the observer's conditions, rad.
     pub bennett_rad: Option<f64>,
@@ -155,10 +155,10 @@ pub struct Dispersion {
 
 /// Each apparent altitude at each wavelength, by the refractor's method.
 pub fn dispersion(refractor: &Refractor, altitudes_deg: &[f64], wavelengths_nm: &[f64]) -> Result<Dispersion> {
-    let tracers = wavelengths_nm.iter().map(|&l| refractor.at_wavelength(l)).collect::<Result<Vec<_>>>()?;
+    let refractors = wavelengths_nm.iter().map(|&l| refractor.at_wavelength(l)).collect::<Result<Vec<_>>>()?;
     let mut rows = Vec::with_capacity(altitudes_deg.len());
     for &a in altitudes_deg {
-        let rs = tracers.iter().map(|t| t.refraction_rad(a.to_radians())).collect::<Result<Vec<_>>>()?;
+        let rs = refractors.iter().map(|r| r.refraction_rad(a.to_radians())).collect::<Result<Vec<_>>>()?;
         rows.push((a, rs));
     }
     Ok(Dispersion { wavelengths_nm: wavelengths_nm.to_vec(), rows })
