@@ -67,6 +67,37 @@ fn ozone_column_optical_depth_at_the_chappuis_peak_is_sigma_n() {
     assert!((vertical_tau(air(&s2), CHAPPUIS_NM) / (2.0 * want) - 1.0).abs() < 1e-5);
 }
 
+/// A scene's own ozone: `ozone = { column_du }` is `ozone_du` (the AFGL shape, to the bit); a
+/// profile file's levels give the column σ ∫ n dh, read log-linearly or linearly between them,
+/// scaled to `column_du` when it is given; a cross-section table replaces Bogumil's.
+#[test]
+fn an_ozone_profile_file_and_cross_section_give_their_column() {
+    let tau = |extra: &str| vertical_tau(air(&scene(&black_earth(550.0, 650.0, extra, ZENITH_BEAM))), CHAPPUIS_NM);
+    assert_eq!(tau("rayleigh = false\nozone = { column_du = 300 }"), tau("rayleigh = false\nozone_du = 300"));
+    // Two levels, 1e12 cm⁻³ at the ground and 1e10 at the top (86 km): log-linear, the column
+    // is (n₀ − n₁) H_top / ln(n₀/n₁); linear, (n₀ + n₁) H_top / 2.
+    let file = std::env::temp_dir().join(format!("morgana_ozone_{}.csv", std::process::id()));
+    std::fs::write(&file, "altitude_m,number_density_per_cm3\n0,1e12\n86000,1e10\n").unwrap();
+    let f = file.display();
+    let (n0, n1, top): (f64, f64, f64) = (1e18, 1e16, 86_000.0);
+    let log_column = (n0 - n1) * top / (n0 / n1).ln();
+    let linear_column = 0.5 * (n0 + n1) * top;
+    for (extra, column) in [
+        (format!("ozone = {{ profile = \"{f}\" }}"), log_column),
+        (format!("ozone = {{ profile = \"{f}\", interpolation = \"linear\" }}"), linear_column),
+        (format!("ozone = {{ profile = \"{f}\", column_du = 250 }}"), 250.0 * MOLECULES_PER_M2_PER_DU),
+    ] {
+        let got = tau(&format!("rayleigh = false\n{extra}"));
+        let want = CHAPPUIS_SIGMA_M2 * column;
+        assert!((got / want - 1.0).abs() < 1e-5, "{extra}: τ = {got}, σ ∫n dh = {want}");
+    }
+    let sigma = "cross_section_cm2 = { nm = [500, 700], values = [2e-21, 4e-21] }";
+    let got = tau(&format!("rayleigh = false\nozone = {{ profile = \"{f}\", {sigma} }}"));
+    let want = (2e-25 + 2e-25 * (CHAPPUIS_NM - 500.0) / 200.0) * log_column;
+    assert!((got / want - 1.0).abs() < 1e-5, "given σ: τ = {got}, σ ∫n dh = {want}");
+    let _ = std::fs::remove_file(&file);
+}
+
 /// Aerosols alone: the vertical optical depth is β (λ/1 µm)^−α (Ångström 1929) at every
 /// wavelength, whatever the scale height (the profile integrates to one over the column).
 #[test]
@@ -480,6 +511,30 @@ fn ozone_and_aerosol_keys_report_bad_input() {
     assert!(e.contains("aerosol: albedo") && e.contains("wavelength_nm #0"), "{e}");
     let e = table("\"high\"");
     assert!(e.contains("albedo must be a number in [0, 1] or a table"), "{e}");
+    let e = bad("ozone_du = 300\nozone = { column_du = 300 }");
+    assert!(e.contains("give ozone_du") && e.contains("not both"), "{e}");
+    let e = bad("ozone = { }");
+    assert!(e.contains("ozone") && e.contains("give a profile file, a column_du"), "{e}");
+    let e = bad("ozone = { column_du = 2000 }");
+    assert!(e.contains("column_du = 2000") && e.contains("out of range"), "{e}");
+    let e = bad("ozone = { column_du = 300, interpolation = \"linear\" }");
+    assert!(e.contains("interpolation reads a profile file"), "{e}");
+    let e = bad("ozone = { profile = \"no_such_ozone.csv\" }");
+    assert!(e.contains("no_such_ozone.csv") && e.contains("cannot read the ozone profile"), "{e}");
+    let e = bad("ozone = { column_du = 300, cross_section_cm2 = { nm = [500, 600], values = [1e-21, 2e-21] } }");
+    assert!(e.contains("ozone: cross_section_cm2") && e.contains("500–600 nm"), "{e}");
+    let e = bad("ozone = { column_du = 300, size = 3 }");
+    assert!(e.contains("unknown key `size`"), "{e}");
+    let short = std::env::temp_dir().join(format!("morgana_ozone_short_{}.csv", std::process::id()));
+    std::fs::write(&short, "# ozone\naltitude_m,number_density_per_cm3\n0,1e12\n50000,1e10\n").unwrap();
+    let e = bad(&format!("ozone = {{ profile = \"{}\" }}", short.display()));
+    assert!(e.contains("covers 0 to 50000 m") && e.contains("0 to 86000 m") && e.contains("extend it"), "{e}");
+    std::fs::write(&short, "altitude_m,number_density_per_cm3\n0,1e12\n50000,-3\n90000,1e9\n").unwrap();
+    let e = bad(&format!("ozone = {{ profile = \"{}\", interpolation = \"cubic\" }}", short.display()));
+    assert!(e.contains("interpolation must be \"log\"") && e.contains("\"linear\""), "{e}");
+    let e = bad(&format!("ozone = {{ profile = \"{}\" }}", short.display()));
+    assert!(e.contains(&short.display().to_string()) && e.contains("data row 2") && e.contains("≥ 0"), "{e}");
+    let _ = std::fs::remove_file(&short);
     let e = bad("aerosol = 0.3");
     assert!(e.contains("aerosol") && e.contains("table"), "{e}");
     // Every message names the file and line.

@@ -14,6 +14,7 @@ use morgana::media::tracking::{optical_depth_exact, transmittance};
 use morgana::photon::{MapKind, PassSettings, shoot};
 use morgana::photon_map::PhotonPath;
 use morgana::rng::{Rng, Stream};
+use std::f64::consts::PI;
 
 const TOP_M: f64 = 86_000.0;
 
@@ -363,4 +364,78 @@ fn refraction_and_rayleigh_switches_do_what_they_say() {
     assert!(grad.y < 0.0, "n falls with height");
     let s = scene(&base.replace("rayleigh = true", "rayleigh = false"));
     assert!(air(&s).is_clear() && !s.plan.participating_media.on);
+}
+
+/// `rayleigh = { cross_section_cm2 = ..., depolarisation = ρ }`: a benchmark's cross-sections,
+/// read as a power law between samples, and its phase function, in place of Bodhaine's.
+#[test]
+fn a_given_cross_section_table_and_depolarisation_replace_bodhaines() {
+    let table = "rayleigh = { cross_section_cm2 = { nm = [351, 435, 700], values = [2.87884699e-26, 1.17740547e-26, 1.8e-27] }, depolarisation = 0.0 }";
+    let s = scene(&black_earth(400.0, 600.0, ZENITH_BEAM).replace("rayleigh = true\nco2_ppm = 360", table));
+    let m = air(&s);
+    let n_s = morgana::media::rayleigh_air::N_STANDARD_PER_M3;
+    let power_law =
+        |nm: f64| 2.87884699e-30 * (1.17740547f64 / 2.87884699).powf((nm / 351.0).ln() / (435.0f64 / 351.0).ln());
+    for nm in [400.0, 420.0, 435.0] {
+        let sigma = m.sigma_s(nm) / n_s;
+        assert!(
+            (sigma / power_law(nm) - 1.0).abs() < 1e-12,
+            "{nm} nm: σ = {sigma:e} m², power law {:e}",
+            power_law(nm)
+        );
+    }
+    let late = 1.17740547e-30 * (1.8e-27f64 / 1.17740547e-26).powf((600.0f64 / 435.0).ln() / (700.0f64 / 435.0).ln());
+    assert!((m.sigma_s(600.0) / n_s / late - 1.0).abs() < 1e-12);
+    // ρ = 0: the classical 3/(16π)(1 + μ²).
+    for mu in [-1.0, -0.3, 0.0, 0.5, 1.0] {
+        let p = m.phase.eval(500.0, mu);
+        assert!((p - 3.0 / (16.0 * PI) * (1.0 + mu * mu)).abs() < 1e-15, "μ = {mu}: {p}");
+    }
+    // ρ alone keeps Bodhaine's σ; the table alone keeps his King factor's ρ.
+    let s = scene(
+        &black_earth(400.0, 600.0, ZENITH_BEAM).replace("rayleigh = true", "rayleigh = { depolarisation = 0.1 }"),
+    );
+    assert_eq!(air(&s).sigma_s(500.0), cross_section_m2(500.0, 360.0) * n_s);
+    let c = (1.0 - 0.1) / (1.0 + 0.1);
+    let p = air(&s).phase.eval(500.0, 1.0) / air(&s).phase.eval(500.0, 0.0);
+    assert!((p - (1.0 + c)).abs() < 1e-12, "{p}");
+    let only_table = table.replace(", depolarisation = 0.0", "");
+    let s = scene(&black_earth(400.0, 600.0, ZENITH_BEAM).replace("rayleigh = true", &only_table));
+    let c = morgana::media::rayleigh_air::phase_c(morgana::media::rayleigh_air::depolarisation(500.0, 360.0));
+    let p = air(&s).phase.eval(500.0, 1.0) / air(&s).phase.eval(500.0, 0.0);
+    assert!((p - (1.0 + c)).abs() < 1e-12, "{p}");
+}
+
+#[test]
+fn a_bad_rayleigh_table_is_refused_naming_the_key() {
+    let bad =
+        |rayleigh: &str| scene_error(&black_earth(400.0, 600.0, ZENITH_BEAM).replace("rayleigh = true", rayleigh));
+    let xs = |nm: &str, v: &str| format!("rayleigh = {{ cross_section_cm2 = {{ nm = [{nm}], values = [{v}] }} }}");
+    let e = bad(&xs("450, 700", "1e-26, 2e-27"));
+    assert!(e.contains("rayleigh: cross_section_cm2") && e.contains("450–700 nm") && e.contains("400–600"), "{e}");
+    let e = bad(&xs("300, 700", "1e-26, 0"));
+    assert!(e.contains("cross_section_cm2") && e.contains("value #2 (at 700 nm) is 0"), "{e}");
+    let e = bad(&xs("700, 300", "1e-26, 2e-27"));
+    assert!(e.contains("cross_section_cm2") && e.contains("strictly increasing"), "{e}");
+    let e = bad("rayleigh = { cross_section_cm2 = 3e-27 }");
+    assert!(e.contains("cross_section_cm2") && e.contains("give a table") && e.contains("power law"), "{e}");
+    let e = bad("rayleigh = { cross_section_cm2 = { file = \"no_such_sigma.csv\" } }");
+    assert!(e.contains("cross_section_cm2") && e.contains("no_such_sigma.csv"), "{e}");
+    let e = bad("rayleigh = { depolarisation = 0.7 }");
+    assert!(e.contains("depolarisation = 0.7") && e.contains("[0, 0.5]"), "{e}");
+    let e = bad("rayleigh = { king = 1.05 }");
+    assert!(e.contains("rayleigh") && e.contains("unknown key `king`"), "{e}");
+    let e = bad("rayleigh = 1.0");
+    assert!(e.contains("rayleigh") && e.contains("give true, false or"), "{e}");
+    let e = bad(&(xs("300, 700", "1e-26, 2e-27").replace(" } }", " }, depolarisation = 0.0 }")));
+    assert!(e.contains("co2_ppm changes nothing"), "{e}");
+    assert!(e.contains("test.toml:"), "{e}");
+    // Outside Peck & Reeder's range a table needs its own ρ (Bodhaine's King factor stops there).
+    let far = common::sky::black_earth(1700.0, 1800.0, &xs("1600, 1900", "5e-29, 2e-29"), ZENITH_BEAM);
+    let e = scene_error(&far);
+    assert!(e.contains("give `depolarisation`") && e.contains("1690") && e.contains("1750"), "{e}");
+    let ok = far.replace(" } }", " }, depolarisation = 0.03 }");
+    assert!(
+        morgana::scene::load_scene_str(&ok, std::path::Path::new("t.toml"), std::path::Path::new("."), "t").is_ok()
+    );
 }

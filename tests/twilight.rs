@@ -9,7 +9,8 @@
 //! The reference here is single scattering integrated by quadrature along the zenith line of
 //! sight in the spherical shell, with the sun's transmittance along the straight path from each
 //! point (zero where that path meets the Earth: the Earth's shadow), written in this file
-//! without morgana's geometry, density tables or transmittance code.
+//! without morgana's geometry, density tables or transmittance code. (The limb's single
+//! scattering is checked against Zawada et al.'s published values in `tests/limb_benchmark.rs`.)
 
 mod common;
 

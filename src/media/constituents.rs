@@ -44,12 +44,9 @@ pub type PerConstituent = [f64; MAX_CONSTITUENTS];
 /// The extinction σ_c(λ) of a constituent per unit of its profile.
 #[derive(Clone, Debug)]
 pub enum Extinction {
-    /// Rayleigh scattering of dry air at the standard density N_s: σ(λ) N_s (Bodhaine et al.
-    /// 1999, [`super::rayleigh_air`]); the profile carries N/N_s.
-    Rayleigh {
-        /// CO₂ volume fraction, ppm.
-        co2_ppm: f64,
-    },
+    /// Rayleigh scattering of dry air at the standard density N_s: σ(λ) N_s (σ of Bodhaine et al.
+    /// 1999, [`super::rayleigh_air`], or the scene's table); the profile carries N/N_s.
+    Rayleigh(super::rayleigh_air::CrossSection),
     /// A cross-section per molecule, m² (ozone); the profile carries the number density, m⁻³.
     CrossSection(Spectrum),
     /// Ångström's law τ(λ) = β (λ/1 µm)^−α ([`super::aerosol`]); the profile is normalised to a
@@ -66,9 +63,7 @@ impl Extinction {
     /// σ_c(λ).
     pub fn at(&self, wavelength_nm: f64) -> f64 {
         match self {
-            Extinction::Rayleigh { co2_ppm } => {
-                super::rayleigh_air::cross_section_m2(wavelength_nm, *co2_ppm) * super::rayleigh_air::N_STANDARD_PER_M3
-            }
+            Extinction::Rayleigh(sigma) => sigma.at_standard_density(wavelength_nm),
             Extinction::CrossSection(s) => s.eval(wavelength_nm),
             Extinction::Angstrom { alpha, beta } => super::aerosol::optical_depth(wavelength_nm, *alpha, *beta),
         }

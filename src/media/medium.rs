@@ -39,12 +39,9 @@ pub enum Coefficients {
         sigma_a: Spectrum,
     },
     /// Rayleigh scattering by dry air at the standard density N_s
-    /// ([`super::rayleigh_air::N_STANDARD_PER_M3`]): σ_s(λ) = σ(λ) N_s (Bodhaine et al. 1999),
-    /// σ_a = 0; the density field carries N/N_s.
-    RayleighAir {
-        /// CO₂ volume fraction, ppm.
-        co2_ppm: f64,
-    },
+    /// ([`super::rayleigh_air::N_STANDARD_PER_M3`]): σ_s(λ) = σ(λ) N_s (σ of Bodhaine et al. 1999
+    /// or the scene's table), σ_a = 0; the density field carries N/N_s.
+    RayleighAir(super::rayleigh_air::CrossSection),
     /// An atmosphere of constituents (air, ozone, aerosols), each with its own profile in height:
     /// σ_t, σ_s, albedo and phase vary with position ([`Medium::at`]); the density field is
     /// uniform and unused. Position-free queries give bounds: σ_t(λ) and σ_s(λ) are the sums of
@@ -85,7 +82,7 @@ impl Medium {
             }
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => sigma_t.eval(wavelength_nm),
             Coefficients::AbsorptionMixture { sigma_a } => sigma_a.eval(wavelength_nm) + self.sigma_s(wavelength_nm),
-            Coefficients::RayleighAir { .. } => self.sigma_s(wavelength_nm),
+            Coefficients::RayleighAir(_) => self.sigma_s(wavelength_nm),
             Coefficients::Constituents(c) => c.sigma_t_bound(wavelength_nm),
         }
     }
@@ -101,9 +98,7 @@ impl Medium {
                 PhaseFunction::Mixture(m) => m.total_sigma_s(wavelength_nm),
                 _ => 0.0,
             },
-            Coefficients::RayleighAir { co2_ppm } => {
-                super::rayleigh_air::cross_section_m2(wavelength_nm, *co2_ppm) * super::rayleigh_air::N_STANDARD_PER_M3
-            }
+            Coefficients::RayleighAir(sigma) => sigma.at_standard_density(wavelength_nm),
             Coefficients::Constituents(c) => {
                 let bound =
                     c.list().iter().map(|k| k.albedo.at(wavelength_nm) * k.profile.bound_from(f64::NEG_INFINITY));
@@ -119,13 +114,13 @@ impl Medium {
         match &self.coefficients {
             Coefficients::ExtinctionAlbedo { albedo, .. } if self.inelastic.is_empty() => albedo.eval(wavelength_nm),
             // Air that only scatters: σ_t is σ_s, the same positive number (the Rayleigh cross
-            // section of Bodhaine et al. 1999 at any wavelength), so σ_s/σ_t is exactly 1 —
+            // section at any wavelength), so σ_s/σ_t is exactly 1 —
             // without the cross section twice per photon of every volume estimate.
-            Coefficients::RayleighAir { .. } if self.inelastic.is_empty() => 1.0,
+            Coefficients::RayleighAir(_) if self.inelastic.is_empty() => 1.0,
             Coefficients::ExtinctionAlbedo { .. }
             | Coefficients::AbsorptionScattering { .. }
             | Coefficients::AbsorptionMixture { .. }
-            | Coefficients::RayleighAir { .. }
+            | Coefficients::RayleighAir(_)
             | Coefficients::Constituents(_) => {
                 let t = self.sigma_t(wavelength_nm);
                 if t > 0.0 { self.sigma_s(wavelength_nm) / t } else { 0.0 }
@@ -201,7 +196,7 @@ impl Medium {
         match &self.coefficients {
             Coefficients::AbsorptionScattering { sigma_a, sigma_s } => zero(sigma_a) && zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, .. } => zero(sigma_t),
-            Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir { .. } => false,
+            Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir(_) => false,
             Coefficients::Constituents(_) => false,
         }
     }
@@ -215,7 +210,7 @@ impl Medium {
         match &self.coefficients {
             Coefficients::AbsorptionScattering { sigma_s, .. } => !zero(sigma_s),
             Coefficients::ExtinctionAlbedo { sigma_t, albedo } => !zero(sigma_t) && !zero(albedo),
-            Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir { .. } => true,
+            Coefficients::AbsorptionMixture { .. } | Coefficients::RayleighAir(_) => true,
             Coefficients::Constituents(c) => c.scatterers() > 0,
         }
     }

@@ -99,6 +99,35 @@ pub fn cross_section_m2(wavelength_nm: f64, co2_ppm: f64) -> f64 {
         * king_factor(wavelength_nm, co2_ppm)
 }
 
+/// The cross-section per molecule σ(λ) a scene's air scatters with.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CrossSection {
+    /// Bodhaine et al.'s σ(λ) of dry air with this CO₂ volume fraction, ppm ([`cross_section_m2`]).
+    Bodhaine {
+        /// CO₂ volume fraction, ppm.
+        co2_ppm: f64,
+    },
+    /// A table the scene gives (a benchmark's or a line-by-line code's cross-sections), m², read
+    /// as a power law between its samples.
+    Table(crate::spectrum::PowerLawTable),
+}
+
+impl CrossSection {
+    /// σ(λ), m².
+    pub fn m2(&self, wavelength_nm: f64) -> f64 {
+        match self {
+            CrossSection::Bodhaine { co2_ppm } => cross_section_m2(wavelength_nm, *co2_ppm),
+            CrossSection::Table(t) => t.eval(wavelength_nm),
+        }
+    }
+
+    /// σ(λ) N_s, m⁻¹: the scattering coefficient of air at the standard density
+    /// [`N_STANDARD_PER_M3`], which the air's density field (N/N_s) scales.
+    pub fn at_standard_density(&self, wavelength_nm: f64) -> f64 {
+        self.m2(wavelength_nm) * N_STANDARD_PER_M3
+    }
+}
+
 /// λ⁻² with λ in µm.
 fn inverse_um2(wavelength_nm: f64) -> f64 {
     let um = wavelength_nm * 1e-3;

@@ -1,4 +1,4 @@
-//! `ozone_du` and `aerosol` of a `[[medium]] type = "atmosphere"`: the atmosphere of
+//! `ozone_du`, `ozone` and `aerosol` of a `[[medium]] type = "atmosphere"`: the atmosphere of
 //! constituents ([`crate::media::constituents`]) — the air (when `rayleigh` is on), ozone and
 //! aerosols, each tabulated on the atmosphere's heights.
 //!
@@ -17,20 +17,36 @@
 //! 1975), a forward lobe and a backward one; `phase = { type = "hg", g = 0.7 }` is the same as
 //! `g = 0.7`.
 //!
+//! Instead of `ozone_du`, a scene may give its own ozone:
+//!
+//! ```toml
+//! ozone = { profile = "o3.csv",            # CSV altitude_m,number_density_per_cm3, ground to top
+//!           interpolation = "log",         # or "linear": how n is read between the levels
+//!           cross_section_cm2 = <spectrum>,# σ(λ), cm² (default Bogumil et al. 2003, 293 K)
+//!           column_du = 300 }              # scale to this column (alone: the AFGL shape)
+//! ```
+//!
+//! ([`crate::media::ozone::NumberDensityTable`]).
+//!
 //! `albedo = { wavelength_nm = [400, 550, 700], value = [0.93, 0.91, 0.89] }` gives ω(λ) as a
 //! table: at least two samples, wavelengths strictly increasing, values in [0, 1]; linear
 //! between the samples and constant beyond the ends ([`crate::media::albedo`]).
 
+use super::atmosphere_medium::Rayleigh;
 use super::media::Table;
 use super::raw::RawMedium;
+use super::spectrum_spec::{SpectrumLibrary, Use};
 use crate::atmosphere::Atmosphere;
+use crate::atmosphere::Earth;
+use crate::error::{Error, Location};
 use crate::media::albedo::Albedo;
 use crate::media::constituents::{Constituent, Constituents, Extinction};
 use crate::media::density::AirProfile;
+use crate::media::ozone::{Interpolation, NumberDensityTable};
 use crate::media::phase::PhaseFunction;
-use crate::media::rayleigh_air::{self, N_STANDARD_PER_M3};
+use crate::media::rayleigh_air::N_STANDARD_PER_M3;
 use crate::media::{aerosol, ozone};
-use crate::spectrum::Bands;
+use crate::spectrum::{Bands, Spectrum};
 use crate::validate::{Ctx, R};
 use toml::Spanned;
 
@@ -38,12 +54,12 @@ use toml::Spanned;
 pub struct Air<'a> {
     /// The atmosphere's profile, on the scene's Earth.
     pub atmosphere: &'a Atmosphere,
-    /// Whether the air scatters (Rayleigh).
-    pub rayleigh: bool,
-    /// CO₂ of the Rayleigh cross-section, ppm.
-    pub co2_ppm: f64,
+    /// The air's Rayleigh scattering; `None`: the air does not scatter.
+    pub rayleigh: Option<&'a Rayleigh>,
     /// The medium's `type` (for spans of messages about the whole medium).
     pub kind: &'a Spanned<String>,
+    /// The scene's named spectra (an ozone cross-section may be one).
+    pub lib: &'a SpectrumLibrary<'a>,
     /// The scene's wavelengths.
     pub bands: &'a Bands,
 }
@@ -56,32 +72,37 @@ pub fn constituents(ctx: &Ctx, m: &RawMedium, air: &Air, what: &str) -> R<(Const
     let air_profile = AirProfile::new(atmosphere, earth, N_STANDARD_PER_M3)
         .map_err(|e| ctx.err(&m.atmosphere.as_ref().map_or(air.kind.span(), |a| a.span()), format!("{what}: {e}")))?;
     let mut list = Vec::new();
-    if air.rayleigh {
-        let mid_nm = 0.5 * (air.bands.min_nm + air.bands.max_nm);
-        let rho = rayleigh_air::depolarisation(mid_nm, air.co2_ppm);
-        let phase =
-            PhaseFunction::rayleigh_depolarised(rho).map_err(|e| ctx.err(&air.kind.span(), format!("{what}: {e}")))?;
+    if let Some(rayleigh) = air.rayleigh {
+        let phase = PhaseFunction::rayleigh_depolarised(rayleigh.depolarisation)
+            .map_err(|e| ctx.err(&air.kind.span(), format!("{what}: {e}")))?;
         list.push(Constituent {
             name: "air",
-            extinction: Extinction::Rayleigh { co2_ppm: air.co2_ppm },
+            extinction: Extinction::Rayleigh(rayleigh.cross_section.clone()),
             albedo: Albedo::Constant(1.0),
             phase,
             profile: air_profile.clone(),
         });
     }
-    if let Some(du) = &m.ozone_du {
-        let du = ctx.number(du, &format!("{what}: ozone_du (Dobson units)"), 0.0, 1000.0, false)?;
-        list.push(Constituent {
-            name: "ozone",
-            extinction: Extinction::CrossSection(ozone::cross_section_m2()),
-            albedo: Albedo::Constant(0.0),
-            phase: PhaseFunction::isotropic(),
-            profile: AirProfile::from_heights(earth, top_m, ozone::profile(du, top_m)),
-        });
+    match (&m.ozone_du, &m.ozone) {
+        (Some(du), None) => {
+            let du = ctx.number(du, &format!("{what}: ozone_du (Dobson units)"), 0.0, 1000.0, false)?;
+            list.push(ozone_constituent(
+                ozone::cross_section_m2(),
+                AirProfile::from_heights(earth, top_m, ozone::profile(du, top_m)),
+            ));
+        }
+        (None, Some(v)) => list.push(ozone_table(ctx, v, air, what, (earth, top_m))?),
+        (Some(du), Some(_)) => {
+            return Err(ctx.err(
+                &du.span(),
+                format!("{what}: give ozone_du (the AFGL profile's column) or ozone = {{ ... }}, not both"),
+            ));
+        }
+        (None, None) => {}
     }
     if let Some(v) = &m.aerosol {
-        let rayleigh_550 = if air.rayleigh {
-            rayleigh_air::cross_section_m2(550.0, air.co2_ppm) * N_STANDARD_PER_M3 * air_profile.at_height(0.0)
+        let rayleigh_550 = if let Some(rayleigh) = air.rayleigh {
+            rayleigh.cross_section.at_standard_density(550.0) * air_profile.at_height(0.0)
         } else {
             0.0
         };
@@ -90,6 +111,122 @@ pub fn constituents(ctx: &Ctx, m: &RawMedium, air: &Air, what: &str) -> R<(Const
     let phase = list.iter().find(|c| c.albedo.scatters()).map_or(PhaseFunction::isotropic(), |c| c.phase.clone());
     let constituents = Constituents::new(list).map_err(|e| ctx.err(&air.kind.span(), format!("{what}: {e}")))?;
     Ok((constituents, phase))
+}
+
+/// Ozone of this cross-section (m², per molecule) and number density (m⁻³): it only absorbs.
+fn ozone_constituent(cross_section_m2: Spectrum, profile: AirProfile) -> Constituent {
+    Constituent {
+        name: "ozone",
+        extinction: Extinction::CrossSection(cross_section_m2),
+        albedo: Albedo::Constant(0.0),
+        phase: PhaseFunction::isotropic(),
+        profile,
+    }
+}
+
+/// `ozone = { profile = "o3.csv", cross_section_cm2 = <spectrum>, column_du = D }` (see the
+/// module docs).
+fn ozone_table(
+    ctx: &Ctx,
+    v: &Spanned<toml::Value>,
+    air: &Air,
+    what: &str,
+    (earth, top_m): (Earth, f64),
+) -> R<Constituent> {
+    let owhat = format!("{what}: ozone");
+    let t = Table::new(ctx, v, owhat.clone(), &["profile", "interpolation", "cross_section_cm2", "column_du"])?;
+    let cross_section = match t.t.get("cross_section_cm2") {
+        None => ozone::cross_section_m2(),
+        Some(x) => {
+            let range = (air.bands.min_nm, air.bands.max_nm);
+            let xwhat = format!("{owhat}: cross_section_cm2");
+            let cm2 = air.lib.parse(ctx, &Spanned::new(v.span(), x.clone()), &xwhat, Use::Emission, range)?;
+            Spectrum::Scaled(1e-4, Box::new(cm2))
+        }
+    };
+    let density = ozone_density(&t, top_m)?;
+    Ok(ozone_constituent(cross_section, AirProfile::from_heights(earth, top_m, density)))
+}
+
+/// The number density (m⁻³ at a height in m) of an `ozone` table `t`: its profile file's, or
+/// AFGL's shape, scaled to `column_du` when it is given.
+fn ozone_density(t: &Table, top_m: f64) -> R<Box<dyn Fn(f64) -> f64>> {
+    let column_du = match t.t.contains_key("column_du") {
+        true => Some(in_range_number(t, "column_du", 0.0, 1000.0)?),
+        false => None,
+    };
+    let Some(file) = t.t.get("profile") else {
+        if t.t.contains_key("interpolation") {
+            let e = format!("{}: interpolation reads a profile file's levels: give profile, or remove it", t.what);
+            return Err(t.ctx.err(&t.span, e));
+        }
+        let Some(du) = column_du else {
+            let e = format!(
+                "{}: give a profile file, a column_du (Dobson units, the AFGL profile's shape), or both",
+                t.what
+            );
+            return Err(t.ctx.err(&t.span, e));
+        };
+        return Ok(Box::new(ozone::profile(du, top_m)));
+    };
+    let table = ozone_profile_file(t, file, top_m)?;
+    let Some(du) = column_du else { return Ok(Box::new(move |h| table.at(h))) };
+    let column = ozone::column_per_m2(top_m, |h| table.at(h));
+    if column <= 0.0 {
+        let e =
+            format!("{}: the profile holds no ozone below the top, so it cannot be scaled to column_du = {du}", t.what);
+        return Err(t.ctx.err(&t.span, e));
+    }
+    let scale = du * ozone::MOLECULES_PER_M2_PER_DU / column;
+    Ok(Box::new(move |h| scale * table.at(h)))
+}
+
+/// `key` of `t` as a number in [lo, hi].
+fn in_range_number(t: &Table, key: &str, lo: f64, hi: f64) -> R<f64> {
+    let x = t.num(key, None)?;
+    if (lo..=hi).contains(&x) {
+        return Ok(x);
+    }
+    Err(t.ctx.err(&t.span, format!("{}: {key} = {x} is out of range [{lo}, {hi}]", t.what)))
+}
+
+/// The ozone `profile` file (relative to the scene), which must span the ground to the top.
+fn ozone_profile_file(t: &Table, file: &toml::Value, top_m: f64) -> R<NumberDensityTable> {
+    let Some(file) = file.as_str() else {
+        return Err(t.ctx.err(&t.span, format!("{}: profile must be a file name", t.what)));
+    };
+    let interpolation = match t.t.get("interpolation").map(|i| i.as_str()) {
+        None | Some(Some("log")) => Interpolation::Log,
+        Some(Some("linear")) => Interpolation::Linear,
+        Some(_) => {
+            return Err(t.ctx.err(
+                &t.span,
+                format!(
+                    "{}: interpolation must be \"log\" (ln n linear between levels, the default) or \"linear\"",
+                    t.what
+                ),
+            ));
+        }
+    };
+    let path = t.ctx.dir.join(file);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        Error::input(Some(Location::file(&path)), format!("{}: cannot read the ozone profile: {e}", t.what))
+    })?;
+    let table = NumberDensityTable::from_csv(&text).map_err(|(line, e)| {
+        Error::input(
+            Some(Location { file: path.clone(), line: Some(line), column: None }),
+            format!("{}: profile: {e}", t.what),
+        )
+    })?;
+    let table = table.with_interpolation(interpolation);
+    let (lo, hi) = table.altitude_range();
+    if lo > 0.0 || hi < top_m {
+        return Err(Error::input(
+            Some(Location::file(&path)),
+            format!("{}: the profile covers {lo} to {hi} m and the atmosphere spans 0 to {top_m} m: extend it", t.what),
+        ));
+    }
+    Ok(table)
 }
 
 /// `aerosol = { … }` (see the module docs); `rayleigh_550` is the air's extinction at 550 nm at
@@ -176,27 +313,8 @@ fn aerosols(
 /// `albedo = { wavelength_nm = [...], value = [...] }` of the aerosol table `t`: ω(λ) linear
 /// between the samples, constant beyond the ends ([`Albedo::spectral`]).
 fn albedo_table(t: &Table, what: &str) -> R<Albedo> {
-    let (ctx, span) = (t.ctx, &t.span);
-    let awhat = format!("{what}: albedo");
-    let Some(v) = t.t.get("albedo") else { return Err(ctx.err(span, format!("{what}: missing `albedo`"))) };
-    let v = Spanned::new(span.clone(), v.clone());
-    let table = Table::new(ctx, &v, awhat.clone(), &["wavelength_nm", "value"])?;
-    let list = |key: &str| -> R<Vec<f64>> {
-        let Some(x) = table.t.get(key) else {
-            return Err(ctx.err(
-                span,
-                format!(
-                    "{awhat}: missing `{key}`; give albedo = {{ wavelength_nm = [400, 700], value = [0.95, 0.9] }}"
-                ),
-            ));
-        };
-        let numbers: Option<Vec<f64>> = x
-            .as_array()
-            .and_then(|a| a.iter().map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64))).collect());
-        numbers.ok_or_else(|| ctx.err(span, format!("{awhat}: `{key}` must be an array of numbers")))
-    };
-    let (nm, value) = (list("wavelength_nm")?, list("value")?);
-    Albedo::spectral(nm, value).map_err(|e| ctx.err(span, format!("{awhat}: {e}")))
+    let (nm, value) = t.wavelength_table("albedo", "{ wavelength_nm = [400, 700], value = [0.95, 0.9] }")?;
+    Albedo::spectral(nm, value).map_err(|e| t.ctx.err(&t.span, format!("{what}: albedo: {e}")))
 }
 
 /// An aerosol's `phase`: `{ type = "hg", g }` or `{ type = "two_term_hg", w, g1, g2 }`.

@@ -92,7 +92,7 @@ pub fn data_dir(ctx: &Ctx, given: Option<&Spanned<String>>, what: &str) -> R<Oce
 /// `[[medium]] type = "ocean"`.
 pub fn ocean_medium(ctx: &Ctx, m: &RawMedium, kind: &Spanned<String>, name: &str, bands: &Bands) -> R<Medium> {
     let what = format!("medium \"{name}\"");
-    let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo, phase, density, chl_mg_m3, cdom_a440_per_m, cdom_slope_per_nm, chl_yield, cdom_yield, raman, particle_phase, data_dir, inelastic, atmosphere, rayleigh, co2_ppm, refraction, ozone_du, aerosol);
+    let present = present_fields!(m; sigma_a, sigma_s, sigma_t, albedo, phase, density, chl_mg_m3, cdom_a440_per_m, cdom_slope_per_nm, chl_yield, cdom_yield, raman, particle_phase, data_dir, inelastic, atmosphere, rayleigh, co2_ppm, refraction, ozone_du, ozone, aerosol);
     ctx.only(&present, OCEAN_FIELDS, &format!("{what} (ocean)"))?;
     let span = kind.span();
     let data = data_dir(ctx, m.data_dir.as_ref(), &what)?;

@@ -51,7 +51,7 @@ pub fn medium(
     let mut medium = match &m.kind {
         Some(kind) => match ctx.choice(kind, &format!("{what}: type"), &["ocean", "atmosphere"])? {
             "ocean" => super::inelastic::ocean_medium(ctx, m, kind, &name, bands)?,
-            _ => super::atmosphere_medium::atmosphere_medium(ctx, m, kind, &name, bands, earth)?,
+            _ => super::atmosphere_medium::atmosphere_medium(ctx, lib, m, kind, &name, bands, earth)?,
         },
         None => {
             super::inelastic::reject_ocean_fields(ctx, m, &what)?;
@@ -252,6 +252,26 @@ impl<'a> Table<'a> {
         } else {
             Err(self.ctx.err(&self.span, format!("{}: {key} = {x} must be greater than 0", self.what)))
         }
+    }
+
+    /// `key = { wavelength_nm = [...], value = [...] }`: the two arrays as written (their
+    /// lengths and order are the caller's to check); `example` shows a whole table in messages.
+    pub fn wavelength_table(&self, key: &str, example: &str) -> R<(Vec<f64>, Vec<f64>)> {
+        let (ctx, span) = (self.ctx, &self.span);
+        let what = format!("{}: {key}", self.what);
+        let Some(v) = self.t.get(key) else { return Err(ctx.err(span, format!("{}: missing `{key}`", self.what))) };
+        let v = Spanned::new(span.clone(), v.clone());
+        let table = Table::new(ctx, &v, what.clone(), &["wavelength_nm", "value"])?;
+        let list = |k: &str| -> R<Vec<f64>> {
+            let Some(x) = table.t.get(k) else {
+                return Err(ctx.err(span, format!("{what}: missing `{k}`; give {key} = {example}")));
+            };
+            let numbers: Option<Vec<f64>> = x
+                .as_array()
+                .and_then(|a| a.iter().map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64))).collect());
+            numbers.ok_or_else(|| ctx.err(span, format!("{what}: `{k}` must be an array of numbers")))
+        };
+        Ok((list("wavelength_nm")?, list("value")?))
     }
 
     pub fn vec3(&self, key: &str, default: DVec3) -> R<DVec3> {

@@ -110,8 +110,9 @@ pub struct RawMedium {
     pub inelastic: S<toml::Value>,
     /// `[[medium]] atmosphere` (atmosphere): the air's profile, a built-in name or `{ file }`.
     pub atmosphere: S<toml::Value>,
-    /// `[[medium]] rayleigh` (atmosphere): whether the air scatters (Rayleigh, Bodhaine et al. 1999).
-    pub rayleigh: S<bool>,
+    /// `[[medium]] rayleigh` (atmosphere): whether the air scatters (Rayleigh, Bodhaine et al. 1999),
+    /// or a table `{ cross_section_cm2 = { wavelength_nm, value }, depolarisation }`.
+    pub rayleigh: S<toml::Value>,
     /// `[[medium]] co2_ppm` (atmosphere): CO₂ of the air's Rayleigh cross-section, ppm by volume.
     pub co2_ppm: S<f64>,
     /// `[[medium]] refraction` (atmosphere): whether light curves along the air's refractive index.
@@ -119,6 +120,9 @@ pub struct RawMedium {
     /// `[[medium]] ozone_du` (atmosphere): the ozone column in Dobson units (AFGL mid-latitude
     /// summer profile, Bogumil et al. 2003 cross-section).
     pub ozone_du: S<f64>,
+    /// `[[medium]] ozone` (atmosphere): ozone from a profile file, a cross-section and/or a
+    /// column: `{ profile = "o3.csv", cross_section_cm2 = <spectrum>, column_du = 300 }`.
+    pub ozone: S<toml::Value>,
     /// `[[medium]] aerosol` (atmosphere): a table of Ångström α and β (or a visibility), scale
     /// height, single-scattering albedo and Henyey–Greenstein g.
     pub aerosol: S<toml::Value>,

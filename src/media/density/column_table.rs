@@ -359,7 +359,9 @@ mod tests {
         let air = AirProfile::new(&Atmosphere::usa76(), Earth::standard(), 2.5e25).unwrap();
         let medium = |density: Density| Medium {
             name: "m".into(),
-            coefficients: Coefficients::RayleighAir { co2_ppm: 400.0 },
+            coefficients: Coefficients::RayleighAir(crate::media::rayleigh_air::CrossSection::Bodhaine {
+                co2_ppm: 400.0,
+            }),
             phase: PhaseFunction::isotropic(),
             density,
             index: None,

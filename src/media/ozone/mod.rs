@@ -25,6 +25,9 @@
 //!   Dobson unit.
 
 pub mod data;
+mod table;
+
+pub use table::{Interpolation, NumberDensityTable};
 
 use crate::spectrum::{Spectrum, Tabulated};
 
@@ -67,9 +70,15 @@ pub fn profile(dobson_units: f64, top_m: f64) -> impl Fn(f64) -> f64 {
 
 /// ∫₀^top n dh of the AFGL profile, m⁻², by Simpson's rule on steps of about 1 m.
 pub fn afgl_column_per_m2(top_m: f64) -> f64 {
+    column_per_m2(top_m, afgl_number_density_per_m3)
+}
+
+/// ∫₀^top n dh of a number density `n` (m⁻³ at a height in m), m⁻², by composite Simpson's
+/// rule on steps of about 1 m.
+pub fn column_per_m2(top_m: f64, number_density_per_m3: impl Fn(f64) -> f64) -> f64 {
     let n = ((top_m.ceil() as usize).div_ceil(2) * 2).max(2);
     let dh = top_m / n as f64;
-    let f = |i: usize| afgl_number_density_per_m3(i as f64 * dh);
+    let f = |i: usize| number_density_per_m3(i as f64 * dh);
     let inner: f64 = (1..n).map(|i| if i % 2 == 1 { 4.0 * f(i) } else { 2.0 * f(i) }).sum();
     (f(0) + inner + f(n)) * dh / 3.0
 }
