@@ -10,7 +10,7 @@
 //! sight in the spherical shell, with the sun's transmittance along the straight path from each
 //! point (zero where that path meets the Earth: the Earth's shadow), written in this file
 //! without morgana's geometry, density tables or transmittance code. (The limb's single
-//! scattering is checked against Zawada et al.'s published values in `tests/limb_benchmark.rs`.)
+//! scattering is checked against Zawada et al.'s published values in `tests/spherical_benchmarks.rs`.)
 
 mod common;
 
