@@ -348,6 +348,34 @@ fn sky_radiance_sensors_report_bad_input() {
     assert_eq!(ok.sensors.len(), 1);
 }
 
+#[test]
+fn limb_sensors_report_bad_input() {
+    let limb = |world: &str, sensor: &str| format!("{world}\n[[sensor]]\nname = \"limb\"\ntype = \"limb\"\n{sensor}\n");
+    let round = black_earth(400.0, 700.0, ZENITH_BEAM);
+    let e = scene_error(&limb(&round, "tangent_heights_m = [1000.0, 86000.0]"));
+    assert!(e.contains("tangent height 86000 m") && e.contains("below the atmosphere's top (86000 m)"), "{e}");
+    let e = scene_error(&limb(&round, "tangent_heights_m = [-5.0]"));
+    assert!(e.contains("tangent height -5 m is out of range"), "{e}");
+    let e = scene_error(&limb(&round, "tangent_heights_m = []"));
+    assert!(e.contains("tangent_heights_m must list 1 to 4096"), "{e}");
+    let e = scene_error(&limb(&round, "azimuth_deg = 10.0"));
+    assert!(e.contains("missing field `tangent_heights_m`"), "{e}");
+    let e = scene_error(&limb(&round, "tangent_heights_m = [1000.0]\nazimuth_deg = 400.0"));
+    assert!(e.contains("azimuth_deg") && e.contains("out of range"), "{e}");
+    let e = scene_error(&limb(&round, "tangent_heights_m = [1000.0]\norigin = [0.0, 1.0, 0.0]"));
+    assert!(e.contains("origin") && e.contains("not used here"), "{e}");
+    let flat = format!(
+        "{}\n[camera]\nposition = [0.0, 1.0, 0.0]\nlook_at = [0.0, 2.0, 0.001]\nfov_deg = 10.0\nwidth = 2\nheight = 2\n{ZENITH_BEAM}",
+        common::sky::flat_air_over_black_ground()
+    );
+    let e = scene_error(&limb(&flat, "tangent_heights_m = [1000.0]"));
+    assert!(e.contains("a limb needs") && e.contains("earth = \"spherical\""), "{e}");
+    assert!(e.contains("test.toml:"), "{e}");
+    let ok = scene(&limb(&round, "tangent_heights_m = [500.0, 20000.0]\nazimuth_deg = 45.0"));
+    let morgana::sensor::Sensor::SkyRadiance(sky) = &ok.sensors[0].sensor else { panic!("a limb is a sky sensor") };
+    assert_eq!(sky.directions_deg, vec![[90.0, 45.0]; 2]);
+}
+
 /// `refraction = true` gives the medium the same atmosphere's index field (n − 1 at sea level
 /// 2.78 × 10⁻⁴ at 550 nm: Ciddor's air at 288.15 K, 101325 Pa) and the plan curves paths;
 /// `rayleigh = false` leaves clear air, which the plan does not count as participating.

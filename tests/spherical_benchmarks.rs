@@ -25,8 +25,6 @@ use std::path::{Path, PathBuf};
 const R_EARTH_M: f64 = 6_371_000.0;
 /// The benchmark's top of the atmosphere.
 const TOP_M: f64 = 100_000.0;
-/// The observers sit on their lines of sight just outside the top.
-const OBSERVER_RADIUS_M: f64 = R_EARTH_M + TOP_M + 1000.0;
 /// Tangent heights tested, km: every 5 km of the benchmark's 0.5–79.5 km.
 const TANGENT_HEIGHTS_KM: [f64; 16] =
     [0.5, 5.5, 10.5, 15.5, 20.5, 25.5, 30.5, 35.5, 40.5, 45.5, 50.5, 55.5, 60.5, 65.5, 70.5, 75.5];
@@ -103,19 +101,14 @@ fn write_atmosphere(dir: &Path) {
     std::fs::write(dir.join("zawada2021_ozone.csv"), format!("altitude_m,number_density_per_cm3\n{ozone}")).unwrap();
 }
 
-/// One `sky_radiance` sensor per tangent height, each outside the top on its horizontal line
-/// of sight through (0, h, 0) toward −z (view zenith 90°, azimuth 0°): the local vertical at
-/// every tangent point is +y, so the sun's elevation and azimuth there are the benchmark's.
-fn limb_sensors(samples: usize) -> String {
-    let mut s = String::new();
-    for (i, km) in TANGENT_HEIGHTS_KM.iter().enumerate() {
-        let h = km * 1e3;
-        let d = (OBSERVER_RADIUS_M.powi(2) - (R_EARTH_M + h).powi(2)).sqrt();
-        s += &format!(
-            "\n[[sensor]]\nname = \"tp{i}\"\ntype = \"sky_radiance\"\norigin = [0.0, {h:?}, {d:?}]\ndirections_deg = [[90.0, 0.0]]\nsamples = {samples}\n"
-        );
-    }
-    s
+/// A `limb` sensor: horizontal lines of sight toward −z (azimuth 0°) through tangent points
+/// above the origin, where the local vertical is +y, so the sun's elevation and azimuth there
+/// are the benchmark's.
+fn limb_sensor(samples: usize) -> String {
+    format!(
+        "\n[[sensor]]\nname = \"limb\"\ntype = \"limb\"\ntangent_heights_m = [{}]\nazimuth_deg = 0.0\nsamples = {samples}\n",
+        list(&TANGENT_HEIGHTS_KM.map(|km| km * 1e3))
+    )
 }
 
 /// The benchmark's ozone cross-sections (cm², at the wavelengths in nm), from its data set.
@@ -222,7 +215,7 @@ fn limb_scene(dir: &Path, case: &Case) -> Scene {
         sun_zenith_deg: case.sun_zenith_deg,
         sun_azimuth_deg: case.relative_azimuth_deg,
         nm: case.nm,
-        sensors: limb_sensors(256),
+        sensors: limb_sensor(256),
     }
     .load(dir)
 }
@@ -233,11 +226,14 @@ fn worst_deviation(case: &Case) -> f64 {
     std::fs::create_dir_all(&dir).unwrap();
     write_atmosphere(&dir);
     let scene = limb_scene(&dir, case);
-    let readings = common::render_with(&scene, 2).sensors;
+    let limb = common::render_with(&scene, 2).sensors.remove(0);
     let _ = std::fs::remove_dir_all(&dir);
+    let column = |name: &str| &limb.columns.iter().find(|(c, _)| c.starts_with(name)).expect(name).1;
+    let (heights, radiance) = (column("tangent_height_m"), column(&format!("L_{}", case.nm)));
     let mut worst: f64 = 0.0;
-    for (km, reading) in TANGENT_HEIGHTS_KM.iter().zip(&readings) {
-        let (ours, theirs) = (reading.columns[3].1[0], benchmark(case.column, *km));
+    for (km, (h, ours)) in TANGENT_HEIGHTS_KM.iter().zip(heights.iter().zip(radiance)) {
+        assert_eq!(*h, km * 1e3, "the reading's tangent heights");
+        let (ours, theirs) = (*ours, benchmark(case.column, *km));
         let deviation = ours / theirs - 1.0;
         println!(
             "{} nm, sun {}°/{}°, {km} km: morgana {ours:.6e}, SASKTRAN {theirs:.6e} ({:+.3} %)",

@@ -120,3 +120,44 @@ fn a_sweep_without_a_sky_sensor_writes_each_angles_image_and_no_csv() {
     assert!(dir.join("out/sun_zenith_30/frames.csv").exists(), "the 30° frame");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A round USA76 Rayleigh atmosphere over a black Earth, single scattering, seen edge-on by a
+/// `limb` sensor at tangent heights 10 and 30 km, with the sun at `elevation_deg`.
+fn limb_scene_text(elevation_deg: f64) -> String {
+    format!(
+        "{pixel}\n[integrator]\nphotons = 0\nmarch_step = 2000.0\nspp = 1\n{air}{earth}{sun}\n[[sensor]]\nname = \"limb\"\ntype = \"limb\"\ntangent_heights_m = [10000.0, 30000.0]\nazimuth_deg = 90.0\nsamples = 2\n",
+        pixel = common::sky::zenith_pixel(2, 450.0, 650.0),
+        air = common::sky::round_air(""),
+        earth = common::black_sphere_at([0.0, -common::sky::R_EARTH_M, 0.0], common::sky::R_EARTH_M),
+        sun = common::sky::point_sun(elevation_deg),
+    )
+}
+
+#[test]
+fn a_sweep_of_a_limb_lists_its_tangent_heights() {
+    let dir = std::env::temp_dir().join(format!("morgana_limb_sweep_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let scene = dir.join("limb.toml");
+    std::fs::write(&scene, limb_scene_text(10.0)).expect("scene");
+    run(&args(scene, dir.join("out"), vec![60.0])).expect("sweep");
+    let csv = std::fs::read_to_string(dir.join("out/limb_sun_sweep.csv")).expect("the sweep's CSV");
+    let lines: Vec<&str> = csv.lines().collect();
+    assert!(
+        lines[0]
+            .starts_with("sun_zenith_deg,sensor,view_zenith_deg,view_azimuth_deg,tangent_height_m,L_mean,L_450_550nm"),
+        "{}",
+        lines[0]
+    );
+    let mut s = common::scene(&limb_scene_text(30.0));
+    s.apply_overrides(None, Some(3));
+    let reading = &common::render_with(&s, 2).sensors[0];
+    for (k, height) in [10000.0, 30000.0].into_iter().enumerate() {
+        let row: Vec<f64> = lines[1 + k].split(',').filter_map(|x| x.parse().ok()).collect();
+        // sun_zenith, view zenith, view azimuth, tangent height, L_mean, the bands.
+        assert_eq!(row[..4], [60.0, 90.0, 90.0, height], "{}", lines[1 + k]);
+        assert_eq!(row[4], reading.columns[0].1[k], "L_mean as an ordinary render's");
+        assert!(row[4] > 0.0);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

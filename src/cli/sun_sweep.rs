@@ -8,7 +8,8 @@
 //! then holds one row per angle, sensor and direction:
 //! `sun_zenith_deg,sensor,view_zenith_deg,view_azimuth_deg,L_mean,L_<lo>_<hi>nm…`, radiance in
 //! W m⁻² sr⁻¹ nm⁻¹: list [0, 0] (the zenith) and [90, φ] (the horizon) in the sensor for zenith
-//! and horizon radiance against solar zenith angle.
+//! and horizon radiance against solar zenith angle. With a `limb` sensor a `tangent_height_m`
+//! column follows `view_azimuth_deg` (empty in the rows of other sensors).
 
 use crate::error::{Error, Result};
 use crate::render::{RenderOptions, Rendered};
@@ -78,7 +79,10 @@ fn sweep_csv(rows: &[(f64, Vec<Reading>)]) -> Option<String> {
     let first = rows.iter().flat_map(|(_, r)| r.first()).next()?;
     let bands: Vec<&str> =
         first.columns.iter().map(|(c, _)| c.as_str()).filter(|c| c.starts_with("L_") && *c != "L_mean").collect();
-    let mut text = format!("sun_zenith_deg,sensor,view_zenith_deg,view_azimuth_deg,L_mean,{}\n", bands.join(","));
+    let limb = rows.iter().flat_map(|(_, r)| r).any(|r| r.columns.iter().any(|(c, _)| c == "tangent_height_m"));
+    let height_column = if limb { "tangent_height_m," } else { "" };
+    let mut text =
+        format!("sun_zenith_deg,sensor,view_zenith_deg,view_azimuth_deg,{height_column}L_mean,{}\n", bands.join(","));
     for (z, readings) in rows {
         for r in readings {
             let col = |name: &str| r.columns.iter().find(|(c, _)| c == name).map(|(_, v)| v.as_slice());
@@ -86,8 +90,13 @@ fn sweep_csv(rows: &[(f64, Vec<Reading>)]) -> Option<String> {
             else {
                 continue;
             };
+            let heights = col("tangent_height_m");
             for k in 0..vz.len() {
-                let _ = write!(text, "{z},{},{},{},{:e}", r.name, vz[k], va[k], mean[k]);
+                let _ = write!(text, "{z},{},{},{},", r.name, vz[k], va[k]);
+                if limb {
+                    let _ = write!(text, "{},", heights.map_or(String::new(), |h| h[k].to_string()));
+                }
+                let _ = write!(text, "{:e}", mean[k]);
                 for b in &bands {
                     let _ = write!(text, ",{:e}", col(b).map_or(f64::NAN, |v| v[k]));
                 }

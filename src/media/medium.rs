@@ -173,6 +173,15 @@ impl Medium {
         CLIMB_PER_STEP * scale / dir.dot(up).abs()
     }
 
+    /// The top of an atmosphere's air, m above its Earth (`None` for other media).
+    pub fn top_m(&self) -> Option<f64> {
+        match (&self.coefficients, &self.density) {
+            (Coefficients::Constituents(c), _) => Some(c.list()[0].profile.top_m()),
+            (_, Density::AirProfile(a)) => Some(a.top_m()),
+            _ => None,
+        }
+    }
+
     /// The Earth an atmosphere's profiles are heights above (`None` for other media).
     pub fn earth(&self) -> Option<&crate::atmosphere::Earth> {
         match (&self.coefficients, &self.density) {

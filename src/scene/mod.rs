@@ -273,7 +273,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     check_index_fields(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     check_tracking_work(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     curved_integrator(ctx, raw, &media, &mut integrator)?;
-    let sensors = sensors::sensors(ctx, &raw.sensor, &integrator)?;
+    let sensors = sensors::sensors(ctx, &raw.sensor, &integrator, limb_air(&media, global_medium))?;
     check_target(ctx, raw, &integrator, &sensors, &camera)?;
     let bvh = Bvh::build(&shapes);
     let reach = Reach::around(&bounds.include(camera.position));
@@ -403,6 +403,15 @@ fn build_materials(
 }
 
 /// The media, their names and the medium filling the world (`[world] medium`), if any.
+/// The world medium's Earth (centre, radius) and top when it is an atmosphere over a sphere.
+fn limb_air(media: &[crate::media::Medium], global_medium: Option<u32>) -> sensors::LimbAir {
+    let m = &media[global_medium? as usize];
+    match (m.earth()?, m.top_m()?) {
+        (Earth::Spherical(s), top) => Some((s.centre, s.radius_m, top)),
+        (Earth::Flat { .. }, _) => None,
+    }
+}
+
 fn build_media(
     ctx: &Ctx,
     lib: &SpectrumLibrary,

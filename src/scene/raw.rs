@@ -468,4 +468,9 @@ pub struct RawSensor {
     pub slab_m: S<f64>,
     /// `[[sensor]] ior`: water's refractive index used for the water-leaving radiance Lw.
     pub ior: S<f64>,
+    /// `tangent_heights_m` (limb): heights of the lines of sight's tangent points above the
+    /// ground, m.
+    pub tangent_heights_m: S<Vec<f64>>,
+    /// `azimuth_deg` (limb): the azimuth the lines of sight look toward, degrees.
+    pub azimuth_deg: S<f64>,
 }

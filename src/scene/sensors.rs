@@ -37,15 +37,25 @@ use super::settings::{DirectLighting, IntegratorSettings};
 use crate::sensor::{IlluminancePlane, NamedSensor, OceanProfile, Sensor, SkyRadiance};
 use crate::validate::present_fields;
 use crate::validate::{Ctx, MAX_LENGTH_M, MIN_LENGTH_M, R};
+use glam::DVec3;
 use toml::Spanned;
 
-const KINDS: &[&str] = &["illuminance_plane", "ocean_profile", "sky_radiance"];
+const KINDS: &[&str] = &["illuminance_plane", "ocean_profile", "sky_radiance", "limb"];
 const MAX_POINTS: i64 = 4096;
 
-pub fn sensors(ctx: &Ctx, raw: &[Spanned<RawSensor>], integrator: &IntegratorSettings) -> R<Vec<NamedSensor>> {
+/// The world's air for limb sensors: the Earth's centre and radius and the atmosphere's top, m
+/// (`None` unless the world medium is an atmosphere over a spherical Earth).
+pub type LimbAir = Option<(DVec3, f64, f64)>;
+
+pub fn sensors(
+    ctx: &Ctx,
+    raw: &[Spanned<RawSensor>],
+    integrator: &IntegratorSettings,
+    air: LimbAir,
+) -> R<Vec<NamedSensor>> {
     let mut out: Vec<NamedSensor> = Vec::new();
     for (i, rec) in raw.iter().enumerate() {
-        let s = sensor(ctx, rec, i, integrator)?;
+        let s = sensor(ctx, rec, i, integrator, air)?;
         if out.iter().any(|o| o.name == s.name) {
             return Err(ctx.err(&rec.span(), format!("sensor \"{}\" is defined twice; names must be unique", s.name)));
         }
@@ -54,7 +64,13 @@ pub fn sensors(ctx: &Ctx, raw: &[Spanned<RawSensor>], integrator: &IntegratorSet
     Ok(out)
 }
 
-fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &IntegratorSettings) -> R<NamedSensor> {
+fn sensor(
+    ctx: &Ctx,
+    rec: &Spanned<RawSensor>,
+    index: usize,
+    integrator: &IntegratorSettings,
+    air: LimbAir,
+) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
     let name = s.name.as_ref().map_or_else(|| format!("sensor{}", index + 1), |n| n.get_ref().clone());
@@ -66,7 +82,10 @@ fn sensor(ctx: &Ctx, rec: &Spanned<RawSensor>, index: usize, integrator: &Integr
     if kind == "sky_radiance" {
         return sky_radiance(ctx, rec, name, &what);
     }
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg);
+    if kind == "limb" {
+        return limb(ctx, rec, name, &what, air);
+    }
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
     ctx.only(&present, &["origin", "u", "v", "normal", "resolution", "samples", "gather_rays"], &what)?;
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, &what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
@@ -114,7 +133,7 @@ fn profile(
 ) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg);
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
     ctx.only(&present, &["origin", "u", "v", "normal", "samples", "depths_m", "slab_m", "ior"], what)?;
     if integrator.photons == 0 {
         return Err(ctx.err(
@@ -157,7 +176,7 @@ fn profile(
 fn sky_radiance(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg);
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
     ctx.only(&present, &["origin", "directions_deg", "samples"], what)?;
     let position = ctx.vec3(ctx.require(&s.origin, "origin", &span, what)?, "origin")?;
     let d = ctx.require(&s.directions_deg, "directions_deg", &span, what)?;
@@ -177,5 +196,33 @@ fn sky_radiance(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str) -
         ));
     }
     let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
-    Ok(NamedSensor { name, sensor: Sensor::SkyRadiance(SkyRadiance { position, directions_deg, samples }) })
+    Ok(NamedSensor { name, sensor: Sensor::SkyRadiance(SkyRadiance::at_point(position, directions_deg, samples)) })
+}
+
+/// `type = "limb"`: tangent heights (m, from the ground to below the atmosphere's top) and the
+/// azimuth the lines of sight look toward, in the world's air over a spherical Earth
+/// ([`SkyRadiance::limb`]).
+fn limb(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str, air: LimbAir) -> R<NamedSensor> {
+    let span = rec.span();
+    let s = rec.get_ref();
+    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
+    ctx.only(&present, &["tangent_heights_m", "azimuth_deg", "samples"], what)?;
+    let Some((centre, radius_m, top_m)) = air else {
+        return Err(ctx.err(&span, format!("{what}: a limb needs the world's air to be an atmosphere over a round Earth: [world] medium = an atmosphere medium, earth = \"spherical\"")));
+    };
+    let h = ctx.require(&s.tangent_heights_m, "tangent_heights_m", &span, what)?;
+    let heights = h.get_ref();
+    if heights.is_empty() || heights.len() > MAX_POINTS as usize {
+        return Err(ctx.err(&h.span(), format!("{what}: tangent_heights_m must list 1 to {MAX_POINTS} heights (m)")));
+    }
+    if let Some(x) = heights.iter().find(|x| !(x.is_finite() && (0.0..top_m).contains(*x))) {
+        return Err(ctx.err(&h.span(), format!("{what}: tangent height {x} m is out of range: from the ground (0) to below the atmosphere's top ({top_m} m)")));
+    }
+    let azimuth_deg = match &s.azimuth_deg {
+        None => 0.0,
+        Some(a) => ctx.number(a, "azimuth_deg", -360.0, 360.0, false)?,
+    };
+    let samples = s.samples.as_ref().map_or(Ok(64), |x| ctx.integer(x, "samples", 1, 1 << 20))? as usize;
+    let sky = SkyRadiance::limb((centre, radius_m, top_m), heights, azimuth_deg, samples);
+    Ok(NamedSensor { name, sensor: Sensor::SkyRadiance(sky) })
 }

@@ -74,9 +74,9 @@ pub fn sun_axis(world: &World, s: &IntegratorSettings, viewpoints: &[DVec3]) -> 
 
 /// Where the scene's light is looked at from: the camera and every sky-radiance sensor.
 pub fn viewpoints(camera: &crate::geometry::Camera, sensors: &[crate::sensor::NamedSensor]) -> Vec<DVec3> {
-    let sky = sensors.iter().filter_map(|n| match &n.sensor {
-        crate::sensor::Sensor::SkyRadiance(s) => Some(s.position),
-        _ => None,
+    let sky = sensors.iter().flat_map(|n| match &n.sensor {
+        crate::sensor::Sensor::SkyRadiance(s) => s.origins.clone(),
+        _ => Vec::new(),
     });
     std::iter::once(camera.position).chain(sky).collect()
 }

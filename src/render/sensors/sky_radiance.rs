@@ -34,6 +34,9 @@ pub fn evaluate(
         ("view_zenith_deg".to_string(), sensor.directions_deg.iter().map(|d| d[0]).collect()),
         ("view_azimuth_deg".to_string(), sensor.directions_deg.iter().map(|d| d[1]).collect()),
     ];
+    if let Some(limb) = &sensor.limb {
+        columns.push(("tangent_height_m".to_string(), limb.iter().map(|(h, _)| *h).collect()));
+    }
     for b in 0..bands {
         let (lo, hi) = scene.bands.edges_nm(b);
         columns.push((format!("L_{lo}_{hi}nm"), per_direction.iter().map(|l| l[b]).collect()));
@@ -44,7 +47,10 @@ pub fn evaluate(
         unit: "W m-2 sr-1 nm-1".to_string(),
         nx: n,
         ny: 1,
-        points: vec![sensor.position; n],
+        points: match &sensor.limb {
+            Some(limb) => limb.iter().map(|(_, t)| *t).collect(),
+            None => sensor.origins.clone(),
+        },
         columns,
     }
 }
@@ -58,8 +64,9 @@ fn band_means(
     rng: &mut Rng,
     sc: &mut Scratch,
 ) -> Vec<f64> {
-    let medium = scene.world.medium_at(sensor.position);
-    let state = RayState { position: sensor.position, dir: sensor.direction(k), wavelength_nm: None, medium };
+    let position = sensor.origins[k];
+    let medium = scene.world.medium_at(position);
+    let state = RayState { position, dir: sensor.direction(k), wavelength_nm: None, medium };
     let mut acc = vec![0.0; scene.bands.count];
     let weight = Lanes::film_weight(&scene.bands, scene.sampling) / sensor.samples as f64;
     for s in 0..sensor.samples {
