@@ -374,6 +374,14 @@ fn limb_sensors_report_bad_input() {
     let ok = scene(&limb(&round, "tangent_heights_m = [500.0, 20000.0]\nazimuth_deg = 45.0"));
     let morgana::sensor::Sensor::SkyRadiance(sky) = &ok.sensors[0].sensor else { panic!("a limb is a sky sensor") };
     assert_eq!(sky.directions_deg, vec![[90.0, 45.0]; 2]);
+    // The default march steps are long along a limb: a note says so, unless march_step is given.
+    assert!(
+        ok.warnings.iter().any(|w| w.contains("sensor \"limb\"") && w.contains("march_step = 1000")),
+        "{:?}",
+        ok.warnings
+    );
+    let stepped = scene(&limb(&format!("{round}\n[integrator]\nmarch_step = 1000.0\n"), "tangent_heights_m = [500.0]"));
+    assert!(!stepped.warnings.iter().any(|w| w.contains("limb")), "{:?}", stepped.warnings);
 }
 
 /// `refraction = true` gives the medium the same atmosphere's index field (n − 1 at sea level

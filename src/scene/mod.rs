@@ -274,6 +274,8 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     check_tracking_work(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     curved_integrator(ctx, raw, &media, &mut integrator)?;
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator, limb_air(&media, global_medium))?;
+    let march_given = raw.integrator.as_ref().is_some_and(|i| i.get_ref().march_step.is_some());
+    warnings.extend(sensors::limb_march_note(&sensors, integrator.march_step_m, march_given));
     check_target(ctx, raw, &integrator, &sensors, &camera)?;
     let bvh = Bvh::build(&shapes);
     let reach = Reach::around(&bounds.include(camera.position));
@@ -402,16 +404,19 @@ fn build_materials(
     Ok((names, materials))
 }
 
-/// The media, their names and the medium filling the world (`[world] medium`), if any.
-/// The world medium's Earth (centre, radius) and top when it is an atmosphere over a sphere.
+/// The world medium's Earth (centre, radius) and top when it is an atmosphere over a sphere
+/// centred below the origin, (0, −R, 0), as every scene's round Earth is.
 fn limb_air(media: &[crate::media::Medium], global_medium: Option<u32>) -> sensors::LimbAir {
     let m = &media[global_medium? as usize];
     match (m.earth()?, m.top_m()?) {
-        (Earth::Spherical(s), top) => Some((s.centre, s.radius_m, top)),
-        (Earth::Flat { .. }, _) => None,
+        (Earth::Spherical(s), top) if s.centre == glam::DVec3::new(0.0, -s.radius_m, 0.0) => {
+            Some((s.centre, s.radius_m, top))
+        }
+        _ => None,
     }
 }
 
+/// The media, their names and the medium filling the world (`[world] medium`), if any.
 fn build_media(
     ctx: &Ctx,
     lib: &SpectrumLibrary,

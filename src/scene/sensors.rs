@@ -199,6 +199,22 @@ fn sky_radiance(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str) -
     Ok(NamedSensor { name, sensor: Sensor::SkyRadiance(SkyRadiance::at_point(position, directions_deg, samples)) })
 }
 
+/// A limb's lines of sight hardly climb near their tangent points, where the default march
+/// steps (bounded by a quarter of the least scale height's climb and a quarter of the mean free
+/// path) grow to ~100 km: on the limb benchmark of Zawada et al. they left ±0.1 % of noise at
+/// 8192 samples where 1 km steps leave < 0.01 % at 256. A note when a scene with a limb sensor
+/// keeps the default step and it is longer than 1 km.
+pub fn limb_march_note(sensors: &[NamedSensor], march_step_m: f64, given: bool) -> Option<String> {
+    let limb = sensors.iter().find(|s| matches!(&s.sensor, Sensor::SkyRadiance(sky) if sky.limb.is_some()))?;
+    (!given && march_step_m > 1000.0).then(|| {
+        format!(
+            "sensor \"{}\": a limb's lines of sight are marched in the default steps of up to {:.0} km; [integrator] march_step = 1000 gives noise below 0.01 % at 256 samples (the book's The sky, Limb sensor)",
+            limb.name,
+            march_step_m * 1e-3
+        )
+    })
+}
+
 /// `type = "limb"`: tangent heights (m, from the ground to below the atmosphere's top) and the
 /// azimuth the lines of sight look toward, in the world's air over a spherical Earth
 /// ([`SkyRadiance::limb`]).
