@@ -144,13 +144,19 @@ fn ozone_table(
             Spectrum::Scaled(1e-4, Box::new(cm2))
         }
     };
-    let density = ozone_density(&t, top_m)?;
-    Ok(ozone_constituent(cross_section, AirProfile::from_heights(earth, top_m, density)))
+    let (density, levels) = ozone_density(&t, top_m)?;
+    let profile = AirProfile::from_heights(earth, top_m, density);
+    // A profile file's levels break its slope: no column table may stand for it.
+    let profile = if levels { profile.with_slope_breaks() } else { profile };
+    Ok(ozone_constituent(cross_section, profile))
 }
 
-/// The number density (m⁻³ at a height in m) of an `ozone` table `t`: its profile file's, or
-/// AFGL's shape, scaled to `column_du` when it is given.
-fn ozone_density(t: &Table, top_m: f64) -> R<Box<dyn Fn(f64) -> f64>> {
+/// A number density, m⁻³ at a height in m.
+type NumberDensity = Box<dyn Fn(f64) -> f64>;
+
+/// The number density of an `ozone` table `t`: its profile file's, or AFGL's shape, scaled to
+/// `column_du` when it is given; and whether it is a profile file's.
+fn ozone_density(t: &Table, top_m: f64) -> R<(NumberDensity, bool)> {
     let column_du = match t.t.contains_key("column_du") {
         true => Some(in_range_number(t, "column_du", 0.0, 1000.0)?),
         false => None,
@@ -167,10 +173,10 @@ fn ozone_density(t: &Table, top_m: f64) -> R<Box<dyn Fn(f64) -> f64>> {
             );
             return Err(t.ctx.err(&t.span, e));
         };
-        return Ok(Box::new(ozone::profile(du, top_m)));
+        return Ok((Box::new(ozone::profile(du, top_m)), false));
     };
     let table = ozone_profile_file(t, file, top_m)?;
-    let Some(du) = column_du else { return Ok(Box::new(move |h| table.at(h))) };
+    let Some(du) = column_du else { return Ok((Box::new(move |h| table.at(h)), true)) };
     let column = ozone::column_per_m2(top_m, |h| table.at(h));
     if column <= 0.0 {
         let e =
@@ -178,7 +184,7 @@ fn ozone_density(t: &Table, top_m: f64) -> R<Box<dyn Fn(f64) -> f64>> {
         return Err(t.ctx.err(&t.span, e));
     }
     let scale = du * ozone::MOLECULES_PER_M2_PER_DU / column;
-    Ok(Box::new(move |h| scale * table.at(h)))
+    Ok((Box::new(move |h| scale * table.at(h)), true))
 }
 
 /// `key` of `t` as a number in [lo, hi].

@@ -337,6 +337,28 @@ mod tests {
     }
 
     #[test]
+    fn a_table_read_between_levels_keeps_no_column_table() {
+        // The benchmark ozone of Zawada et al. (2021), 1 km levels read linearly: its slope
+        // breaks sit on the 1 km panels' edges, so it keeps those panels, but a column table of
+        // it errs by 2.4 × the bound; marked, it has none and shadow rays integrate it.
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/zawada2021/number_density.csv"))
+                .expect("the benchmark's profile");
+        let rows: Vec<Vec<f64>> =
+            text.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect()).collect();
+        let (h, n): (Vec<f64>, Vec<f64>) = rows.iter().map(|r| (r[0], r[2] * 1e6)).unzip();
+        let levels = crate::media::ozone::NumberDensityTable::new(h, n)
+            .unwrap()
+            .with_interpolation(crate::media::ozone::Interpolation::Linear);
+        let read = move |x| levels.at(x);
+        let unmarked = AirProfile::from_heights(Earth::standard(), 100_000.0, read.clone());
+        let (worst, _) = worst_error(&unmarked, 20_000, 3);
+        assert!(worst > 1.0, "the table kept its bound ({worst}): the mark would not be needed");
+        let marked = AirProfile::from_heights(Earth::standard(), 100_000.0, read).with_slope_breaks();
+        assert!(marked.column_table().0.is_none());
+    }
+
+    #[test]
     fn ozone_is_integrated_beside_a_tabulated_air() {
         // The AFGL ozone shape keeps no table (its finer panels mark its kinks); read together
         // with the air, its column is the quadrature's to the bit and the air's the table's.
