@@ -5,8 +5,8 @@
 //!   3953: "Systematic comparison of vectorial spherical radiative transfer models in limb
 //!   scattering geometry"; inputs and values in `tests/data/zawada2021/`, whose README gives
 //!   their provenance);
-//! - the top of a homogeneous Rayleigh shell: Adams & Kattawar (1978, Icarus 35, 139:
-//!   "Radiative transfer in spherical shell atmospheres. I. Rayleigh scattering").
+//! - the top of a homogeneous Rayleigh shell: Adams & Kattawar (1978, Icarus:
+//!   "Radiative transfer in spherical shell atmospheres"), as quoted by S. Korkin.
 //!
 //! The benchmarks' atmospheres are given as number densities (at 1 km levels up to 100 km; or
 //! uniform) and their cross-sections as numbers, so the scenes take them as they are: the air's
