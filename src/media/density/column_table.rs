@@ -318,6 +318,39 @@ mod tests {
     }
 
     #[test]
+    fn a_tabulated_atmospheres_air_keeps_the_bound() {
+        // An atmosphere file's `profile` (T, P at 1 km levels, ln P by monotone cubics: C¹, so
+        // no slope breaks): the benchmark air of Zawada et al. (2021) at 250 K keeps a table,
+        // and it keeps its bound (measured: 0.036 of it).
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/zawada2021/number_density.csv"))
+                .expect("the benchmark's profile");
+        let rows: Vec<Vec<f64>> =
+            text.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect()).collect();
+        let t_k = 250.0;
+        let (h, p): (Vec<f64>, Vec<f64>) = rows
+            .iter()
+            .map(|r| {
+                (r[0], r[1] * 1e6 * crate::atmosphere::gas::R_STAR * t_k / crate::atmosphere::gas::AVOGADRO_PER_MOL)
+            })
+            .unzip();
+        let table = crate::atmosphere::TableProfile::new(h.clone(), vec![t_k; h.len()], p).unwrap();
+        let atmosphere = Atmosphere::new(
+            "benchmark",
+            Earth::standard(),
+            crate::atmosphere::BaseProfile::Table(table),
+            Vec::new(),
+            crate::atmosphere::AirDispersion::CauchyBornWolf,
+            100_000.0,
+        )
+        .unwrap();
+        let air = AirProfile::new(&atmosphere, Earth::standard(), 2.5e25).unwrap();
+        assert!(air.column_table().0.is_some(), "a smooth profile keeps its table");
+        let (worst, answered) = worst_error(&air, 20_000, 4);
+        assert!(answered >= 16_000 && worst <= 1.0, "worst {worst} × the bound over {answered} rays");
+    }
+
+    #[test]
     fn rays_that_meet_the_ground_or_end_in_the_air_are_not_tabulated() {
         let air = AirProfile::new(&Atmosphere::usa76(), Earth::standard(), 2.5e25).unwrap();
         let table = ColumnTable::build(&air, false).unwrap();
