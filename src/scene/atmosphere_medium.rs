@@ -196,7 +196,10 @@ fn rayleigh_table(
     let (given_sigma, given_rho) = (t.t.contains_key("cross_section_cm2"), t.t.contains_key("depolarisation"));
     let cross_section = match given_sigma {
         true => cross_section_table(&t, lib, bands)?,
-        false => bodhaine(ctx, v.span(), what, co2_ppm, bands)?.cross_section,
+        false => {
+            check_range(ctx, v.span(), what, bands)?;
+            CrossSection::Bodhaine { co2_ppm }
+        }
     };
     let mid_nm = 0.5 * (bands.min_nm + bands.max_nm);
     let (lo, hi) = rayleigh_air::RANGE_NM;

@@ -43,6 +43,11 @@ use toml::Spanned;
 const KINDS: &[&str] = &["illuminance_plane", "ocean_profile", "sky_radiance", "limb"];
 const MAX_POINTS: i64 = 4096;
 
+/// Every sensor key the record gives, with its span (each type accepts some of them).
+fn present(s: &RawSensor) -> [(&'static str, Option<std::ops::Range<usize>>); 13] {
+    present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg)
+}
+
 /// The world's air for limb sensors: the Earth's centre and radius and the atmosphere's top, m
 /// (`None` unless the world medium is an atmosphere over a spherical Earth).
 pub type LimbAir = Option<(DVec3, f64, f64)>;
@@ -85,7 +90,7 @@ fn sensor(
     if kind == "limb" {
         return limb(ctx, rec, name, &what, air);
     }
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
+    let present = present(s);
     ctx.only(&present, &["origin", "u", "v", "normal", "resolution", "samples", "gather_rays"], &what)?;
     let origin = ctx.vec3(ctx.require(&s.origin, "origin", &span, &what)?, "origin")?;
     let u = ctx.vec3(ctx.require(&s.u, "u", &span, &what)?, "u")?;
@@ -133,7 +138,7 @@ fn profile(
 ) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
+    let present = present(s);
     ctx.only(&present, &["origin", "u", "v", "normal", "samples", "depths_m", "slab_m", "ior"], what)?;
     if integrator.photons == 0 {
         return Err(ctx.err(
@@ -176,7 +181,7 @@ fn profile(
 fn sky_radiance(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
+    let present = present(s);
     ctx.only(&present, &["origin", "directions_deg", "samples"], what)?;
     let position = ctx.vec3(ctx.require(&s.origin, "origin", &span, what)?, "origin")?;
     let d = ctx.require(&s.directions_deg, "directions_deg", &span, what)?;
@@ -221,7 +226,7 @@ pub fn limb_march_note(sensors: &[NamedSensor], march_step_m: f64, given: bool) 
 fn limb(ctx: &Ctx, rec: &Spanned<RawSensor>, name: String, what: &str, air: LimbAir) -> R<NamedSensor> {
     let span = rec.span();
     let s = rec.get_ref();
-    let present = present_fields!(s; origin, u, v, normal, resolution, samples, gather_rays, depths_m, slab_m, ior, directions_deg, tangent_heights_m, azimuth_deg);
+    let present = present(s);
     ctx.only(&present, &["tangent_heights_m", "azimuth_deg", "samples"], what)?;
     let Some((centre, radius_m, top_m)) = air else {
         return Err(ctx.err(&span, format!("{what}: a limb needs the world's air to be an atmosphere over a round Earth: [world] medium = an atmosphere medium, earth = \"spherical\"")));

@@ -317,16 +317,21 @@ mod tests {
         }
     }
 
+    /// The benchmark atmosphere of Zawada et al. (2021), `tests/data/zawada2021/`: rows of
+    /// altitude (m), air and ozone number density (cm⁻³) at 1 km levels.
+    fn benchmark_levels() -> Vec<Vec<f64>> {
+        let text =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/zawada2021/number_density.csv"))
+                .expect("the benchmark's profile");
+        text.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect()).collect()
+    }
+
     #[test]
     fn a_tabulated_atmospheres_air_keeps_the_bound() {
         // An atmosphere file's `profile` (T, P at 1 km levels, ln P by monotone cubics: C¹, so
         // no slope breaks): the benchmark air of Zawada et al. (2021) at 250 K keeps a table,
         // and it keeps its bound (measured: 0.036 of it).
-        let text =
-            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/zawada2021/number_density.csv"))
-                .expect("the benchmark's profile");
-        let rows: Vec<Vec<f64>> =
-            text.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect()).collect();
+        let rows = benchmark_levels();
         let t_k = 250.0;
         let (h, p): (Vec<f64>, Vec<f64>) = rows
             .iter()
@@ -374,11 +379,7 @@ mod tests {
         // The benchmark ozone of Zawada et al. (2021), 1 km levels read linearly: its slope
         // breaks sit on the 1 km panels' edges, so it keeps those panels, but a column table of
         // it errs by 2.4 × the bound; marked, it has none and shadow rays integrate it.
-        let text =
-            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/zawada2021/number_density.csv"))
-                .expect("the benchmark's profile");
-        let rows: Vec<Vec<f64>> =
-            text.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect()).collect();
+        let rows = benchmark_levels();
         let (h, n): (Vec<f64>, Vec<f64>) = rows.iter().map(|r| (r[0], r[2] * 1e6)).unzip();
         let levels = crate::media::ozone::NumberDensityTable::new(h, n)
             .unwrap()
