@@ -8,6 +8,7 @@ use glam::DVec3;
 use morgana::photon::{MapKind, PassSettings, shoot};
 use morgana::photon_map::progressive::{DEFAULT_ALPHA, measure_ratio};
 use morgana::photon_map::{BeamEstimator, BeamMap, Paths, PhotonMap, PhotonPath};
+use morgana::scene::VolumeEstimate;
 use std::f64::consts::PI;
 
 const SIGMA_S: f64 = 0.3;
@@ -237,4 +238,22 @@ fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
     assert!(point.plan.volume_map.why.contains("point estimate"), "{}", point.plan.volume_map.why);
     let e = scene_error(&collimated_slab().replace("volume_estimate = \"beam\"", "volume_estimate = \"beams\""));
     assert!(e.contains("volume_estimate") && e.contains("beam") && e.contains("test.toml"), "{e}");
+}
+
+/// Unset, `volume_estimate` is the beam estimate, which conserves the photons' power (a
+/// volume caustic: `tests/volume_caustic.rs`), except in air stratified in height, whose
+/// density the point estimate's sphere is weighted by.
+#[test]
+fn the_default_is_the_beam_estimate_except_in_stratified_air() {
+    let fog = scene(&collimated_slab().replace("volume_estimate = \"beam\"\n", ""));
+    assert_eq!(fog.integrator.volume_estimate, VolumeEstimate::Beam);
+    assert!(fog.plan.volume_map.why.contains("beam estimate"), "{}", fog.plan.volume_map.why);
+    let sky = scene(&common::sky::black_earth(400.0, 700.0, "", &common::sky::point_sun(30.0)));
+    assert_eq!(sky.integrator.volume_estimate, VolumeEstimate::Point);
+    assert!(sky.plan.volume_map.why.contains("point estimate"), "{}", sky.plan.volume_map.why);
+    let given = scene(
+        &common::sky::black_earth(400.0, 700.0, "", &common::sky::point_sun(30.0))
+            .replace("[camera]", "[integrator]\nvolume_estimate = \"beam\"\n\n[camera]"),
+    );
+    assert_eq!(given.integrator.volume_estimate, VolumeEstimate::Beam, "a given estimate is kept");
 }

@@ -231,6 +231,13 @@ impl Medium {
         self.scatters() || (photon_sensors && !self.is_clear())
     }
 
+    /// True for air stratified in height (an atmosphere's constituents, or a density read from
+    /// an atmosphere profile): the point estimate then weights its sphere by the air's density
+    /// ([`crate::photon_map::stratified`]), which the beam estimate's discs do not.
+    pub fn stratified_air(&self) -> bool {
+        matches!(self.coefficients, Coefficients::Constituents(_)) || matches!(self.density, Density::AirProfile(_))
+    }
+
     /// True when light curves in this medium (its index field has a gradient somewhere).
     pub fn bends_light(&self) -> bool {
         self.index.as_ref().is_some_and(|f| !f.is_uniform())

@@ -273,6 +273,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     check_index_fields(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     check_tracking_work(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     curved_integrator(ctx, raw, &media, &mut integrator)?;
+    default_volume_estimate(raw, &media, &mut integrator);
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator, limb_air(&media, global_medium))?;
     let march_given = raw.integrator.as_ref().is_some_and(|i| i.get_ref().march_step.is_some());
     warnings.extend(sensors::limb_march_note(&sensors, integrator.march_step_m, march_given));
@@ -609,6 +610,21 @@ fn curved_integrator(ctx: &Ctx, raw: &RawScene, media: &[Medium], s: &mut Integr
     s.direct = DirectLighting::PhotonMap;
     s.final_gather = false;
     Ok(())
+}
+
+/// How eye rays read the volume map when `[integrator] volume_estimate` is not given: the point
+/// estimate in air stratified in height, whose sphere it weights by the air's density
+/// ([`Medium::stratified_air`]; the twilight fold needs it too), the beam estimate elsewhere.
+/// The beam estimate's discs conserve the photons' power for any radii; the point estimate's
+/// k-nearest radius does not where the light is focused (a volume caustic: the light through a
+/// ball lens 14 % too bright after 32 passes, the beam estimate within 0.3 %;
+/// `tests/volume_caustic.rs`).
+fn default_volume_estimate(raw: &RawScene, media: &[Medium], s: &mut IntegratorSettings) {
+    if raw.integrator.as_ref().is_some_and(|i| i.get_ref().volume_estimate.is_some()) {
+        return;
+    }
+    s.volume_estimate =
+        if media.iter().any(Medium::stratified_air) { VolumeEstimate::Point } else { VolumeEstimate::Beam };
 }
 
 /// Shapes and their primitives' materials and media (see [`Prim`] for the defaults).

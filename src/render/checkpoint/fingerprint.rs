@@ -1,7 +1,7 @@
 //! What a checkpoint was rendered from, part by part, so that a resume with anything different
 //! is refused naming the part: the morgana version, every key of the scene file (per table key,
 //! per array-of-tables entry), the bytes of every file the scene names, and the effective
-//! photons, seed, α and target, and adaptive sampling when it is on. The stopping rules (`passes`, `time`, `target_rel_error`) are
+//! photons, seed, α, volume estimate and target, and adaptive sampling when it is on. The stopping rules (`passes`, `time`, `target_rel_error`) are
 //! left out: a resume exists to change them. The thread and rank counts are left out: the
 //! output does not depend on them.
 
@@ -41,6 +41,12 @@ impl Fingerprint {
         parts.push(("caustic photons".into(), s.caustic_photons.to_string()));
         parts.push(("seed".into(), s.seed.to_string()));
         parts.push(("alpha".into(), s.progressive.alpha.to_string()));
+        // The effective estimate: its default depends on the media and has changed (2026-12-05).
+        let estimate = match s.volume_estimate {
+            crate::scene::VolumeEstimate::Point => "point",
+            crate::scene::VolumeEstimate::Beam => "beam",
+        };
+        parts.push(("volume estimate".into(), estimate.into()));
         parts.push(("target".into(), crate::scene::progressive::label(&s.progressive.target)));
         if s.progressive.adaptive {
             // Only when on: a checkpoint without adaptive sampling keeps its bytes.
