@@ -240,20 +240,25 @@ fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
     assert!(e.contains("volume_estimate") && e.contains("beam") && e.contains("test.toml"), "{e}");
 }
 
-/// Unset, `volume_estimate` is the beam estimate, which conserves the photons' power (a
-/// volume caustic: `tests/volume_caustic.rs`), except in air stratified in height, whose
-/// density the point estimate's sphere is weighted by.
+/// Unset, `volume_estimate` is the beam estimate where a specular surface can focus light into
+/// the medium (a volume caustic: `tests/volume_caustic.rs`) and the eye paths' march steps
+/// outnumber the photons; the point estimate otherwise. A given estimate is kept.
 #[test]
-fn the_default_is_the_beam_estimate_except_in_stratified_air() {
-    let fog = scene(&collimated_slab().replace("volume_estimate = \"beam\"\n", ""));
-    assert_eq!(fog.integrator.volume_estimate, VolumeEstimate::Beam);
-    assert!(fog.plan.volume_map.why.contains("beam estimate"), "{}", fog.plan.volume_map.why);
-    let sky = scene(&common::sky::black_earth(400.0, 700.0, "", &common::sky::point_sun(30.0)));
-    assert_eq!(sky.integrator.volume_estimate, VolumeEstimate::Point);
-    assert!(sky.plan.volume_map.why.contains("point estimate"), "{}", sky.plan.volume_map.why);
-    let given = scene(
-        &common::sky::black_earth(400.0, 700.0, "", &common::sky::point_sun(30.0))
-            .replace("[camera]", "[integrator]\nvolume_estimate = \"beam\"\n\n[camera]"),
-    );
-    assert_eq!(given.integrator.volume_estimate, VolumeEstimate::Beam, "a given estimate is kept");
+fn the_default_is_the_beam_estimate_beside_specular_surfaces() {
+    let unset = collimated_slab().replace("volume_estimate = \"beam\"\n", "");
+    let wide = |t: &str| t.replace("width = 1\nheight = 1", "width = 64\nheight = 64");
+    let glass = "\n[[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 1.5\n\n\
+                 [[shape]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 0.3\nmaterial = \"glass\"\n";
+    let estimate = |t: &str| {
+        let s = scene(t);
+        let words =
+            if s.integrator.volume_estimate == VolumeEstimate::Beam { "beam estimate" } else { "point estimate" };
+        assert!(s.plan.volume_map.why.contains(words), "{}", s.plan.volume_map.why);
+        s.integrator.volume_estimate
+    };
+    assert_eq!(estimate(&wide(&unset)), VolumeEstimate::Point, "fog without a specular surface");
+    assert_eq!(estimate(&(wide(&unset) + glass)), VolumeEstimate::Beam, "a glass ball in fog");
+    assert_eq!(estimate(&(unset.clone() + glass)), VolumeEstimate::Point, "one pixel: fewer steps than photons");
+    let given = wide(&unset).replace("[integrator]\n", "[integrator]\nvolume_estimate = \"point\"\n") + glass;
+    assert_eq!(estimate(&given), VolumeEstimate::Point, "a given estimate is kept");
 }

@@ -386,7 +386,7 @@ fn shadow_rays_see_the_direct_light_as_light_tracing_does() {
 
 /// The light through the sphere, which only the volume photon map carries, converges to the
 /// light tracing's: 32 progressive passes of 200 000 photons with the beam estimate, the
-/// default in fog (discs of at most 5 cm, shrinking with α = 0.5). The caustic is sharp, so single pixels keep the blur
+/// default beside a glass ball (discs of at most 5 cm, shrinking with α = 0.5). The caustic is sharp, so single pixels keep the blur
 /// of the discs for many passes; a row of pixels spans the caustic from side to side, so its
 /// sum keeps only the vertical part of the blur. The bound on each row and on the whole image
 /// is 1 % (the twice-scattered light morgana keeps and the sum leaves out, ≤ 0.3 %; the light
@@ -404,7 +404,7 @@ fn the_volume_caustic_of_a_ball_lens_matches_light_tracing() {
     let integrator = "photons = 200000\nspp = 4\npasses = 32\nseed = 3\nmarch_step = 0.01\n\
                       volume_max_radius = 0.05\nalpha = 0.5";
     let s = scene(&scene_toml(integrator));
-    assert_eq!(s.integrator.volume_estimate, VolumeEstimate::Beam, "the default in fog");
+    assert_eq!(s.integrator.volume_estimate, VolumeEstimate::Beam, "the default beside a glass ball");
     let r = render_with(&s, 2);
     let (got, var) = values_and_variances(&r, &direct);
     check("row", &sums(&got, PIXELS, row), &sums(&var, PIXELS, row), &sums(&through, PIXELS, row), 0.01, 4.0);

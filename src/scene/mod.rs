@@ -273,7 +273,6 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     check_index_fields(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     check_tracking_work(ctx, raw, &media, &bands, &bounds.include(camera.position))?;
     curved_integrator(ctx, raw, &media, &mut integrator)?;
-    default_volume_estimate(raw, &media, &mut integrator);
     let sensors = sensors::sensors(ctx, &raw.sensor, &integrator, limb_air(&media, global_medium))?;
     let march_given = raw.integrator.as_ref().is_some_and(|i| i.get_ref().march_step.is_some());
     warnings.extend(sensors::limb_march_note(&sensors, integrator.march_step_m, march_given));
@@ -297,6 +296,7 @@ fn build(ctx: &Ctx, raw: &RawScene, default_name: &str) -> Result<Scene> {
     world.light_media = world.lights.iter().map(|l| world.medium_at(l.representative_point())).collect();
     ground::check_ground_closes_the_air(ctx, raw, &world)?;
     check_march_work(ctx, raw, &world, &integrator)?;
+    default_volume_estimate(raw, &world, &camera, &mut integrator);
     let plan = decide_plan(&world, &camera, &integrator, &sensors, sampling, &bands);
     let camera_medium = world.medium_at(camera.position);
     let mut scene = Scene {
@@ -612,19 +612,19 @@ fn curved_integrator(ctx: &Ctx, raw: &RawScene, media: &[Medium], s: &mut Integr
     Ok(())
 }
 
-/// How eye rays read the volume map when `[integrator] volume_estimate` is not given: the point
-/// estimate in air stratified in height, whose sphere it weights by the air's density
-/// ([`Medium::stratified_air`]; the twilight fold needs it too), the beam estimate elsewhere.
-/// The beam estimate's discs conserve the photons' power for any radii; the point estimate's
-/// k-nearest radius does not where the light is focused (a volume caustic: the light through a
-/// ball lens 14 % too bright after 32 passes, the beam estimate within 0.3 %;
-/// `tests/volume_caustic.rs`).
-fn default_volume_estimate(raw: &RawScene, media: &[Medium], s: &mut IntegratorSettings) {
+/// How eye rays read the volume map when `[integrator] volume_estimate` is not given
+/// ([`VolumeEstimate::default_for`]), from what the scene holds.
+fn default_volume_estimate(raw: &RawScene, world: &World, camera: &Camera, s: &mut IntegratorSettings) {
     if raw.integrator.as_ref().is_some_and(|i| i.get_ref().volume_estimate.is_some()) {
         return;
     }
-    s.volume_estimate =
-        if media.iter().any(Medium::stratified_air) { VolumeEstimate::Point } else { VolumeEstimate::Beam };
+    let specular = world.prims.iter().filter_map(|p| p.material).any(|m| world.materials[m as usize].is_specular());
+    let stratified = world.media.iter().any(Medium::stratified_air);
+    // March steps the point estimate would query along eye paths, at most: a chord across the
+    // scene in steps of `march_step` for each eye sample.
+    let steps = world.bounds.diagonal().length() / s.march_step_m;
+    let eye_queries = (camera.width * camera.height * s.spp) as f64 * steps;
+    s.volume_estimate = VolumeEstimate::default_for(specular, stratified, eye_queries >= s.photons as f64);
 }
 
 /// Shapes and their primitives' materials and media (see [`Prim`] for the defaults).

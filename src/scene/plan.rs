@@ -361,10 +361,10 @@ fn volume_map_decision(facts: &SceneFacts, s: &IntegratorSettings) -> Decision {
     if d.on {
         d.why.push_str(match s.volume_estimate {
             VolumeEstimate::Point => {
-                "; eye rays read it by the point estimate (the k nearest photons at every march step, in a sphere weighted by the density of air stratified in height; volume_estimate = \"point\", the default in such air)"
+                "; eye rays read it by the point estimate (the k nearest photons at every march step; volume_estimate = \"point\")"
             }
             VolumeEstimate::Beam => {
-                "; eye rays read it by the beam estimate (every photon whose disc a chord crosses, one query per chord, the photons' power conserved; volume_estimate = \"beam\", the default without air stratified in height)"
+                "; eye rays read it by the beam estimate (every photon whose disc a chord crosses, one query per chord; volume_estimate = \"beam\")"
             }
         });
         if let Some(words) = &facts.axial_words {

@@ -49,6 +49,22 @@ pub enum VolumeEstimate {
     Beam,
 }
 
+impl VolumeEstimate {
+    /// The estimate a scene gets when it names none. The beam estimate where a specular surface
+    /// can focus light into a scattering medium: each photon's disc holds all of its power, while
+    /// the point estimate's k-nearest radius, set by the point being lit, reaches from the dim
+    /// fog beside a caustic into it and makes light (a ball lens's volume caustic 14 % too bright
+    /// after 32 passes, the beam estimate within 0.3 %: `tests/volume_caustic.rs`). Not in air
+    /// stratified in height (`stratified_air`), whose density weights the point estimate's
+    /// sphere, nor where the eye paths' march steps (at most eye samples × the scene's diagonal
+    /// over `march_step`) are fewer than the photons emitted (`!eye_work_dominates`): the beam
+    /// estimate's radii cost a k-nearest query per stored photon, which a one-pixel camera
+    /// beside ocean sensors does not repay. Elsewhere the point estimate, as before.
+    pub fn default_for(focusing: bool, stratified_air: bool, eye_work_dominates: bool) -> VolumeEstimate {
+        if focusing && !stratified_air && eye_work_dominates { VolumeEstimate::Beam } else { VolumeEstimate::Point }
+    }
+}
+
 /// The gather discs of the beam estimate: each photon's radius is that of the sphere holding its
 /// `k` nearest photons (at most `max_radius_m`), times `scale` (√sᵢ in progressive pass i).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -474,5 +490,20 @@ fn filter(ctx: &Ctx, r: &RawIntegrator) -> R<Filter> {
         }
         ("epanechnikov", None) => Ok(Filter::Epanechnikov),
         _ => Ok(Filter::Box),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::VolumeEstimate;
+
+    /// The beam estimate only where light can be focused into a medium that is not stratified
+    /// air and the eye's march steps outnumber the photons.
+    #[test]
+    fn the_default_volume_estimate_follows_the_scene() {
+        assert_eq!(VolumeEstimate::default_for(true, false, true), VolumeEstimate::Beam);
+        for (focusing, stratified, eye) in [(false, false, true), (true, true, true), (true, false, false)] {
+            assert_eq!(VolumeEstimate::default_for(focusing, stratified, eye), VolumeEstimate::Point);
+        }
     }
 }
