@@ -1,9 +1,9 @@
 //! What a checkpoint was rendered from, part by part, so that a resume with anything different
 //! is refused naming the part: the morgana version, every key of the scene file (per table key,
 //! per array-of-tables entry), the bytes of every file the scene names, and the effective
-//! photons, seed, α, volume estimate and target, and adaptive sampling when it is on. The stopping rules (`passes`, `time`, `target_rel_error`) are
-//! left out: a resume exists to change them. The thread and rank counts are left out: the
-//! output does not depend on them.
+//! photons, seed, α, volume estimate and target, and adaptive sampling when it is on. The
+//! stopping rules (`passes`, `time`, `target_rel_error`) are left out: a resume exists to change
+//! them. The thread and rank counts are left out: the output does not depend on them.
 
 use crate::distributed::fingerprint::Fnv64;
 use crate::scene::Scene;
@@ -41,7 +41,7 @@ impl Fingerprint {
         parts.push(("caustic photons".into(), s.caustic_photons.to_string()));
         parts.push(("seed".into(), s.seed.to_string()));
         parts.push(("alpha".into(), s.progressive.alpha.to_string()));
-        // The effective estimate: its default depends on the media and has changed (2026-12-05).
+        // The effective estimate: unset, it depends on the scene, and its rule changed on 2026-12-05.
         let estimate = match s.volume_estimate {
             crate::scene::VolumeEstimate::Point => "point",
             crate::scene::VolumeEstimate::Beam => "beam",
@@ -130,5 +130,23 @@ mod tests {
         let d = pa.differences(&Fingerprint(scene_parts(c)));
         assert_eq!(d, vec!["the scene's [camera] fov_deg (in this scene, not in the checkpoint's)".to_string()]);
         assert!(pa.differences(&pa).is_empty());
+    }
+
+    /// The effective volume estimate is a part of its own, so that a checkpoint written under
+    /// another default is refused even where the scene file names none.
+    #[test]
+    fn the_effective_volume_estimate_is_a_part() {
+        let text = crate::scene::DEFAULT_SCENE;
+        let scene = crate::scene::load_scene_str(text, Path::new("default.toml"), Path::new("."), "default")
+            .expect("the default scene loads");
+        let f = Fingerprint::of(&scene, text, None);
+        let mut other = f.clone();
+        for (name, value) in &mut other.0 {
+            if name == "volume estimate" {
+                *value = if value == "point" { "beam".into() } else { "point".into() };
+            }
+        }
+        assert_eq!(f.differences(&other).len(), 1, "{:?}", f.differences(&other));
+        assert!(f.differences(&other)[0].starts_with("volume estimate"), "{:?}", f.differences(&other));
     }
 }
