@@ -141,13 +141,29 @@ fn delta_tracking_field(field: &Extinction, o: DVec3, dir: DVec3, t_max: f64, rn
 /// columns to its top from its tables, [`crate::media::density::ColumnTable`]), else ratio
 /// tracking.
 pub fn transmittance(m: &Medium, wavelength_nm: f64, o: DVec3, dir: DVec3, t: f64, rng: &mut Rng) -> f64 {
-    let field = Extinction::of(m, wavelength_nm);
-    if field.is_zero() || t <= 0.0 {
-        return 1.0;
+    Attenuation::of(m, wavelength_nm).transmittance(o, dir, t, rng)
+}
+
+/// A medium's extinction at one wavelength, looked up once for many segments: what
+/// [`transmittance`] computes for each segment, to the bit, without evaluating σ_t(λ) again
+/// (the beam estimate carries a chord's transmittance from photon to photon).
+pub struct Attenuation<'a>(Extinction<'a>);
+
+impl<'a> Attenuation<'a> {
+    /// The extinction of `m` at `wavelength_nm`.
+    pub fn of(m: &'a Medium, wavelength_nm: f64) -> Attenuation<'a> {
+        Attenuation(Extinction::of(m, wavelength_nm))
     }
-    match field.optical_depth_exact(o, dir, t, true) {
-        Some(depth) => (-depth).exp(),
-        None => ratio_tracking_field(&field, o, dir, t, rng),
+
+    /// [`transmittance`] of the segment o + s·dir, s in [0, t].
+    pub fn transmittance(&self, o: DVec3, dir: DVec3, t: f64, rng: &mut Rng) -> f64 {
+        if self.0.is_zero() || t <= 0.0 {
+            return 1.0;
+        }
+        match self.0.optical_depth_exact(o, dir, t, true) {
+            Some(depth) => (-depth).exp(),
+            None => ratio_tracking_field(&self.0, o, dir, t, rng),
+        }
     }
 }
 

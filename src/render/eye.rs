@@ -673,9 +673,12 @@ impl<'a> EyeTracer<'a> {
     ) -> BandValues {
         let n = lanes.len;
         let (mut t_at, mut tr) = ([0.0f64; MAX_BANDS], [1.0f64; MAX_BANDS]);
+        // Each lane's extinction once per chord (an ocean's σ_t(λ) is several table look-ups).
+        let lane_attenuation: Vec<tracking::Attenuation> =
+            lanes.nm[..n].iter().map(|l| tracking::Attenuation::of(m, *l)).collect();
         let mut advance = |i: usize, t: f64, rng: &mut Rng| {
             if t > t_at[i] {
-                tr[i] *= tracking::transmittance(m, lanes.nm[i], c.origin + t_at[i] * c.dir, c.dir, t - t_at[i], rng);
+                tr[i] *= lane_attenuation[i].transmittance(c.origin + t_at[i] * c.dir, c.dir, t - t_at[i], rng);
                 t_at[i] = t;
             }
             tr[i]
