@@ -23,10 +23,11 @@ threads=()
 [ -n "${THREADS:-}" ] && threads=(--threads "$THREADS")
 mkdir -p "$out"
 trap 'rm -f examples/.bench_*.toml' EXIT
-# The example with its camera shrunk and `keys` added to [integrator] (a copy beside it).
+# The example with its camera shrunk and `keys` added to [integrator]: a copy beside it, of the
+# same name for both sides (an example without [output] name names its outputs after the file).
 copy() {
-  local ex=$1 side=$2 keys=$3
-  python3 - "examples/$ex.toml" "examples/.bench_${ex}_$side.toml" "$shrink" "$keys" <<'PY'
+  local ex=$1 keys=$2
+  python3 - "examples/$ex.toml" "examples/.bench_$ex.toml" "$shrink" "$keys" <<'PY'
 import re, sys
 src, dst, shrink, keys = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 text = open(src).read()
@@ -36,14 +37,14 @@ if keys:
     text = re.sub(r"(?m)^\[integrator\]$", lambda m: "[integrator]\n" + keys, text, count=1)
 open(dst, "w").write(text)
 PY
-  echo "examples/.bench_${ex}_$side.toml"
+  echo "examples/.bench_$ex.toml"
 }
 printf '%-28s %10s %10s %16s %16s %12s\n' example "base CPU s" "new CPU s" "eye base" "eye new" "radii new"
 for ex in "$@"; do
   for side in base new; do
     bin=$base keys=${BASE_KEYS:-}
     [ "$side" = new ] && bin=$new keys=${NEW_KEYS:-}
-    file=$(copy "$ex" "$side" "$keys")
+    file=$(copy "$ex" "$keys")
     dir="$out/$ex.$side"
     mkdir -p "$dir"
     /usr/bin/time -f "%U %S" -o "$dir/time" "$bin" render "$file" --out "$dir" --quiet "${threads[@]}" > "$dir/log" 2>&1
