@@ -267,13 +267,12 @@ fn scatter_piece(view: &View, image: &mut [f64], o: DVec3, d: DVec3, len: f64, f
     }
 }
 
-/// Which light the sum keeps.
-#[derive(Clone, Copy, PartialEq)]
-enum Part {
+/// The light-traced image in two parts, summed in one pass over the rays.
+struct Traced {
     /// The rays' pieces from the light to the sphere or a wall: what shadow rays see.
-    Direct,
+    direct: Vec<f64>,
     /// The pieces after the sphere (reflected or refracted): what only photons carry.
-    ThroughTheSphere,
+    through: Vec<f64>,
 }
 
 /// Faces of the sphere a light ray is followed through: the reflection at the first, and up
@@ -282,32 +281,24 @@ enum Part {
 const FACES: u32 = 4;
 
 /// Follows a light ray of flux `flux` from `ray.0` along `ray.1` in the fog, through every
-/// Fresnel branch of the sphere (`depth` more faces), adding the single scattering of the
-/// pieces `part` keeps to `image`.
-fn follow(view: &View, image: &mut [f64], ray: (DVec3, DVec3), flux: f64, depth: u32, part: Part) {
+/// Fresnel branch of the sphere (`depth` more faces), adding the single scattering of its
+/// pieces to `out` (a piece straight from the light to `direct`, the others to `through`).
+fn follow(view: &View, out: &mut Traced, ray: (DVec3, DVec3), flux: f64, depth: u32) {
     let (o, d) = ray;
-    let from_light = depth == FACES;
-    let keep = match part {
-        Part::Direct => from_light,
-        Part::ThroughTheSphere => !from_light,
-    };
+    let image = if depth == FACES { &mut out.direct } else { &mut out.through };
     let wall = to_wall(o, d);
     let hit = sphere_hits(o, d).filter(|&(near, _)| near > 1e-9 && near < wall);
     let Some((near, _)) = hit else {
-        if keep {
-            scatter_piece(view, image, o, d, wall, flux);
-        }
+        scatter_piece(view, image, o, d, wall, flux);
         return;
     };
-    if keep {
-        scatter_piece(view, image, o, d, near, flux);
-    }
+    scatter_piece(view, image, o, d, near, flux);
     let flux = flux * (-SIGMA_T * near).exp();
     let p = o + near * d;
     let n = p / SPHERE_R;
     let r = fresnel(-n.dot(d), 1.0, IOR);
     if depth > 0 {
-        follow(view, image, (p, d - 2.0 * d.dot(n) * n), flux * r, depth - 1, part);
+        follow(view, out, (p, d - 2.0 * d.dot(n) * n), flux * r, depth - 1);
     }
     let Some(mut inside) = refract(d, n, 1.0, IOR) else { return };
     let (mut at, mut carried) = (p, flux * (1.0 - r));
@@ -317,8 +308,8 @@ fn follow(view: &View, image: &mut [f64], ray: (DVec3, DVec3), flux: f64, depth:
         let q = at + far * inside;
         let n_in = -q / SPHERE_R;
         let r_in = fresnel(-n_in.dot(inside), IOR, 1.0);
-        if let Some(out) = refract(inside, n_in, IOR, 1.0) {
-            follow(view, image, (q, out), carried * (1.0 - r_in), 0, part);
+        if let Some(exit) = refract(inside, n_in, IOR, 1.0) {
+            follow(view, out, (q, exit), carried * (1.0 - r_in), 0);
         }
         carried *= r_in;
         if carried < 1e-9 * flux {
@@ -331,9 +322,9 @@ fn follow(view: &View, image: &mut [f64], ray: (DVec3, DVec3), flux: f64, depth:
 
 /// The single-scattered radiance of every pixel (row-major, W m⁻² sr⁻¹ nm⁻¹) from `spot`'s
 /// light rays on an `n_mu` × `n_phi` midpoint grid over its cone in (cos θ, φ).
-fn light_traced(spot: &Spot, n_mu: usize, n_phi: usize, part: Part) -> Vec<f64> {
+fn light_traced(spot: &Spot, n_mu: usize, n_phi: usize) -> Traced {
     let view = View::new();
-    let mut image = vec![0.0; PIXELS * PIXELS];
+    let mut out = Traced { direct: vec![0.0; PIXELS * PIXELS], through: vec![0.0; PIXELS * PIXELS] };
     let cos_cone = spot.cone_deg.to_radians().cos();
     let (d_mu, d_phi) = ((1.0 - cos_cone) / n_mu as f64, 2.0 * PI / n_phi as f64);
     let flux = INTENSITY * d_mu * d_phi;
@@ -344,15 +335,15 @@ fn light_traced(spot: &Spot, n_mu: usize, n_phi: usize, part: Part) -> Vec<f64> 
         for j in 0..n_phi {
             let phi = (j as f64 + 0.5) * d_phi;
             let d = mu * spot.axis + s * (phi.cos() * e1 + phi.sin() * e2);
-            follow(&view, &mut image, (spot.position, d), flux, FACES, part);
+            follow(&view, &mut out, (spot.position, d), flux, FACES);
         }
     }
-    image
+    out
 }
 
-/// The light-traced single scattering on the grid the tests use, and the light rays' part.
-fn oracle(spot: &Spot, part: Part) -> Vec<f64> {
-    light_traced(spot, 2000, 720, part)
+/// The light-traced single scattering on the grid the tests use.
+fn oracle(spot: &Spot) -> Traced {
+    light_traced(spot, 2000, 720)
 }
 
 /// Sums of `values` over groups of pixels: `group(pixel index)` names each pixel's group.
@@ -391,7 +382,7 @@ fn check(what: &str, got: &[f64], var: &[f64], want: &[f64], bias: f64, z: f64) 
 /// the path that needs no photon map (each 4 × 4 block within 0.5 % + 4 standard errors).
 #[test]
 fn shadow_rays_see_the_direct_light_as_light_tracing_does() {
-    let direct = light_traced(&ABOVE_THE_BALL, 1000, 360, Part::Direct);
+    let direct = light_traced(&ABOVE_THE_BALL, 1000, 360).direct;
     let integrator = "photons = 0\nspp = 4\npasses = 4\nseed = 3\nmarch_step = 0.01";
     let r = render_with(&scene(&scene_toml(&ABOVE_THE_BALL, integrator)), 2);
     let (got, var) = values_and_variances(&r, &vec![0.0; PIXELS * PIXELS]);
@@ -409,13 +400,12 @@ fn shadow_rays_see_the_direct_light_as_light_tracing_does() {
 /// (image) standard errors.
 #[test]
 fn the_volume_caustic_of_a_ball_lens_matches_light_tracing() {
-    let through = oracle(&ABOVE_THE_BALL, Part::ThroughTheSphere);
-    let coarse = light_traced(&ABOVE_THE_BALL, 1000, 360, Part::ThroughTheSphere);
+    let Traced { direct, through } = oracle(&ABOVE_THE_BALL);
+    let coarse = light_traced(&ABOVE_THE_BALL, 1000, 360).through;
     let row = |i: usize| i / PIXELS;
     for (fine, coarse) in sums(&through, PIXELS, row).iter().zip(sums(&coarse, PIXELS, row)) {
         assert!((coarse / fine - 1.0).abs() < 0.003, "the light tracing is not converged: {coarse} vs {fine}");
     }
-    let direct = oracle(&ABOVE_THE_BALL, Part::Direct);
     let integrator = "photons = 200000\nspp = 4\npasses = 32\nseed = 3\nmarch_step = 0.01\n\
                       volume_max_radius = 0.05\nalpha = 0.5";
     let s = scene(&scene_toml(&ABOVE_THE_BALL, integrator));
@@ -435,7 +425,7 @@ fn the_volume_caustic_of_a_ball_lens_matches_light_tracing() {
 /// discs' blur: light moved outward by a disc's radius).
 #[test]
 fn a_narrow_beam_read_from_the_photon_map_matches_light_tracing() {
-    let want = oracle(&ACROSS_THE_VIEW, Part::Direct);
+    let want = oracle(&ACROSS_THE_VIEW).direct;
     let integrator = "photons = 200000\nspp = 4\npasses = 16\nseed = 3\nmarch_step = 0.01\n\
                       direct = \"photon_map\"\nvolume_estimate = \"beam\"\nvolume_max_radius = 0.05\nalpha = 0.5";
     let r = render_with(&scene(&scene_toml(&ACROSS_THE_VIEW, integrator)), 2);
@@ -460,8 +450,7 @@ fn a_narrow_beam_read_from_the_photon_map_matches_light_tracing() {
 #[test]
 #[ignore]
 fn point_and_beam_estimates_against_light_tracing() {
-    let through = oracle(&ABOVE_THE_BALL, Part::ThroughTheSphere);
-    let direct = oracle(&ABOVE_THE_BALL, Part::Direct);
+    let Traced { direct, through } = oracle(&ABOVE_THE_BALL);
     let runs = [
         ("point, defaults, 8 passes", "passes = 8\nvolume_estimate = \"point\""),
         ("point, defaults, 32 passes", "passes = 32\nvolume_estimate = \"point\""),
@@ -505,7 +494,7 @@ fn point_and_beam_estimates_against_light_tracing() {
         );
     }
     // The narrow beam, all of its light from the photon map (`direct = "photon_map"`).
-    let want = oracle(&ACROSS_THE_VIEW, Part::Direct);
+    let want = oracle(&ACROSS_THE_VIEW).direct;
     for estimate in ["point", "beam"] {
         for extra in ["", "volume_max_radius = 0.05\nalpha = 0.5"] {
             let toml = scene_toml(
