@@ -240,12 +240,15 @@ fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
     assert!(e.contains("volume_estimate") && e.contains("beam") && e.contains("test.toml"), "{e}");
 }
 
-/// Unset, `volume_estimate` is the beam estimate where a specular surface can focus light into
-/// the medium (a volume caustic: `tests/volume_caustic.rs`) and the eye paths' march steps
-/// outnumber the photons; the point estimate otherwise. A given estimate is kept.
+/// Unset, `volume_estimate` is the beam estimate where the volume map holds sharp-edged light —
+/// a specular surface can focus light into the medium (a volume caustic:
+/// `tests/volume_caustic.rs`) or the map carries the direct light — and the eye paths' march
+/// steps across the scattering media outnumber the photons; the point estimate otherwise. A
+/// given estimate is kept.
 #[test]
-fn the_default_is_the_beam_estimate_beside_specular_surfaces() {
+fn the_default_is_the_beam_estimate_where_the_map_holds_sharp_edged_light() {
     let unset = collimated_slab().replace("volume_estimate = \"beam\"\n", "");
+    let shadow = unset.replace("direct = \"photon_map\"", "direct = \"shadow_rays\"");
     let wide = |t: &str| t.replace("width = 1\nheight = 1", "width = 64\nheight = 64");
     let glass = "\n[[material]]\nname = \"glass\"\ntype = \"dielectric\"\nior = 1.5\n\n\
                  [[shape]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 0.3\nmaterial = \"glass\"\n";
@@ -256,9 +259,19 @@ fn the_default_is_the_beam_estimate_beside_specular_surfaces() {
         assert!(s.plan.volume_map.why.contains(words), "{}", s.plan.volume_map.why);
         s.integrator.volume_estimate
     };
-    assert_eq!(estimate(&wide(&unset)), VolumeEstimate::Point, "fog without a specular surface");
-    assert_eq!(estimate(&(wide(&unset) + glass)), VolumeEstimate::Beam, "a glass ball in fog");
+    assert_eq!(estimate(&wide(&shadow)), VolumeEstimate::Point, "fog lit by shadow rays, nothing specular");
+    assert_eq!(estimate(&(wide(&shadow) + glass)), VolumeEstimate::Beam, "a glass ball in fog");
+    assert_eq!(estimate(&wide(&unset)), VolumeEstimate::Beam, "the direct light read from the map");
     assert_eq!(estimate(&(unset.clone() + glass)), VolumeEstimate::Point, "one pixel: fewer steps than photons");
     let given = wide(&unset).replace("[integrator]\n", "[integrator]\nvolume_estimate = \"point\"\n") + glass;
     assert_eq!(estimate(&given), VolumeEstimate::Point, "a given estimate is kept");
+    // The march steps are counted across the scattering media, not the scene: 64² pixels × 16
+    // samples over the slab's 5.74 m diagonal in 1 m steps are 376 000 < 10⁶ photons, however
+    // far a wall away (a wall 10 km off makes the scene's diagonal 6.6 × 10⁸ steps).
+    let steps = |t: &str| t.replace("[integrator]\n", "[integrator]\nphotons = 1000000\nmarch_step = 1.0\n");
+    let far_wall = "\n[[material]]\nname = \"wall\"\ntype = \"lambertian\"\nreflectance = 0.5\n\n\
+                    [[shape]]\ntype = \"sphere\"\ncenter = [10000.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"wall\"\n";
+    assert_eq!(estimate(&(steps(&wide(&unset)) + far_wall)), VolumeEstimate::Point, "a thin medium in a large scene");
+    let finer = steps(&wide(&unset)).replace("march_step = 1.0", "march_step = 0.2") + far_wall;
+    assert_eq!(estimate(&finer), VolumeEstimate::Beam, "1.9 × 10⁶ steps across the medium");
 }

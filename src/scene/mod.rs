@@ -525,15 +525,12 @@ fn check_march_work(ctx: &Ctx, raw: &RawScene, world: &World, integrator: &Integ
     }
     let step = integrator.march_step_m;
     for (id, m) in world.media.iter().enumerate().filter(|(_, m)| m.scatters()) {
-        let id = Some(id as u32);
-        let (extent, whose) = if world.global_medium == id {
-            (2.0 * world.reach.radius, "the world sphere's diameter: it is the world medium")
+        let extent = medium_extent(world, id);
+        let whose = if world.global_medium == Some(id as u32) {
+            "the world sphere's diameter: it is the world medium"
         } else {
-            let bounding = world.shapes.iter().zip(&world.prims).filter(|(_, p)| p.interior == id || p.exterior == id);
-            (bounding.fold(Aabb::EMPTY, |b, (s, _)| b.union(s.bounds())).diagonal().length(), "its shapes' extent")
+            "its shapes' extent"
         };
-        // A medium no shape bounds (named but unused) is never marched: its empty box has an
-        // infinite diagonal.
         if !extent.is_finite() || extent / step <= MAX_MARCH_STEPS_ACROSS {
             continue;
         }
@@ -557,6 +554,18 @@ fn check_march_work(ctx: &Ctx, raw: &RawScene, world: &World, integrator: &Integ
         ));
     }
     Ok(())
+}
+
+/// How far a camera ray can march through medium `id`: the world sphere's diameter for the
+/// world medium, the diagonal of the shapes bounding it otherwise. A medium no shape bounds
+/// (named but unused) is never marched: its empty box gives an infinite diagonal.
+fn medium_extent(world: &World, id: usize) -> f64 {
+    let id = Some(id as u32);
+    if world.global_medium == id {
+        return 2.0 * world.reach.radius;
+    }
+    let bounding = world.shapes.iter().zip(&world.prims).filter(|(_, p)| p.interior == id || p.exterior == id);
+    bounding.fold(Aabb::EMPTY, |b, (s, _)| b.union(s.bounds())).diagonal().length()
 }
 
 /// Every index field must keep n positive (and ≥ 1 unless allowed) over the box the scene's
@@ -619,12 +628,18 @@ fn default_volume_estimate(raw: &RawScene, world: &World, camera: &Camera, s: &m
         return;
     }
     let specular = world.prims.iter().filter_map(|p| p.material).any(|m| world.materials[m as usize].is_specular());
+    let map_direct = s.direct == DirectLighting::PhotonMap;
     let stratified = world.media.iter().any(Medium::stratified_air);
-    // March steps the point estimate would query along eye paths, at most: a chord across the
-    // scene in steps of `march_step` for each eye sample.
-    let steps = world.bounds.diagonal().length() / s.march_step_m;
-    let eye_queries = (camera.width * camera.height * s.spp) as f64 * steps;
-    s.volume_estimate = VolumeEstimate::default_for(specular, stratified, eye_queries >= s.photons as f64);
+    // March steps the point estimate would query along eye paths, at most: a chord across each
+    // scattering medium in steps of `march_step` for each eye sample.
+    let extent: f64 = (0..world.media.len())
+        .filter(|&id| world.media[id].scatters())
+        .map(|id| medium_extent(world, id))
+        .filter(|e| e.is_finite())
+        .sum();
+    let eye_queries = (camera.width * camera.height * s.spp) as f64 * extent / s.march_step_m;
+    s.volume_estimate =
+        VolumeEstimate::default_for(specular || map_direct, stratified, eye_queries >= s.photons as f64);
 }
 
 /// Shapes and their primitives' materials and media (see [`Prim`] for the defaults).

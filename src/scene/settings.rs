@@ -50,18 +50,24 @@ pub enum VolumeEstimate {
 }
 
 impl VolumeEstimate {
-    /// The estimate a scene gets when it names none. The beam estimate where a specular surface
-    /// can focus light into a scattering medium: each photon's disc holds all of its power, while
-    /// the point estimate's k-nearest radius, set by the point being lit, reaches from the dim
-    /// fog beside a caustic into it and makes light (a ball lens's volume caustic 14 % too bright
-    /// after 32 passes, the beam estimate within 0.3 %: `tests/volume_caustic.rs`). Not in air
-    /// stratified in height (`stratified_air`), whose density weights the point estimate's
-    /// sphere, nor where the eye paths' march steps (at most eye samples × the scene's diagonal
-    /// over `march_step`) are fewer than the photons emitted (`!eye_work_dominates`): the beam
-    /// estimate's radii cost a k-nearest query per stored photon, which a one-pixel camera
-    /// beside ocean sensors does not repay. Elsewhere the point estimate, as before.
-    pub fn default_for(focusing: bool, stratified_air: bool, eye_work_dominates: bool) -> VolumeEstimate {
-        if focusing && !stratified_air && eye_work_dominates { VolumeEstimate::Beam } else { VolumeEstimate::Point }
+    /// The estimate a scene gets when it names none. The beam estimate where the volume map holds
+    /// sharp-edged light (`sharp_light`): where a specular surface can focus light into a
+    /// scattering medium, or where the map carries the direct light (`direct = "photon_map"`,
+    /// which curved paths force), whose edges — a spot's cone, a shadow — are then in it. Each
+    /// photon's disc holds all of its power, while the point estimate's k-nearest radius, set by
+    /// the point being lit, reaches from the dim medium beside such an edge into the light and
+    /// makes light (against light tracing, `tests/volume_caustic.rs`: a ball lens's volume
+    /// caustic 14 % too bright after 32 passes, a 3° spot read from the map 15.6 %; the beam
+    /// estimate within 0.3 %). Not in air stratified in height (`stratified_air`), whose density
+    /// weights the point estimate's sphere, nor where the eye paths' march steps (at most eye
+    /// samples × the scattering media's extent over `march_step`) are fewer than the photons
+    /// emitted (`!eye_work_dominates`): there the point estimate's few queries are cheap, and the
+    /// beam estimate's cost is not repaid — a k-nearest query per stored photon for the radii (20
+    /// s for a one-pixel camera beside ocean sensors), a query per chord of a curved path where a
+    /// long march step crosses a thin fog layer once (`sunset_fog`: eye pass 2.7 → 6.6 CPU s,
+    /// image mean within 0.2 %). Elsewhere the point estimate.
+    pub fn default_for(sharp_light: bool, stratified_air: bool, eye_work_dominates: bool) -> VolumeEstimate {
+        if sharp_light && !stratified_air && eye_work_dominates { VolumeEstimate::Beam } else { VolumeEstimate::Point }
     }
 }
 
@@ -497,13 +503,13 @@ fn filter(ctx: &Ctx, r: &RawIntegrator) -> R<Filter> {
 mod tests {
     use super::VolumeEstimate;
 
-    /// The beam estimate only where light can be focused into a medium that is not stratified
-    /// air and the eye's march steps outnumber the photons.
+    /// The beam estimate only where the map holds sharp-edged light in a medium that is not
+    /// stratified air and the eye's march steps outnumber the photons.
     #[test]
     fn the_default_volume_estimate_follows_the_scene() {
         assert_eq!(VolumeEstimate::default_for(true, false, true), VolumeEstimate::Beam);
-        for (focusing, stratified, eye) in [(false, false, true), (true, true, true), (true, false, false)] {
-            assert_eq!(VolumeEstimate::default_for(focusing, stratified, eye), VolumeEstimate::Point);
+        for (sharp, stratified, eye) in [(false, false, true), (true, true, true), (true, false, false)] {
+            assert_eq!(VolumeEstimate::default_for(sharp, stratified, eye), VolumeEstimate::Point);
         }
     }
 }
