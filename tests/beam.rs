@@ -242,7 +242,8 @@ fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
 
 /// Unset, `volume_estimate` is the beam estimate where the volume map holds sharp-edged light —
 /// a specular surface can focus light into the medium (a volume caustic:
-/// `tests/volume_caustic.rs`) or the map carries the direct light — and the eye paths' march
+/// `tests/volume_caustic.rs`), the map carries the direct light, or a spot light shines into
+/// the medium — and the eye paths' march
 /// steps across the scattering media outnumber the photons; the point estimate otherwise. A
 /// given estimate is kept.
 #[test]
@@ -262,6 +263,9 @@ fn the_default_is_the_beam_estimate_where_the_map_holds_sharp_edged_light() {
     assert_eq!(estimate(&wide(&shadow)), VolumeEstimate::Point, "fog lit by shadow rays, nothing specular");
     assert_eq!(estimate(&(wide(&shadow) + glass)), VolumeEstimate::Beam, "a glass ball in fog");
     assert_eq!(estimate(&wide(&unset)), VolumeEstimate::Beam, "the direct light read from the map");
+    let spot = "\n[[light]]\ntype = \"spot\"\nposition = [0.0, 0.0, 0.0]\ndirection = [1.0, 0.0, 0.0]\n\
+                cone_deg = 3.0\nspectrum = 1.0\npower_w = 1.0\n";
+    assert_eq!(estimate(&(wide(&shadow) + spot)), VolumeEstimate::Beam, "a spot light in fog lit by shadow rays");
     assert_eq!(estimate(&(unset.clone() + glass)), VolumeEstimate::Point, "one pixel: fewer steps than photons");
     let given = wide(&unset).replace("[integrator]\n", "[integrator]\nvolume_estimate = \"point\"\n") + glass;
     assert_eq!(estimate(&given), VolumeEstimate::Point, "a given estimate is kept");

@@ -629,6 +629,8 @@ fn default_volume_estimate(raw: &RawScene, world: &World, camera: &Camera, s: &m
     }
     let specular = world.prims.iter().filter_map(|p| p.material).any(|m| world.materials[m as usize].is_specular());
     let map_direct = s.direct == DirectLighting::PhotonMap;
+    // A spot's cone edge: the light it scatters into the map stays in a narrow cone.
+    let spot = world.lights.iter().any(|l| matches!(l, Light::Spot(_)));
     let stratified = world.media.iter().any(Medium::stratified_air);
     // March steps the point estimate would query along eye paths, at most: a chord across each
     // scattering medium in steps of `march_step` for each eye sample.
@@ -639,7 +641,7 @@ fn default_volume_estimate(raw: &RawScene, world: &World, camera: &Camera, s: &m
         .sum();
     let eye_queries = (camera.width * camera.height * s.spp) as f64 * extent / s.march_step_m;
     s.volume_estimate =
-        VolumeEstimate::default_for(specular || map_direct, stratified, eye_queries >= s.photons as f64);
+        VolumeEstimate::default_for(specular || map_direct || spot, stratified, eye_queries >= s.photons as f64);
 }
 
 /// Shapes and their primitives' materials and media (see [`Prim`] for the defaults).

@@ -52,13 +52,15 @@ pub enum VolumeEstimate {
 impl VolumeEstimate {
     /// The estimate a scene gets when it names none. The beam estimate where the volume map holds
     /// sharp-edged light (`sharp_light`): where a specular surface can focus light into a
-    /// scattering medium, or where the map carries the direct light (`direct = "photon_map"`,
-    /// which curved paths force), whose edges — a spot's cone, a shadow — are then in it. Each
-    /// photon's disc holds all of its power, while the point estimate's k-nearest radius, set by
-    /// the point being lit, reaches from the dim medium beside such an edge into the light and
-    /// makes light (against light tracing, `tests/volume_caustic.rs`: a ball lens's volume
-    /// caustic 14 % too bright after 32 passes, a 3° spot read from the map 15.6 %; the beam
-    /// estimate within 0.3 %). Not in air stratified in height (`stratified_air`), whose density
+    /// scattering medium, where the map carries the direct light (`direct = "photon_map"`,
+    /// which curved paths force), whose edges — a spot's cone, a shadow — are then in it, or
+    /// where a spot light shines into the medium (its scattered light stays near its cone).
+    /// Each photon's disc holds all of its power, while the point estimate's k-nearest radius,
+    /// set by the point being lit, reaches from the dim medium beside such an edge into the
+    /// light and makes light (against light tracing, `tests/volume_caustic.rs`: a ball lens's
+    /// volume caustic 14 % too bright after 32 passes, a 3° spot read from the map 15.6 %; the
+    /// beam estimate within 0.3 %; `searchlight_turbulence`'s multiply scattered light 15 %
+    /// above the beam estimate, falling toward it as progressive passes shrink the radii). Not in air stratified in height (`stratified_air`), whose density
     /// weights the point estimate's sphere, nor where the eye paths' march steps (at most eye
     /// samples × the scattering media's extent over `march_step`) are fewer than the photons
     /// emitted (`!eye_work_dominates`): there the point estimate's few queries are cheap, and the
