@@ -75,6 +75,31 @@ def own_standard_error(path: Path, rgb: np.ndarray) -> np.ndarray | None:
     return rgb * (se / np.maximum(total, 1e-300))[..., None]
 
 
+def deeper_window(path: Path, ref, var_chunk: np.ndarray, per: int) -> np.ndarray:
+    """Puts the deeper render of `path` (scripts/glint_reference.py) into the reference `ref` in
+    its window: mean, variance of the mean, and the two halves (its first and second half of
+    chunks); returns Mitsuba's per-chunk variance `var_chunk` (one chunk of `per` spp) with the
+    window's taken from the deeper chunks' spread, per sample, over `per` samples."""
+    g = np.load(path)
+    y0, x0, y1, x1 = (int(v) for v in g["window"])
+    win = (slice(y0, y1), slice(x0, x1))
+    images = g["images"]
+    m = len(images)
+    deep_per = int(g["spp"]) // m
+    ref.rgb = ref.rgb.copy()
+    ref.variance = ref.variance.copy()
+    ref.rgb[win] = g["rgb"]
+    ref.variance[win] = g["variance"]
+    a, b = (h.copy() for h in ref.halves)
+    a[win] = images[: m // 2].mean(0)
+    b[win] = images[m // 2:].mean(0)
+    ref.halves = (a, b)
+    var_chunk = var_chunk.copy()
+    var_chunk[win] = images.var(0, ddof=1) * deep_per / per
+    print(f"reference rows {y0}..{y1 - 1}, columns {x0}..{x1 - 1} from {path.name}: {int(g['spp'])} spp in {m} chunks")
+    return var_chunk
+
+
 def blocks_z(img: np.ndarray, ref, size: int = 8) -> np.ndarray:
     """(morgana's block mean - the reference's) / the reference's standard error of it, per
     size x size block of luminance-like channel sums."""
@@ -93,6 +118,11 @@ def main(argv=None) -> int:
     p.add_argument("--exclude", metavar="Y0,X0,Y1,X1", help="also measure without these pixels (rows Y0..Y1, "
                    "columns X0..X1, exclusive ends), e.g. a glint where the reference disagrees with its own "
                    "geometry (scripts/glint_coverage.py)")
+    p.add_argument("--glint-reference", action="store_true",
+                   help="replace the reference in the window of OUT/SCENE/glint_reference.npz "
+                   "(scripts/glint_reference.py) by that deeper render: its mean, its variance, its two "
+                   "halves (the first and second half of its chunks), and Mitsuba's per-chunk variance "
+                   "there from its chunks' spread scaled to the reference's spp per chunk")
     args = p.parse_args(argv)
     spec = pm.SCENES[args.scene]
     import mitsuba as mi
@@ -103,11 +133,14 @@ def main(argv=None) -> int:
         p.error("the reference has no chunk images: extend it with peer_mitsuba.py --reference-only first")
     sums = pm.ChunkSums.from_arrays(z)
     ref = sums.reference()
+    mse_mi, var_mi, cpu_mi, mse_mi_se, n = mitsuba_mse_per_chunk(z)
+    if args.glint_reference:
+        var_mi = deeper_window(args.out / args.scene / "glint_reference.npz", ref, var_mi, sums.per)
+        mse_mi = float(var_mi.mean())
     full = pm.Metric.over(ref, np.ones(ref.rgb.shape[:2], dtype=bool))
     glints = pm.specular_light_mask(tomllib.loads((pm.ROOT / spec.toml).read_text()), spec.mask_glints_dilate) \
         if spec.mask_glints_dilate is not None else np.zeros(ref.rgb.shape[:2], dtype=bool)
     masked = pm.Metric.over(ref, ~glints)
-    mse_mi, var_mi, cpu_mi, mse_mi_se, n = mitsuba_mse_per_chunk(z)
     mse_mi_m = float(var_mi[~glints].mean())
     a, b = ref.halves
     half_noise = math.sqrt(float(np.mean((a - b) ** 2)) / 4)
