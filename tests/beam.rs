@@ -243,9 +243,8 @@ fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
 /// Unset, `volume_estimate` is the beam estimate where the volume map holds sharp-edged light —
 /// a specular surface can focus light into the medium (a volume caustic:
 /// `tests/volume_caustic.rs`), the map carries the direct light, or a spot light shines into
-/// the medium — and the eye paths' march
-/// steps across the scattering media outnumber the photons; the point estimate otherwise. A
-/// given estimate is kept.
+/// the medium — and the eye paths' march steps across the scattering media outnumber the
+/// photons; the point estimate otherwise. A given estimate is kept.
 #[test]
 fn the_default_is_the_beam_estimate_where_the_map_holds_sharp_edged_light() {
     let unset = collimated_slab().replace("volume_estimate = \"beam\"\n", "");

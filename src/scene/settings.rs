@@ -60,12 +60,13 @@ impl VolumeEstimate {
     /// light and makes light (against light tracing, `tests/volume_caustic.rs`: a ball lens's
     /// volume caustic 14 % too bright after 32 passes, a 3° spot read from the map 15.6 %; the
     /// beam estimate within 0.3 %; `searchlight_turbulence`'s multiply scattered light 15 %
-    /// above the beam estimate, falling toward it as progressive passes shrink the radii). Not in air stratified in height (`stratified_air`), whose density
-    /// weights the point estimate's sphere, nor where the eye paths' march steps (at most eye
-    /// samples × the scattering media's extent over `march_step`) are fewer than the photons
-    /// emitted (`!eye_work_dominates`): there the point estimate's few queries are cheap, and the
-    /// beam estimate's cost is not repaid — a k-nearest query per stored photon for the radii (20
-    /// s for a one-pixel camera beside ocean sensors), a query per chord of a curved path where a
+    /// above the beam estimate, falling toward it as progressive passes shrink the radii). Not
+    /// in air stratified in height (`stratified_air`), whose density weights the point
+    /// estimate's sphere, nor where the eye paths' march steps (at most eye samples × the
+    /// scattering media's extent over `march_step`) are fewer than the photons emitted
+    /// (`!eye_work_dominates`): there the point estimate's few queries are cheap, and the beam
+    /// estimate's cost is not repaid — a k-nearest query per stored photon for the radii (20 s
+    /// for a one-pixel camera beside ocean sensors), a query per chord of a curved path where a
     /// long march step crosses a thin fog layer once (`sunset_fog`: eye pass 2.7 → 6.6 CPU s,
     /// image mean within 0.2 %). Elsewhere the point estimate.
     pub fn default_for(sharp_light: bool, stratified_air: bool, eye_work_dominates: bool) -> VolumeEstimate {
