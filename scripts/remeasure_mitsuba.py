@@ -190,6 +190,9 @@ def main(argv=None) -> int:
                 mse = float(np.mean(((img - a) * (img - b))[sel]))
                 print(f"    {what}: split-reference squared error / morgana's own variance "
                       f"(stderr layer, bands correlated) = {mse / float(np.mean(own[sel] ** 2)):.1f}")
+        means = [float(img[sel].sum() / ref.rgb[sel].sum()) for sel in (~glints, glints)]
+        print(f"    mean over the reference's: {means[0]:.4f} without the glint pixels, {means[1]:.4f} on them "
+              f"(per channel without them: {', '.join(f'{img[~glints][:, c].sum() / ref.rgb[~glints][:, c].sum():.4f}' for c in range(3))})")
         z = blocks_z(img, ref)
         print(f"    8 x 8-pixel blocks: {int((abs(z) > 3).sum())} of {z.size} differ from the reference by more than 3 "
               f"of its standard errors ({int((z > 3).sum())} morgana-brighter); largest |z| {abs(z).max():.1f}")
