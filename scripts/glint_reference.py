@@ -10,11 +10,11 @@ as the reference) with the film cropped to the window (rows Y0 to Y1 − 1, colu
 `remeasure_mitsuba.py --exclude` reads them),
 `--spp` samples per pixel in `--chunks` independent chunks (seeds 2 000 000 + i: none shared
 with the reference's chunks), on `--threads` worker processes. Saves the chunks' sums, squares
-and images beside the reference (OUT/SCENE/glint_reference.npz; resumable from
-glint_reference.partial.npz after each chunk) and prints, per pixel of the window, the new
+and images beside the reference (OUT/SCENE/glint_reference_Y0_X0_Y1_X1.npz; resumable from
+its .partial.npz after each chunk) and prints, per pixel of the window, the new
 value and its standard error from the chunks' spread beside the reference's, in luminance-like
 sums of the linear sRGB channels, and each pixel's share of the window's 3 × 3 centre.
-`remeasure_mitsuba.py --glint-reference` puts the window into the reference.
+`remeasure_mitsuba.py --glint-reference` puts every such window into the reference.
 """
 
 from __future__ import annotations
@@ -97,7 +97,8 @@ def main(argv=None) -> int:
     per = args.spp // args.chunks
     scene_text = (pm.ROOT / pm.SCENES[args.scene].toml).read_text()
     out = args.out / args.scene
-    path, partial = out / "glint_reference.npz", out / "glint_reference.partial.npz"
+    path = out / f"glint_reference_{y0}_{x0}_{y1}_{x1}.npz"
+    partial = path.with_suffix(".partial.npz")
     key = f"{args.window} {per}"
     images, cpus, done = [], [], []
     if partial.exists():

@@ -119,7 +119,7 @@ def main(argv=None) -> int:
                    "columns X0..X1, exclusive ends), e.g. a glint where the reference disagrees with its own "
                    "geometry (scripts/glint_coverage.py)")
     p.add_argument("--glint-reference", action="store_true",
-                   help="replace the reference in the window of OUT/SCENE/glint_reference.npz "
+                   help="replace the reference in the window of each OUT/SCENE/glint_reference_*.npz "
                    "(scripts/glint_reference.py) by that deeper render: its mean, its variance, its two "
                    "halves (the first and second half of its chunks), and Mitsuba's per-chunk variance "
                    "there from its chunks' spread scaled to the reference's spp per chunk")
@@ -135,7 +135,12 @@ def main(argv=None) -> int:
     ref = sums.reference()
     mse_mi, var_mi, cpu_mi, mse_mi_se, n = mitsuba_mse_per_chunk(z)
     if args.glint_reference:
-        var_mi = deeper_window(args.out / args.scene / "glint_reference.npz", ref, var_mi, sums.per)
+        windows = sorted((args.out / args.scene).glob("glint_reference_*.npz"))
+        windows = [w for w in windows if not w.name.endswith(".partial.npz")]
+        if not windows:
+            p.error(f"--glint-reference: no glint_reference_*.npz in {args.out / args.scene}")
+        for w in windows:
+            var_mi = deeper_window(w, ref, var_mi, sums.per)
         mse_mi = float(var_mi.mean())
     full = pm.Metric.over(ref, np.ones(ref.rgb.shape[:2], dtype=bool))
     glints = pm.specular_light_mask(tomllib.loads((pm.ROOT / spec.toml).read_text()), spec.mask_glints_dilate) \
