@@ -198,6 +198,10 @@ def main(argv=None) -> int:
         means = [float(img[sel].sum() / ref.rgb[sel].sum()) for sel in (~glints, glints)]
         print(f"    mean over the reference's: {means[0]:.4f} without the glint pixels, {means[1]:.4f} on them "
               f"(per channel without them: {', '.join(f'{img[~glints][:, c].sum() / ref.rgb[~glints][:, c].sum():.4f}' for c in range(3))})")
+        if spec.regions:
+            print("    regions, mean over the reference's: " + ", ".join(
+                f"{name} {img[y0:y1, x0:x1].sum() / ref.rgb[y0:y1, x0:x1].sum():.3f}"
+                for name, (y0, x0, y1, x1) in spec.regions.items()))
         z = blocks_z(img, ref)
         print(f"    8 x 8-pixel blocks: {int((abs(z) > 3).sum())} of {z.size} differ from the reference by more than 3 "
               f"of its standard errors ({int((z > 3).sum())} morgana-brighter); largest |z| {abs(z).max():.1f}")
