@@ -26,6 +26,7 @@ use crate::distributed::{self, Comm, DistributedReport, Rank};
 use crate::error::Result;
 use crate::raypath::RayState;
 use crate::rng::{Rng, Stream};
+use crate::sampling::ScrambledSobol2;
 use crate::scene::progressive::Target;
 use crate::scene::{Method, Scene};
 use crate::spectrum::SpectralImage;
@@ -467,12 +468,14 @@ impl<'a> Tracer<'a> {
     }
 }
 
-/// The band averages of pixel (`x`, `y`): the mean over `n` jittered samples, drawn from the
-/// pass's `seed`; with `spread`, also the spread of the samples ([`adaptive::PixelSpread`]).
-/// The wavelength jitter is stratified over the `n` samples (sample i draws u in
-/// [i/n, (i + 1)/n)): each u is still uniform, so the band average stays unbiased, but a band's
-/// smooth spectral slope (Rayleigh's λ⁻⁴ across a 40 nm band: ±14 %) no longer adds noise
-/// falling only as 1/√n.
+/// The band averages of pixel (`x`, `y`): the mean over `n` samples, drawn from the pass's
+/// `seed`; with `spread`, also the spread of the samples ([`adaptive::PixelSpread`]).
+/// The samples' positions in the pixel are the first `n` points of an Owen-scrambled Sobol'
+/// sequence, scrambled afresh for each pixel and pass ([`ScrambledSobol2`]): each is uniform in
+/// the pixel, so the mean stays unbiased and the passes independent, but an edge across the
+/// pixel (a glint, a silhouette) no longer adds noise falling only as 1/√n. The wavelength
+/// jitter is stratified over the `n` samples (sample i draws u in [i/n, (i + 1)/n)) for the same
+/// reason: a band's smooth spectral slope (Rayleigh's λ⁻⁴ across a 40 nm band: ±14 %).
 fn pixel(
     (scene, seed): (&Scene, u64),
     tracer: &Tracer,
@@ -485,8 +488,9 @@ fn pixel(
     let weight = film / n as f64;
     let mut acc = [0.0; crate::spectrum::MAX_BANDS];
     let mut spread = spread.then(|| adaptive::PixelSpread::new(scene.bands.count));
+    let positions = ScrambledSobol2::new(&mut rng);
     for i in 0..n {
-        let [jx, jy] = rng.uniform2();
+        let [jx, jy] = positions.point(i as u32);
         let Some(ray) = scene.camera.ray(x as f64 + jx, y as f64 + jy) else {
             if let Some(sp) = &mut spread {
                 sp.add(&[0.0; crate::spectrum::MAX_BANDS]);
