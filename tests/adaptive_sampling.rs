@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{lit_plate, render_with, scene, scene_error};
+use common::{lit_plate, pinhole_90, render_with, scene, scene_error};
 
 /// Width and height of the emitter scene, pixels.
 const SIDE: usize = 32;
@@ -27,20 +27,7 @@ const Y: [f64; 2] = [-0.2, 0.44];
 /// are partly covered (their samples are L or 0), the others have no variance at all.
 fn emitter(integrator: &str) -> String {
     format!(
-        r#"
-[camera]
-position = [0.0, 0.0, 0.0]
-look_at = [0.0, 0.0, -1.0]
-up = [0.0, 1.0, 0.0]
-fov_deg = 90.0
-width = {SIDE}
-height = {SIDE}
-
-[output]
-bands = 1
-min_nm = 500.0
-max_nm = 600.0
-
+        r#"{view}
 [integrator]
 photons = 1000
 spp = 4
@@ -59,6 +46,7 @@ scale = {L}
         y0 = Y[0],
         dx = X[1] - X[0],
         dy = Y[1] - Y[0],
+        view = pinhole_90(SIDE),
     )
 }
 

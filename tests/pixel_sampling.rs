@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{render_with, scene};
+use common::{pinhole_90, render_with, scene};
 
 /// Width and height of the image, pixels.
 const SIDE: usize = 32;
@@ -24,20 +24,7 @@ const V: [f64; 2] = [-0.6 * 0.390_731_128_489_274, 0.6 * 0.920_504_853_452_440];
 /// L × (the rectangle's area) × (SIDE/2)².
 fn emitter(spp: usize, seed: u64) -> String {
     format!(
-        r#"
-[camera]
-position = [0.0, 0.0, 0.0]
-look_at = [0.0, 0.0, -1.0]
-up = [0.0, 1.0, 0.0]
-fov_deg = 90.0
-width = {SIDE}
-height = {SIDE}
-
-[output]
-bands = 1
-min_nm = 500.0
-max_nm = 600.0
-
+        r#"{view}
 [integrator]
 method = "path"
 spp = {spp}
@@ -52,7 +39,13 @@ v = [{}, {}, 0.0]
 spectrum = 1.0
 scale = {L}
 "#,
-        CORNER[0], CORNER[1], U[0], U[1], V[0], V[1]
+        CORNER[0],
+        CORNER[1],
+        U[0],
+        U[1],
+        V[0],
+        V[1],
+        view = pinhole_90(SIDE),
     )
 }
 

@@ -30,6 +30,29 @@ pub fn render_with(scene: &Scene, threads: usize) -> Rendered {
     pool.install(|| render(scene, &RenderOptions { quiet: true, ..RenderOptions::default() }))
 }
 
+/// The `[camera]` and `[output]` tables of a pinhole at the origin looking down −z with a 90°
+/// field of view over `side` × `side` pixels, one band (500–600 nm). With tan 45° = 1 the ray
+/// through pixel coordinates (px, py) meets the plane z = −1 at X = 2 px/side − 1,
+/// Y = 1 − 2 py/side: a shape in that plane maps to pixels linearly.
+pub fn pinhole_90(side: usize) -> String {
+    format!(
+        r#"
+[camera]
+position = [0.0, 0.0, 0.0]
+look_at = [0.0, 0.0, -1.0]
+up = [0.0, 1.0, 0.0]
+fov_deg = 90.0
+width = {side}
+height = {side}
+
+[output]
+bands = 1
+min_nm = 500.0
+max_nm = 600.0
+"#
+    )
+}
+
 /// Mean and standard error of the mean of `xs`.
 pub fn mean_and_sem(xs: &[f64]) -> (f64, f64) {
     let n = xs.len() as f64;
