@@ -64,10 +64,11 @@ fn moments(spp: usize, seeds: u64) -> (Vec<f64>, Vec<f64>) {
 #[test]
 fn an_edge_across_pixels_adds_far_less_noise_than_independent_samples_would() {
     // A pixel covered to a fraction f has samples L or 0: with n independent positions its
-    // value's variance is L² f(1 − f)/n. Owen-scrambled (0, 2)-nets give an edge's indicator a
-    // variance of order n^(−3/2) (Owen 1997): at n = 64 the edge pixels' summed variance must
-    // be under a third of the independent one (measured: 0.10 at 64 samples, 0.18 at 16; 24 seeds),
-    // and it must fall faster than 1/n from 16 to 64 samples.
+    // value's variance is L² f(1 − f)/n. Scrambled (0, 2)-nets stratify the pixel at least as
+    // finely as jittered strata, for which an edge's variance is of order n^(−3/2) (Mitchell
+    // 1996): at n = 64 the edge pixels' summed variance must be under a third of the independent
+    // one (measured: 0.10 at 64 samples, 0.18 at 16; 24 seeds), and it must fall faster than
+    // 1/n from 16 to 64 samples.
     let ratio = |spp: usize| {
         let (mean, var) = moments(spp, 24);
         let (mut measured, mut independent, mut edge) = (0.0, 0.0, 0);

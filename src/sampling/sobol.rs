@@ -11,12 +11,16 @@
 //!
 //! Nested uniform scrambling (Owen 1995) randomly permutes, at every level of the binary
 //! subdivision, the two halves of every interval. Each scrambled point is uniform in the square
-//! (so a pixel's mean over its samples stays unbiased) and the net property survives, so a
-//! pixel's integrand with an edge across it (a glint, a silhouette, the sun's limb) has a
-//! variance falling as n^(−3/2) in the sample count n instead of the n^(−1) of independent
-//! points (Owen 1997). The scramble is the hash of Burley (2020): in bit-reversed order an
-//! add-and-multiply hash changes each bit only from the bits below it, which reversed back is a
-//! nested scramble in which each digit's flip depends only on the digits before it.
+//! (so a pixel's mean over its samples stays unbiased) and the net property survives: the n
+//! points stratify the pixel at least as finely as n jittered strata wherever n is a power of
+//! two. For a pixel with an edge across it (a glint, a silhouette, the sun's limb) stratified
+//! sampling's variance falls as n^(−3/2) where independent points give n^(−1) (Mitchell 1996);
+//! measured on a turned edge, `tests/pixel_sampling.rs`: n^(−1.42) from 16 to 64 samples. (For
+//! smooth integrands scrambled nets reach n^(−3) up to logarithms, Owen 1997.) The scramble is
+//! the hash of Burley (2020): in bit-reversed order an add-and-multiply hash changes each bit
+//! only from the bits below it, which reversed back is a nested scramble in which each digit's
+//! flip depends only on the digits before it (a hashed stand-in for independent random flips;
+//! each point is still exactly uniform on the 2⁻³² grid, the seed being uniform).
 //!
 //! # References
 //! - H. Niederreiter (1992), *Random Number Generation and Quasi-Monte Carlo Methods*, SIAM.
@@ -24,6 +28,8 @@
 //!   and Quasi-Monte Carlo Methods in Scientific Computing*, Springer, 299–317.
 //! - A. B. Owen (1997), "Scrambled net variance for integrals of smooth functions", Annals of
 //!   Statistics 25(4), 1541–1562.
+//! - D. P. Mitchell (1996), "Consequences of stratified sampling in graphics", SIGGRAPH '96,
+//!   277–280.
 //! - B. Burley (2020), "Practical hash-based Owen scrambling", Journal of Computer Graphics
 //!   Techniques 9(4), 1–20 (the Laine–Karras-style hash with its improved constants).
 
