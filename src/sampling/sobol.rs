@@ -15,7 +15,7 @@
 //! points stratify the pixel at least as finely as n jittered strata wherever n is a power of
 //! two. For a pixel with an edge across it (a glint, a silhouette, the sun's limb) stratified
 //! sampling's variance falls as n^(−3/2) where independent points give n^(−1) (Mitchell 1996);
-//! measured on a turned edge, `tests/pixel_sampling.rs`: n^(−1.42) from 16 to 64 samples. (For
+//! measured on a turned edge, `tests/pixel_sampling.rs`: n^(−1.41) from 16 to 64 samples. (For
 //! smooth integrands scrambled nets reach n^(−3) up to logarithms, Owen 1997.) The scramble is
 //! the hash of Burley (2020): in bit-reversed order an add-and-multiply hash changes each bit
 //! only from the bits below it, which reversed back is a nested scramble in which each digit's
