@@ -211,6 +211,9 @@ fn glint(passes: u32, spp: u32, seed: u64, extra: &str) -> morgana::render::Rend
     render_with(&glint_scene(&keys), 2)
 }
 
+/// Passes of the glint scene's reference.
+const REF_PASSES: u32 = 64;
+
 /// The measurement behind the book's adaptive-sampling paragraph (`scripts/bench_adaptive.sh`
 /// runs it and prints what it finds): on the glint scene, 16 passes of 4 samples per pixel,
 /// uniform and adaptive (the same seed: the same photon maps), against a reference of 64
@@ -221,9 +224,6 @@ fn glint(passes: u32, spp: u32, seed: u64, extra: &str) -> morgana::render::Rend
 /// quadrature (RMSE² − mean SE²_ref, unbiased in the square, as `scripts/peer_mitsuba.py` does).
 /// About 8 CPU minutes. It asserts only that adaptive is below uniform: one run's ratio has the
 /// noise of a few dozen glint pixels.
-/// Passes of the glint scene's reference.
-const REF_PASSES: u32 = 64;
-
 #[test]
 #[ignore = "slow (about 8 CPU minutes): ./scripts/bench_adaptive.sh runs it"]
 fn adaptive_sampling_lowers_the_glint_scenes_rmse_at_equal_samples() {
