@@ -103,6 +103,7 @@ fn irradiance_estimated_in_dealt_blocks_equals_the_whole_estimate() {
         bands: scene.bands,
         paths: Paths::All,
         scatter_rows: None,
+        disc_share: None,
     };
     let stride = 4;
     let n = IrradianceCache::points(map.len(), stride) as u64;

@@ -116,8 +116,16 @@ scale = 0.02
     let map = PhotonMap::build(&records);
     let k = 1000;
     let filter = Filter::Cone { k: 1.1 };
-    let est =
-        Estimator { map: &map, k, max_radius: 1.0, filter, bands: s.bands, paths: Paths::All, scatter_rows: None };
+    let est = Estimator {
+        map: &map,
+        k,
+        max_radius: 1.0,
+        filter,
+        bands: s.bands,
+        paths: Paths::All,
+        scatter_rows: None,
+        disc_share: None,
+    };
     let mut nb = Neighbours::default();
     for x in [0.0, 0.4, 0.8, 1.2] {
         let e_band = est.irradiance(DVec3::new(x, 0.0, 0.0), DVec3::Y, &mut nb)[0] * 100.0;

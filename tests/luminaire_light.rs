@@ -205,6 +205,7 @@ fn photon_map_illuminance_under_a_luminaire_is_i_cos3_over_h2() {
         bands: s.bands,
         paths: Paths::All,
         scatter_rows: None,
+        disc_share: None,
     };
     let mut nb = Neighbours::default();
     let h = 2.0;

@@ -318,6 +318,7 @@ fn a_glass_sphere_focuses_a_volume_caustic_into_fog() {
             bands: s.bands,
             paths: Paths::All,
             scatter_rows: None,
+            disc_share: None,
         };
         let (v, _) = est.volume_scattered(p, DVec3::Z, (0, &s.world.media[0]), &mut Neighbours::default());
         v.iter().take(s.bands.count).sum::<f64>()

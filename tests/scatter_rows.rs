@@ -67,6 +67,7 @@ fn an_estimate_with_rows_is_the_estimate_without() {
         bands: s.bands,
         paths: Paths::All,
         scatter_rows,
+        disc_share: None,
     };
     let plain = estimator(None);
     let with_rows = estimator(Some(Arc::new(ScatterRows::new(s.world.media.len()))));

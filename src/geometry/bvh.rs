@@ -58,11 +58,26 @@ impl Bvh {
     /// by bounding box otherwise). False means certainly not: a path segment inside `b` needs
     /// no intersection tests.
     pub fn may_touch_box(&self, shapes: &[Shape], b: &Aabb) -> bool {
+        self.touching_box(shapes, b, 1, &mut |_| {}) > 0
+    }
+
+    /// The one shape (index into `shapes`) that may have surface inside `b`, if no other may
+    /// ([`Bvh::may_touch_box`]'s test): `None` when none or several may.
+    pub fn sole_shape_touching_box(&self, shapes: &[Shape], b: &Aabb) -> Option<u32> {
+        let mut found = None;
+        let count = self.touching_box(shapes, b, 2, &mut |p| found = Some(p));
+        (count == 1).then_some(found).flatten()
+    }
+
+    /// Counts the shapes that may touch `b`, up to `limit` (then it stops), handing each to
+    /// `seen`; a tree too deep for the stack counts as `limit`.
+    fn touching_box(&self, shapes: &[Shape], b: &Aabb, limit: usize, seen: &mut impl FnMut(u32)) -> usize {
+        let mut count = 0;
         let overlaps = |n: &Node| (0..3).all(|k| n.bounds[0][k] <= b.max[k] && n.bounds[1][k] >= b.min[k]);
         let mut stack = [0usize; 64];
         let mut top = 0usize;
         if self.nodes.is_empty() {
-            return false;
+            return 0;
         }
         stack[0] = 0;
         top += 1;
@@ -75,19 +90,23 @@ impl Bvh {
             }
             if n.count > 0 {
                 let prims = &self.prims[n.offset as usize..(n.offset + n.count) as usize];
-                if prims.iter().any(|p| shapes[*p as usize].may_touch_box(b)) {
-                    return true;
+                for &p in prims.iter().filter(|p| shapes[**p as usize].may_touch_box(b)) {
+                    seen(p);
+                    count += 1;
+                    if count >= limit {
+                        return count;
+                    }
                 }
                 continue;
             }
             if top + 2 > stack.len() {
-                return true;
+                return limit;
             }
             stack[top] = i + 1;
             stack[top + 1] = i + n.offset as usize;
             top += 2;
         }
-        false
+        count
     }
 
     /// Number of nodes (interior and leaves).

@@ -3,12 +3,14 @@
 //! Surfaces (Jensen 2001, §7.2; course notes §3.2): reflected radiance at x from the k nearest
 //! photons within radius r (r = distance to the farthest one found),
 //!
-//! L_r(x, b) ≈ Σ_p f_r(λ_p) w_p ΔΦ_p / (c · π r² · Δλ_b),
+//! L_r(x, b) ≈ Σ_p f_r(λ_p) w_p ΔΦ_p / (c · s · π r² · Δλ_b),
 //!
 //! summed over photons whose wavelength λ_p falls in band b (so L is per nm), that arrived on
 //! the side of the surface being viewed and lie on a surface of similar orientation; w_p and c
 //! are the [`Filter`]'s weight and normalisation: box (w = 1, c = 1), cone (w = 1 − d/(k r),
-//! c = 1 − 2/(3k)) or Epanechnikov (w = 2(1 − d²/r²), c = 1).
+//! c = 1 − 2/(3k)) or Epanechnikov (w = 2(1 − d²/r²), c = 1). s is the share of the disc that
+//! lies on surfaces able to hold photons, measured by the estimator's [`DiscShare`] (the
+//! world's, `World::gather_share`); without one s = 1, Jensen's form, which reads edges dark.
 //!
 //! Media (Jensen & Christensen 1998, Eq. 6 with the albedo factor of §4.3): photons are stored at
 //! every interaction, so their density is σ_t times the fluence, and the radiance scattered
@@ -73,6 +75,14 @@ impl Paths {
     }
 }
 
+/// What a surface estimate divides its disc's area by: the share of the disc that lies on
+/// surfaces able to hold photons.
+pub trait DiscShare: Sync {
+    /// The share, in (0, 1], of the disc of radius `r` about `x` in the plane normal to `n`
+    /// that lies on surfaces able to hold photons arriving from `n`'s side.
+    fn disc_share(&self, x: DVec3, n: DVec3, r: f64) -> f64;
+}
+
 /// Density estimation on one map with fixed parameters.
 pub struct Estimator<'a> {
     /// The photon map read.
@@ -90,6 +100,9 @@ pub struct Estimator<'a> {
     /// The volume photons' albedo and phase weights, per medium, filled on first use
     /// ([`ScatterRows`]); `None`: each estimate computes them for its photons.
     pub scatter_rows: Option<Arc<ScatterRows>>,
+    /// What surface estimates measure their disc's share on surfaces with (see the module
+    /// docs); `None`: the whole disc.
+    pub disc_share: Option<&'a dyn DiscShare>,
 }
 
 impl Estimator<'_> {
@@ -120,7 +133,11 @@ impl Estimator<'_> {
             let Some(b) = self.bands.index_of(p.wavelength_nm) else { continue };
             out[b] += filter_weight(self.filter, (d2 as f64).sqrt(), r) * f(&p) * p.power_w;
         }
-        let scale = 1.0 / (filter_norm(self.filter) * PI * r2 * self.bands.width_nm());
+        if out.iter().all(|v| *v == 0.0) {
+            return out;
+        }
+        let share = self.disc_share.map_or(1.0, |d| d.disc_share(x, n, r));
+        let scale = 1.0 / (filter_norm(self.filter) * share * PI * r2 * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         out
     }

@@ -26,7 +26,7 @@ pub mod stratified;
 
 pub use crate::spectrum::BandValues;
 pub use beam::{BeamEstimator, BeamHit, BeamMap};
-pub use estimate::{Estimator, Paths};
+pub use estimate::{DiscShare, Estimator, Paths};
 pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};

@@ -130,6 +130,7 @@ impl<'a> EyeTracer<'a> {
             bands: scene.bands,
             paths,
             scatter_rows: None,
+            disc_share: scene.disc_share(),
         };
         // Both readings of the volume map weigh its photons alike: one set of rows serves them.
         let rows = Arc::new(ScatterRows::new(scene.world.media.len()));

@@ -92,6 +92,7 @@ pub fn build(
             bands: scene.bands,
             paths: Paths::All,
             scatter_rows: None,
+            disc_share: scene.disc_share(),
         };
         let (cache, gathered) = assemble::irradiance(rank.comm, &mut rank.budget, &est, IRRADIANCE_STRIDE)?;
         rank.report.irradiance_received_bytes += gathered.received_bytes;

@@ -39,6 +39,7 @@ use crate::material::Material;
 use crate::media::Medium;
 use crate::media::density::Density;
 use crate::ode::CurvedSettings;
+use crate::photon_map::DiscShare;
 use crate::raypath::projection::MapInputs;
 use crate::spectrum::Bands;
 use crate::validate::Ctx;
@@ -87,6 +88,12 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// What surface photon estimates measure their disc's share on surfaces with: the world,
+    /// unless `[integrator] edge_correction = false`.
+    pub fn disc_share(&self) -> Option<&dyn DiscShare> {
+        self.integrator.edge_correction.then_some(&self.world as &dyn DiscShare)
+    }
+
     /// Overrides the photon counts (both maps) and the seed, and decides the plan again.
     pub fn apply_overrides(&mut self, photons: Option<u64>, seed: Option<u64>) {
         if let Some(n) = photons {

@@ -98,6 +98,7 @@ impl EffectPlan {
                 Decision::on(format!("specular material \"{sp}\" can focus light onto diffuse \"{d}\""))
             }
         };
+        let (global_map, caustic_map) = (with_edge_words(global_map, s), with_edge_words(caustic_map, s));
         let scattering = facts.used_media.iter().find(|m| m.scatters()).map(|m| m.name.as_str());
         let shadow_rays = match (diffuse, scattering) {
             _ if photon_direct => Decision::off("direct = \"photon_map\": direct light comes from the photon maps"),
@@ -234,6 +235,19 @@ impl std::fmt::Display for EffectPlan {
         }
         Ok(())
     }
+}
+
+/// A surface map's decision with how its estimates at a surface measure their disc
+/// ([`IntegratorSettings::edge_correction`]).
+fn with_edge_words(d: Decision, s: &IntegratorSettings) -> Decision {
+    if !d.on {
+        return d;
+    }
+    let words = match s.edge_correction {
+        true => "estimates divide by the part of their disc on surfaces that hold photons (edge_correction = true)",
+        false => "estimates divide by their whole disc, so edges read dark (edge_correction = false)",
+    };
+    Decision::on(format!("{}; {words}", d.why))
 }
 
 /// How camera paths through a bending, dispersive medium that only absorbs follow its

@@ -233,6 +233,9 @@ pub struct RawIntegrator {
     /// `[integrator] axial_symmetry`: fold volume photons about the sun's axis where the scene
     /// is symmetric about it.
     pub axial_symmetry: S<bool>,
+    /// `[integrator] edge_correction`: surface photon estimates divide by the part of their
+    /// disc that lies on surfaces able to hold photons.
+    pub edge_correction: S<bool>,
     /// `[integrator] gather_rays`: final-gather rays per shading point.
     pub gather_rays: S<i64>,
     /// `[integrator] spp`: eye samples per pixel.

@@ -164,6 +164,9 @@ pub struct IntegratorSettings {
     /// `Some(false)` never, `None` (the default) where the sun is also below the horizon at the
     /// camera or a sky sensor — twilight, where the unfolded map is biased.
     pub axial_symmetry: Option<bool>,
+    /// Surface photon estimates divide by the part of their disc that lies on surfaces able to
+    /// hold photons ([`crate::world::World::gather_share`]) rather than by the whole disc.
+    pub edge_correction: bool,
     /// Final-gather rays per shading point.
     pub gather_rays: usize,
     /// Eye samples per pixel.
@@ -360,6 +363,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         final_gather: true,
         dispersion_bundles: true,
         axial_symmetry: None,
+        edge_correction: true,
         gather_rays: 64,
         spp: 16,
         max_depth: 10,
@@ -427,6 +431,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
     };
     s.dispersion_bundles = r.dispersion_bundles.as_ref().is_none_or(|b| *b.get_ref());
     s.axial_symmetry = r.axial_symmetry.as_ref().map(|b| *b.get_ref());
+    s.edge_correction = r.edge_correction.as_ref().is_none_or(|b| *b.get_ref());
     s.filter = filter(ctx, r)?;
     s.curved = curved(ctx, r)?;
     s.progressive = super::progressive::progressive(ctx, r)?;

@@ -6,6 +6,8 @@
 //! (camera, wavelengths, integrator settings, effect plan, sensors); propagation
 //! ([`crate::raypath`]) and the photon tracer ([`crate::photon`]) see only the world.
 
+mod gather_share;
+
 use crate::geometry::{Aabb, Bvh, Ray, Shape};
 use crate::light::{AreaLight, Light};
 use crate::material::Material;

@@ -62,6 +62,12 @@ impl Disk {
         PI * self.radius * self.radius
     }
 
+    /// How far a point `x` of the disk lies inside its rim: a disc of that radius about `x`
+    /// lies on the disk.
+    pub fn clearance(&self, x: DVec3) -> f64 {
+        self.radius - (x - self.center).length()
+    }
+
     /// Uniform by area: the concentric map of the square onto the unit disk (area-preserving,
     /// PBRT4 §A.5.1), scaled by r in the disk's plane.
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {

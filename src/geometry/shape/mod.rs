@@ -131,6 +131,20 @@ impl Shape {
         }
     }
 
+    /// For a point `x` on the surface, the largest r for which the surface within distance r
+    /// of `x` is one piece of area π r² whose normals lie within 60° of the normal at `x` (a
+    /// flat disc, or a cap of a sphere): the in-plane distance to the nearest edge for the flat
+    /// shapes, the radius for a sphere. A photon-map disc of radius up to this lies wholly on
+    /// the shape ([`crate::world::World::gather_share`]).
+    pub fn clearance(&self, x: DVec3) -> f64 {
+        match self {
+            Shape::Sphere(s) => s.clearance(x),
+            Shape::Quad(s) => s.clearance(x),
+            Shape::Disk(s) => s.clearance(x),
+            Shape::Triangle(s) => s.clearance(x),
+        }
+    }
+
     /// Surface area, m².
     pub fn area(&self) -> f64 {
         match self {

@@ -70,6 +70,17 @@ impl Quad {
         self.u.cross(self.v).length()
     }
 
+    /// The in-plane distance from a point `x` of the quad to its nearest edge line: a disc of
+    /// that radius about `x` lies on the quad.
+    pub fn clearance(&self, x: DVec3) -> f64 {
+        let d = x - self.origin;
+        let from_line = |p: DVec3, e: DVec3| p.cross(e).length() / e.length();
+        from_line(d, self.u)
+            .min(from_line(d - self.v, self.u))
+            .min(from_line(d, self.v))
+            .min(from_line(d - self.u, self.v))
+    }
+
     /// Uniform by area: origin + u₀ u + u₁ v (an affine map of the unit square).
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
         ShapeSample { point: self.origin + u[0] * self.u + u[1] * self.v, normal: self.normal() }

@@ -101,6 +101,13 @@ impl Sphere {
         4.0 * PI * self.radius * self.radius
     }
 
+    /// The sphere's radius R: the part of the sphere within r ≤ R of one of its points is a
+    /// cap of area π r² (Archimedes: a cap of chord r has area π r²), with normals within 60°
+    /// of the point's.
+    pub fn clearance(&self, _x: DVec3) -> f64 {
+        self.radius
+    }
+
     /// Uniform by area: the centre plus r times a uniform direction (pdf 1/(4π r²)).
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
         let n = uniform_sphere(u);

@@ -128,6 +128,14 @@ impl Triangle {
         0.5 * self.cross().length()
     }
 
+    /// The in-plane distance from a point `x` of the triangle to its nearest edge line: a disc
+    /// of that radius about `x` lies on the triangle.
+    pub fn clearance(&self, x: DVec3) -> f64 {
+        let from_line = |a: DVec3, b: DVec3| (x - a).cross(b - a).length() / (b - a).length();
+        let [p0, p1, p2] = self.p;
+        from_line(p0, p1).min(from_line(p1, p2)).min(from_line(p2, p0))
+    }
+
     /// Uniform by area: uniform barycentrics (Heitz 2019) applied to the vertices.
     pub fn sample(&self, u: [f64; 2]) -> ShapeSample {
         let b = uniform_triangle(u);
