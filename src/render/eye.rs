@@ -30,6 +30,7 @@ use crate::media::{Coefficients, Medium, tracking};
 use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
+use crate::sampling::ScrambledSobol2;
 use crate::scene::{IntegratorSettings, Scene};
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
@@ -475,7 +476,11 @@ impl<'a> EyeTracer<'a> {
     }
 
     /// Mean radiance per lane arriving along cosine-distributed gather rays; multiplied by ρ
-    /// this is the reflected indirect radiance (f_r cos θ / p = ρ).
+    /// this is the reflected indirect radiance (f_r cos θ / p = ρ). The rays' directions are
+    /// the first points of a 2-D Sobol' sequence, Owen-scrambled afresh at every shading point
+    /// ([`ScrambledSobol2`]), mapped onto the cosine lobe: each is cosine-distributed, and
+    /// together they stratify the hemisphere, so that smooth incident light is gathered with
+    /// less noise than by independent directions.
     fn final_gather(
         &self,
         hit: &Hit,
@@ -488,8 +493,9 @@ impl<'a> EyeTracer<'a> {
         let count = at.lanes.share_of(self.scene.integrator.gather_rays);
         let mut sum = [0.0; MAX_BANDS];
         let gather = At { depth: at.depth + 1, mode: Mode::Gather, ..at };
-        for _ in 0..count {
-            let d = Lambertian::sample(dir, hit.normal, rng.uniform2());
+        let directions = ScrambledSobol2::new(rng);
+        for i in 0..count {
+            let d = Lambertian::sample(dir, hit.normal, directions.point(i as u32));
             let l = self.radiance(&self.prop.leave(hit, d, at.wavelength(), medium), gather, rng, sc);
             for i in 0..at.lanes.len {
                 sum[i] += l[i];
