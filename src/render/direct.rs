@@ -35,6 +35,9 @@ pub struct ShadowOrigin<'a> {
     pub medium: Option<u32>,
     /// The wavelengths (lanes) the transmittance is wanted at, nm.
     pub wavelengths_nm: &'a [f64],
+    /// The point sampled on each light, in [0, 1)², when the caller stratifies it (a pixel's
+    /// eye samples at their first diffuse hit); `None`: drawn from the generator.
+    pub light_u: Option<[f64; 2]>,
 }
 
 /// Samples every light once from `at` (see the module documentation); counts each shadow ray
@@ -50,7 +53,8 @@ pub fn sample_lights(
     add: &mut AddLight,
 ) {
     for light in lights {
-        let Some(inc) = light.incident(at.p, rng.uniform2()) else { continue };
+        let u = at.light_u.unwrap_or_else(|| rng.uniform2());
+        let Some(inc) = light.incident(at.p, u) else { continue };
         let f = factor(light, &inc);
         if f <= 0.0 {
             continue;

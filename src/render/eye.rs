@@ -93,6 +93,9 @@ struct At<'l> {
     lanes: &'l Lanes,
     depth: usize,
     mode: Mode,
+    /// The point a camera sample's shadow rays sample on the lights at its diffuse hit, when
+    /// the pixel stratifies it ([`EyeTracer::camera_radiance`]).
+    light_u: Option<[f64; 2]>,
 }
 
 impl At<'_> {
@@ -169,15 +172,25 @@ impl<'a> EyeTracer<'a> {
     }
 
     /// Radiance arriving at the camera along `state`, per lane (W m⁻² sr⁻¹ nm⁻¹).
-    pub fn camera_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
-        self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera }, rng, sc)
+    ///
+    /// `light_u`: the point the shadow rays sample on each light where the path meets a diffuse
+    /// surface, stratified over a pixel's samples by the caller; `None`: drawn from `rng`.
+    pub fn camera_radiance(
+        &self,
+        state: &RayState,
+        lanes: &Lanes,
+        light_u: Option<[f64; 2]>,
+        rng: &mut Rng,
+        sc: &mut Scratch,
+    ) -> BandValues {
+        self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera, light_u }, rng, sc)
     }
 
     /// Radiance per lane arriving along `state` as a gather ray reads it (light reflected at
     /// least once, from the global map's irradiance; emitters add nothing): the indirect part
     /// that sensors measure.
     pub fn gather_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
-        self.radiance(state, At { lanes, depth: 1, mode: Mode::Gather }, rng, sc)
+        self.radiance(state, At { lanes, depth: 1, mode: Mode::Gather, light_u: None }, rng, sc)
     }
 
     fn radiance(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
@@ -470,7 +483,14 @@ impl<'a> EyeTracer<'a> {
         } else if let Some(g) = &self.global {
             add_by_band(&mut out, &estimate(g, &mut sc.nb), lanes, &|_| 1.0);
         }
-        let direct = self.direct(hit.point, Some(hit), n, medium, lanes, rng, sc);
+        let origin = ShadowOrigin {
+            p: hit.point,
+            from: Some(hit),
+            medium,
+            wavelengths_nm: &lanes.nm[..lanes.len],
+            light_u: at.light_u,
+        };
+        let direct = self.direct(origin, n, lanes, rng, sc);
         add_by_lane(&mut out, &direct, lanes, &|i| rho(lanes.nm[i]) / PI);
         out
     }
@@ -505,22 +525,11 @@ impl<'a> EyeTracer<'a> {
         sum
     }
 
-    /// Incident irradiance per lane at `p` (on surface `from` with normal `n`, or in a medium
-    /// when `n` is zero — then without the cosine) from every light by one shadow ray each:
-    /// E(λ) = Σ_lights S(λ) · weight · cos θ · T(λ).
-    #[allow(clippy::too_many_arguments)]
-    fn direct(
-        &self,
-        p: DVec3,
-        from: Option<&Hit>,
-        n: DVec3,
-        medium: Option<u32>,
-        lanes: &Lanes,
-        rng: &mut Rng,
-        sc: &mut Scratch,
-    ) -> BandValues {
+    /// Incident irradiance per lane at `at` (on a surface with normal `n`, or in a medium when
+    /// `n` is zero — then without the cosine) from every light by one shadow ray each:
+    /// E(λ) = Σ_lights S(λ) · weight · cos θ · T(λ). `at.wavelengths_nm` are `lanes`'.
+    fn direct(&self, at: ShadowOrigin, n: DVec3, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
         let mut e = [0.0; MAX_BANDS];
-        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &lanes.nm[..lanes.len] };
         let cos = |_: &Light, inc: &Incident| if n == DVec3::ZERO { 1.0 } else { inc.wi.dot(n) };
         let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
@@ -562,7 +571,7 @@ impl<'a> EyeTracer<'a> {
         let nm = &lanes.nm[..lanes.len];
         let phase = |l: f64, light_travel: DVec3| here.phase_eval(l, light_travel.dot(wo));
         // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
-        let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm };
+        let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm, light_u: None };
         let mut add = |light: &Light, inc: &Incident, _: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {

@@ -473,7 +473,10 @@ impl<'a> Tracer<'a> {
 /// The samples' positions in the pixel are the first `n` points of an Owen-scrambled Sobol'
 /// sequence, scrambled afresh for each pixel and pass ([`ScrambledSobol2`]): each is uniform in
 /// the pixel, so the mean stays unbiased and the passes independent, but an edge across the
-/// pixel (a glint, a silhouette) no longer adds noise falling only as 1/√n. The wavelength
+/// pixel (a glint, a silhouette) no longer adds noise falling only as 1/√n. So are the points
+/// the photon-map eye pass's shadow rays sample on the lights where sample i meets a diffuse
+/// surface (a second scrambled sequence, point i): a penumbra's noise falls faster too. The
+/// wavelength
 /// jitter is stratified over the `n` samples (sample i draws u in [i/n, (i + 1)/n)) for the same
 /// reason: a band's smooth spectral slope (Rayleigh's λ⁻⁴ across a 40 nm band: ±14 %).
 fn pixel(
@@ -489,6 +492,7 @@ fn pixel(
     let mut acc = [0.0; crate::spectrum::MAX_BANDS];
     let mut spread = spread.then(|| adaptive::PixelSpread::new(scene.bands.count));
     let positions = ScrambledSobol2::new(&mut rng);
+    let on_lights = ScrambledSobol2::new(&mut rng);
     for i in 0..n {
         let [jx, jy] = positions.point(i as u32);
         let Some(ray) = scene.camera.ray(x as f64 + jx, y as f64 + jy) else {
@@ -500,7 +504,7 @@ fn pixel(
         let lanes = Lanes::new(&scene.bands, scene.sampling, (i as f64 + rng.uniform()) / n as f64);
         let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
         let l = match tracer {
-            Tracer::PhotonMap(t) => t.camera_radiance(&state, &lanes, &mut rng, sc),
+            Tracer::PhotonMap(t) => t.camera_radiance(&state, &lanes, Some(on_lights.point(i as u32)), &mut rng, sc),
             Tracer::Path(t) => t.camera_radiance(&state, &lanes, &mut rng, &mut sc.rays),
         };
         for i in 0..lanes.len {

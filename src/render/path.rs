@@ -353,7 +353,7 @@ impl<'a> PathTracer<'a> {
                 * factor
                 * tr[0];
         };
-        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda] };
+        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda], light_u: None };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut rays.shadow, &factor, &mut add);
         e
     }

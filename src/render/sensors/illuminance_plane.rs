@@ -70,7 +70,7 @@ fn at(
         let w = scene.bands.width_nm() * K_M / plane.samples as f64;
         let lux: Vec<f64> = lanes.nm[..lanes.len].iter().map(|l| w * cmf_1931(*l)[1]).collect();
         let nm = &lanes.nm[..lanes.len];
-        let at = ShadowOrigin { p, from: Some(&here), medium, wavelengths_nm: nm };
+        let at = ShadowOrigin { p, from: Some(&here), medium, wavelengths_nm: nm, light_u: None };
         let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for ((l, y), t) in nm.iter().zip(&lux).zip(tr) {

@@ -125,7 +125,7 @@ fn ed_above(s: &OceanProfile, (scene, seed): (&Scene, u64), index: u64) -> Vec<f
             let mut sum = 0.0;
             for _ in 0..s.samples {
                 let l = lo + (hi - lo) * rng.uniform();
-                let at = ShadowOrigin { p, from: None, medium, wavelengths_nm: &[l] };
+                let at = ShadowOrigin { p, from: None, medium, wavelengths_nm: &[l], light_u: None };
                 let mut add = |light: &Light, inc: &Incident, cos: f64, tr: &BandValues| {
                     sum += light.spectrum().spectrum.eval(l) * inc.weight * light.disc_factor(inc, l) * cos * tr[0];
                 };

@@ -75,7 +75,7 @@ fn band_means(
         let lanes = Lanes::new(&scene.bands, scene.sampling, u);
         let l = match path {
             Some(p) => p.camera_radiance(&state, &lanes, rng, &mut sc.rays),
-            None => tracer.camera_radiance(&state, &lanes, rng, sc),
+            None => tracer.camera_radiance(&state, &lanes, None, rng, sc),
         };
         for i in 0..lanes.len {
             acc[lanes.band[i] as usize] += weight * l[i];
