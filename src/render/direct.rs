@@ -18,6 +18,7 @@ use crate::geometry::Hit;
 use crate::light::{Incident, Light};
 use crate::raypath::Propagator;
 use crate::rng::Rng;
+use crate::sampling::digital_shift;
 use crate::spectrum::BandValues;
 use glam::DVec3;
 
@@ -35,8 +36,10 @@ pub struct ShadowOrigin<'a> {
     pub medium: Option<u32>,
     /// The wavelengths (lanes) the transmittance is wanted at, nm.
     pub wavelengths_nm: &'a [f64],
-    /// The point sampled on each light, in [0, 1)², when the caller stratifies it (a pixel's
-    /// eye samples at their first diffuse hit); `None`: drawn from the generator.
+    /// The point sampled on the lights, in [0, 1)², when the caller stratifies it (a pixel's
+    /// eye samples at their first diffuse hit): light j takes it digitally shifted by j
+    /// ([`digital_shift`]), so each light's points stay stratified and the lights' differ;
+    /// `None`: drawn from the generator.
     pub light_u: Option<[f64; 2]>,
 }
 
@@ -52,8 +55,8 @@ pub fn sample_lights(
     factor: &dyn Fn(&Light, &Incident) -> f64,
     add: &mut AddLight,
 ) {
-    for light in lights {
-        let u = at.light_u.unwrap_or_else(|| rng.uniform2());
+    for (j, light) in lights.iter().enumerate() {
+        let u = at.light_u.map_or_else(|| rng.uniform2(), |u| digital_shift(u, j as u64));
         let Some(inc) = light.incident(at.p, u) else { continue };
         let f = factor(light, &inc);
         if f <= 0.0 {

@@ -10,7 +10,7 @@ mod sobol;
 mod warp;
 
 pub use discrete::Discrete1D;
-pub use sobol::ScrambledSobol2;
+pub use sobol::{ScrambledSobol2, digital_shift};
 pub use warp::{
     concentric_disk, cosine_cone, cosine_cone_pdf, cosine_hemisphere, cosine_hemisphere_pdf, uniform_cone,
     uniform_cone_pdf, uniform_sphere, uniform_sphere_pdf, uniform_triangle,

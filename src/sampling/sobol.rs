@@ -33,7 +33,7 @@
 //! - B. Burley (2020), "Practical hash-based Owen scrambling", Journal of Computer Graphics
 //!   Techniques 9(4), 1–20 (the Laine–Karras-style hash with its improved constants).
 
-use crate::rng::Rng;
+use crate::rng::{Rng, splitmix64};
 
 /// 2⁻³²: a 32-bit fixed-point fraction to [0, 1).
 const TO_UNIT: f64 = 1.0 / 4_294_967_296.0;
@@ -58,6 +58,19 @@ impl ScrambledSobol2 {
         let [x, y] = sobol2(i);
         [owen_scramble(x, self.seeds[0]), owen_scramble(y, self.seeds[1])].map(|v| f64::from(v) * TO_UNIT)
     }
+}
+
+/// `u`, a point on the 2⁻³² grid (as [`ScrambledSobol2::point`] gives), with its coordinates'
+/// bits XOR-ed by a mask hashed from `key` (a digital shift): it maps a (0, m, 2)-net to a
+/// (0, m, 2)-net and a uniform point to a uniform point, so several uses of one pixel's points
+/// (one per light) stay stratified without sharing them; `key` 0 leaves `u` as it is.
+pub fn digital_shift(u: [f64; 2], key: u64) -> [f64; 2] {
+    if key == 0 {
+        return u;
+    }
+    let mask = splitmix64(key);
+    let bits = |v: f64| (v / TO_UNIT) as u32;
+    [bits(u[0]) ^ mask as u32, bits(u[1]) ^ (mask >> 32) as u32].map(|v| f64::from(v) * TO_UNIT)
 }
 
 /// The first two Sobol' dimensions of point `i`, as 32-bit fractions.
@@ -125,6 +138,23 @@ mod tests {
                 assert!(is_02_net(&scrambled, m), "scrambled, m = {m}, start {start}");
             }
         }
+    }
+
+    #[test]
+    fn a_digitally_shifted_net_is_a_net() {
+        let mut rng = Rng::for_task(5, Stream::Test, 1);
+        let points = ScrambledSobol2::new(&mut rng);
+        let grid = |u: [f64; 2]| u.map(|v| (v / TO_UNIT) as u32);
+        for m in 1..=8 {
+            let net: Vec<[f64; 2]> = (0..1u32 << m).map(|i| points.point(i)).collect();
+            assert!(is_02_net(&net.iter().map(|&u| grid(u)).collect::<Vec<_>>(), m));
+            for key in 1..4 {
+                let shifted: Vec<[u32; 2]> = net.iter().map(|&u| grid(digital_shift(u, key))).collect();
+                assert!(is_02_net(&shifted, m), "key {key}, 2^{m} points");
+                assert_ne!(shifted[0], grid(net[0]));
+            }
+        }
+        assert_eq!(digital_shift([0.25, 0.75], 0), [0.25, 0.75]);
     }
 
     #[test]
