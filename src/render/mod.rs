@@ -474,8 +474,9 @@ impl<'a> Tracer<'a> {
 /// sequence, scrambled afresh for each pixel and pass ([`ScrambledSobol2`]): each is uniform in
 /// the pixel, so the mean stays unbiased and the passes independent, but an edge across the
 /// pixel (a glint, a silhouette) no longer adds noise falling only as 1/√n. So are the points
-/// the photon-map eye pass's shadow rays sample on the lights where sample i meets a diffuse
-/// surface (a second scrambled sequence, point i): a penumbra's noise falls faster too. The
+/// sample i's first shadow rays sample on the lights (where the photon-map eye pass meets a
+/// diffuse surface, or the path tracer first estimates next events; a second scrambled
+/// sequence, point i): a penumbra's noise falls faster too. The
 /// wavelength
 /// jitter is stratified over the `n` samples (sample i draws u in [i/n, (i + 1)/n)) for the same
 /// reason: a band's smooth spectral slope (Rayleigh's λ⁻⁴ across a 40 nm band: ±14 %).
@@ -505,7 +506,9 @@ fn pixel(
         let state = RayState { position: ray.origin, dir: ray.dir, wavelength_nm: None, medium: scene.camera_medium };
         let l = match tracer {
             Tracer::PhotonMap(t) => t.camera_radiance(&state, &lanes, Some(on_lights.point(i as u32)), &mut rng, sc),
-            Tracer::Path(t) => t.camera_radiance(&state, &lanes, &mut rng, &mut sc.rays),
+            Tracer::Path(t) => {
+                t.camera_radiance(&state, &lanes, Some(on_lights.point(i as u32)), &mut rng, &mut sc.rays)
+            }
         };
         for i in 0..lanes.len {
             acc[lanes.band[i] as usize] += weight * l[i];

@@ -66,6 +66,9 @@ struct Walk {
     /// How emission hit next counts: fully (from the camera, after specular events) or with the
     /// MIS weight of a direction sampled with density `pdf` from `from`.
     emission: Emission,
+    /// The point the first next-event estimation samples on the lights, stratified over the
+    /// pixel's samples by the caller; taken by that estimation, `None` after it.
+    light_u: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Copy)]
@@ -91,23 +94,33 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Radiance per lane arriving along `state`: one lane, chosen by `rng`, gets the estimate
-    /// times the lane count; the others zero.
+    /// times the lane count; the others zero. `light_u`: the point the path's first next-event
+    /// estimation samples on the lights, stratified over a pixel's samples by the caller;
+    /// `None`: drawn from `rng`.
     pub fn camera_radiance(
         &self,
         state: &RayState,
         lanes: &Lanes,
+        light_u: Option<[f64; 2]>,
         rng: &mut Rng,
         rays: &mut RayCounts,
     ) -> [f64; MAX_BANDS] {
         let mut out = [0.0; MAX_BANDS];
         let j = rng.below(lanes.len as u64) as usize;
-        out[j] = lanes.len as f64 * self.trace(*state, lanes.nm[j], rng, rays);
+        out[j] = lanes.len as f64 * self.trace(*state, lanes.nm[j], light_u, rng, rays);
         out
     }
 
-    fn trace(&self, mut state: RayState, lambda: f64, rng: &mut Rng, rays: &mut RayCounts) -> f64 {
+    fn trace(
+        &self,
+        mut state: RayState,
+        lambda: f64,
+        light_u: Option<[f64; 2]>,
+        rng: &mut Rng,
+        rays: &mut RayCounts,
+    ) -> f64 {
         state.wavelength_nm = Some(lambda);
-        let mut w = Walk { lambda, beta: 1.0, emission: Emission::Full };
+        let mut w = Walk { lambda, beta: 1.0, emission: Emission::Full, light_u };
         let mut l = 0.0;
         for events in 0..MAX_EVENTS {
             rays.eye += 1;
@@ -189,7 +202,8 @@ impl<'a> PathTracer<'a> {
         rays: &mut RayCounts,
     ) -> RayState {
         let lambda = w.lambda;
-        *l += w.beta * self.direct(position, None, DVec3::ZERO, Some(medium), Some(phase), dir, lambda, rng, rays);
+        let at = (position, None, Some(medium), w.light_u.take());
+        *l += w.beta * self.direct(at, DVec3::ZERO, Some(phase), dir, lambda, rng, rays);
         let (wo, pdf) = phase.sample(lambda, dir, rng.uniform2());
         w.emission = Emission::Mis { from: position, pdf };
         RayState { position, dir: wo, wavelength_nm: Some(lambda), medium: Some(medium) }
@@ -270,7 +284,8 @@ impl<'a> PathTracer<'a> {
             Material::Lambertian(_) => {
                 let n = if dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
                 let rho = material.diffuse_reflectance(w.lambda);
-                *l += w.beta * rho / PI * self.direct(hit.point, Some(hit), n, medium, None, dir, w.lambda, rng, rays);
+                let at = (hit.point, Some(hit), medium, w.light_u.take());
+                *l += w.beta * rho / PI * self.direct(at, n, None, dir, w.lambda, rng, rays);
                 w.beta *= rho;
                 let wo = Lambertian::sample(dir, hit.normal, rng.uniform2());
                 w.emission = Emission::Mis { from: hit.point, pdf: wo.dot(n).abs() / PI };
@@ -325,10 +340,8 @@ impl<'a> PathTracer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn direct(
         &self,
-        p: DVec3,
-        from: Option<&Hit>,
+        (p, from, medium, light_u): (DVec3, Option<&Hit>, Option<u32>, Option<[f64; 2]>),
         n: DVec3,
-        medium: Option<u32>,
         phase: Option<&PhaseFunction>,
         dir: DVec3,
         lambda: f64,
@@ -353,7 +366,7 @@ impl<'a> PathTracer<'a> {
                 * factor
                 * tr[0];
         };
-        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda], light_u: None };
+        let at = ShadowOrigin { p, from, medium, wavelengths_nm: &[lambda], light_u };
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut rays.shadow, &factor, &mut add);
         e
     }

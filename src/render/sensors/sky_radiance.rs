@@ -74,7 +74,7 @@ fn band_means(
         let u = (s as f64 + rng.uniform()) / sensor.samples as f64;
         let lanes = Lanes::new(&scene.bands, scene.sampling, u);
         let l = match path {
-            Some(p) => p.camera_radiance(&state, &lanes, rng, &mut sc.rays),
+            Some(p) => p.camera_radiance(&state, &lanes, None, rng, &mut sc.rays),
             None => tracer.camera_radiance(&state, &lanes, None, rng, sc),
         };
         for i in 0..lanes.len {
