@@ -192,3 +192,33 @@ fn bvh_is_a_real_hierarchy() {
         assert!(b.contains(sb.min) && b.contains(sb.max));
     }
 }
+
+#[test]
+fn the_sole_shape_touching_a_box_is_found_only_when_it_is_alone() {
+    use morgana::geometry::Aabb;
+    // A floor y = 0 over [−1, 1]² and a wall x = 0.5 standing on it, among many small spheres
+    // far above (so that the tree has depth).
+    let mut shapes = vec![
+        Shape::Quad(Quad {
+            origin: DVec3::new(-1.0, 0.0, -1.0),
+            u: DVec3::new(0.0, 0.0, 2.0),
+            v: DVec3::new(2.0, 0.0, 0.0),
+        }),
+        Shape::Quad(Quad {
+            origin: DVec3::new(0.5, 0.0, -1.0),
+            u: DVec3::new(0.0, 1.0, 0.0),
+            v: DVec3::new(0.0, 0.0, 2.0),
+        }),
+    ];
+    shapes.extend(
+        (0..40).map(|i| Shape::Sphere(Sphere { center: DVec3::new(-1.0 + 0.05 * i as f64, 5.0, 0.0), radius: 0.01 })),
+    );
+    let bvh = Bvh::build(&shapes);
+    let ball = |x: DVec3, r: f64| Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) };
+    assert_eq!(bvh.sole_shape_touching_box(&shapes, &ball(DVec3::new(-0.5, 0.0, 0.0), 0.1)), Some(0));
+    assert_eq!(bvh.sole_shape_touching_box(&shapes, &ball(DVec3::new(0.45, 0.0, 0.0), 0.1)), None);
+    assert_eq!(bvh.sole_shape_touching_box(&shapes, &ball(DVec3::new(0.5, 0.5, 0.0), 0.1)), Some(1));
+    assert_eq!(bvh.sole_shape_touching_box(&shapes, &ball(DVec3::new(0.0, 3.0, 0.0), 0.1)), None);
+    assert!(bvh.may_touch_box(&shapes, &ball(DVec3::new(0.45, 0.0, 0.0), 0.1)));
+    assert!(!bvh.may_touch_box(&shapes, &ball(DVec3::new(0.0, 3.0, 0.0), 0.1)));
+}
