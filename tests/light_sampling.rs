@@ -1,4 +1,5 @@
-//! Where a pixel's shadow rays sample an area light: at the points of a scrambled Sobol'
+//! Where a pixel's shadow rays sample an area light (at the photon-map eye pass's diffuse hits
+//! and the path tracer's first next-event estimation): at the points of a scrambled Sobol'
 //! sequence over the pixel's eye samples (point i for sample i, scrambled afresh for every pixel
 //! and pass). Each point is uniform on the light (direct light stays unbiased), and together they
 //! stratify it, so a penumbra's noise falls faster than the 1/n of independent points.
@@ -61,8 +62,8 @@ fn summed_variance(scene_text: fn(usize, u64) -> String, spp: usize, seeds: u64)
 
 /// Independent points on the light leave each pixel's variance falling as 1/n: 4× from 4 to 16
 /// samples (measured with them: summed variance 49.1 and 12.2, 4.03×). Stratified, it must fall
-/// more than 6× (measured 12.9 and 1.15, 11.3×). Direct light's unbiasedness is checked against
-/// closed forms elsewhere (the furnaces, the lit plates of `tests/flux.rs`).
+/// more than 6× (measured 12.9 and 1.15, 11.3×). Direct light's unbiasedness is checked below,
+/// against Lambert's polygon irradiance.
 #[test]
 fn stratified_light_points_cut_a_penumbras_noise_faster_than_one_over_n() {
     let (four, sixteen) = (summed_variance(penumbra, 4, 12), summed_variance(penumbra, 16, 12));
