@@ -10,7 +10,7 @@ use common::{render_with, scene};
 /// Width and height of the image, pixels.
 const SIDE: usize = 48;
 
-/// A closed room 2 m on a side — white floor, ceiling and back wall, red and green side walls —
+/// A closed room 2 m on a side — white floor, ceiling, back and front walls, red and green sides —
 /// lit by a point light 0.3 m above its centre, seen from inside the front wall; final gathering with
 /// `rays` gather rays, one eye sample per pixel, one pass.
 fn room(rays: usize, seed: u64) -> String {
