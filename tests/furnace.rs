@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{render_with, scene};
+use common::{emitting_box_walls, render_with, scene};
 
 const LE: f64 = 2.0;
 const RHO: f64 = 0.6;
@@ -157,27 +157,7 @@ fn shadow_rays_with_final_gathering_give_le_over_one_minus_rho() {
 /// image centre); `integrator` adds `k` and `edge_correction`. Returns the image (96 × 96, one
 /// band).
 fn box_furnace(integrator: &str, passes: usize) -> Vec<f64> {
-    let faces = [
-        ([-1, -1, -1], [2, 0, 0], [0, 2, 0]),
-        ([-1, -1, 1], [2, 0, 0], [0, 2, 0]),
-        ([-1, -1, -1], [0, 2, 0], [0, 0, 2]),
-        ([1, -1, -1], [0, 2, 0], [0, 0, 2]),
-        ([-1, -1, -1], [2, 0, 0], [0, 0, 2]),
-        ([-1, 1, -1], [2, 0, 0], [0, 0, 2]),
-    ];
-    let v = |a: [i32; 3]| format!("[{:?}, {:?}, {:?}]", a[0] as f64, a[1] as f64, a[2] as f64);
-    let walls: String = faces
-        .iter()
-        .map(|(o, u, w)| {
-            format!(
-                "\n[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = {}\nu = {}\nv = {}\nside = \"both\"\n\
-                 material = \"wall\"\nspectrum = 1.0\nscale = {LE:?}\n",
-                v(*o),
-                v(*u),
-                v(*w)
-            )
-        })
-        .collect();
+    let walls = emitting_box_walls(LE);
     let toml = format!(
         "[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.577, 0.577, -0.577]\nfov_deg = 100.0\nwidth = 96\n\
          height = 96\n\n[output]\nbands = 1\nmin_nm = 500.0\nmax_nm = 600.0\n\n[integrator]\nphotons = 400000\n\

@@ -21,6 +21,12 @@
 //! photon's kernel integrates to one over the plane across the segment, so power is conserved
 //! for any radii.
 //!
+//! Where a segment ends on a surface (a wall, the glass the eye ray met), its tube of discs ends
+//! on the surface's tangent plane instead of on the plane across it ([`SegmentEnds`]): the plane
+//! across it leaves out the medium's photons in front of a wall met obliquely, beyond the
+//! segment's end, and takes in the wedge behind it, which holds none — a deficit of
+//! 2 r tan θ/(3π s) of a segment of length s met at θ (see [`BeamMap::query`]).
+//!
 //! The query: the kd-tree's leaves own consecutive runs of photons, so a complete binary tree
 //! over the leaves, each node holding the bounding box of its photons' spheres, is a bounding
 //! volume hierarchy of the discs (24 bytes per node, about 1.5 bytes per photon). A segment
@@ -60,11 +66,27 @@ pub struct BeamHit {
     pub r2: f64,
 }
 
+/// The surfaces a segment starts and ends on, whose planes bound its tube of discs there
+/// (see [`BeamMap::query`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SegmentEnds {
+    /// Normal (either orientation) of the surface the segment starts on, if it does.
+    pub start: Option<DVec3>,
+    /// Normal (either orientation) of the surface the segment ends on, if it does.
+    pub end: Option<DVec3>,
+}
+
+/// An end surface met at a cosine below this (beyond 84°) keeps the plane across the segment:
+/// the tube's oblique end would reach 10 disc radii along it.
+const MIN_END_COS: f64 = 0.1;
+
 /// The gather discs of a volume photon map and a bounding volume hierarchy over them.
 #[derive(Clone, Debug)]
 pub struct BeamMap {
     /// Disc radius of each photon, m, in tree order.
     radii: Vec<f32>,
+    /// The largest of them, m.
+    max_radius: f64,
     /// Sphere bounds per node of the complete binary tree over the kd-tree's leaves, in heap
     /// order (root 1, children 2i and 2i + 1, leaf j at 2^depth + j): min xyz, max xyz in the
     /// map's frame.
@@ -119,7 +141,8 @@ impl BeamMap {
             let (l, r) = (boxes[2 * n], boxes[2 * n + 1]);
             boxes[n] = std::array::from_fn(|a| if a < 3 { l[a].min(r[a]) } else { l[a].max(r[a]) });
         }
-        BeamMap { radii, boxes, depth }
+        let max_radius = radii.iter().fold(0.0f64, |m, r| m.max(f64::from(*r)));
+        BeamMap { radii, boxes, max_radius, depth }
     }
 
     /// Disc radius of photon `i`, m.
@@ -135,12 +158,42 @@ impl BeamMap {
     /// The photons of `map` (the map these discs were built for) whose disc the segment from
     /// `o` along unit `dir` of length `length` crosses, into `hits`, sorted by `t`. A segment
     /// with a non-finite or non-positive length, or a non-finite point, finds none.
-    pub fn query(&self, map: &PhotonMap, o: DVec3, dir: DVec3, length: f64, hits: &mut Vec<BeamHit>) {
+    ///
+    /// The tube of discs ends, at each end of the segment that lies on a surface (`ends`), on
+    /// that surface's tangent plane rather than on the plane across the segment: a photon
+    /// counts if it lies within its radius of the segment's line and between the two end
+    /// planes. Where a segment meets a wall at an angle θ, the plane across it leaves out the
+    /// wedge of the tube beyond its end that still lies in the medium and takes in the one
+    /// before its end that lies behind the wall, where no photon is: a share 2 r tan θ/(3π s) of
+    /// a tube of length s too little light (the first moment of a half disc, 2r³/3, times
+    /// tan θ over π r² s). Between the tangent planes each line along the tube is s long on
+    /// average over the disc (Cavalieri), so the tube holds π r² s of medium and the estimate
+    /// has no such bias for a planar boundary. Such a photon's `t` is its projection clamped
+    /// onto [0, `length`] (where its transmittance is read).
+    pub fn query(
+        &self,
+        map: &PhotonMap,
+        o: DVec3,
+        dir: DVec3,
+        length: f64,
+        ends: SegmentEnds,
+        hits: &mut Vec<BeamHit>,
+    ) {
         hits.clear();
         let rel = o - map.origin();
         if !(length > 0.0 && length.is_finite() && rel.is_finite() && dir.is_finite()) || map.is_empty() {
             return;
         }
+        // Each end plane's normal, pointing into the segment's side of it.
+        let start = ends.start.and_then(|n| facing(n, dir));
+        let end = ends.end.and_then(|n| facing(n, -dir));
+        let reach = |m: Option<DVec3>| {
+            m.map_or(0.0, |m| {
+                let c = m.dot(dir).abs();
+                self.max_radius * (1.0 - c * c).sqrt() / c
+            })
+        };
+        let (t0, t1) = (-reach(start), length + reach(end));
         let tree = map.tree();
         let inv = dir.recip();
         let leaves = 1usize << self.depth;
@@ -150,7 +203,7 @@ impl BeamMap {
         while sp > 0 {
             sp -= 1;
             let n = stack[sp];
-            if !crosses(&self.boxes[n], rel, inv, length) {
+            if !crosses(&self.boxes[n], rel + t0 * dir, inv, t1 - t0) {
                 continue;
             }
             if n >= leaves {
@@ -160,8 +213,10 @@ impl BeamMap {
                     let t = v.dot(dir);
                     let r = f64::from(self.radii[i]);
                     let d2 = (v - t * dir).length_squared();
-                    if (0.0..=length).contains(&t) && d2 < r * r {
-                        hits.push(BeamHit { index: i as u32, t, d2, r2: r * r });
+                    let after_start = start.map_or(t >= 0.0, |m| v.dot(m) >= 0.0);
+                    let before_end = end.map_or(t <= length, |m| (v - length * dir).dot(m) > 0.0);
+                    if d2 < r * r && after_start && before_end {
+                        hits.push(BeamHit { index: i as u32, t: t.clamp(0.0, length), d2, r2: r * r });
                     }
                 }
             } else {
@@ -172,6 +227,14 @@ impl BeamMap {
         }
         hits.sort_unstable_by(|a, b| a.t.total_cmp(&b.t).then(a.index.cmp(&b.index)));
     }
+}
+
+/// The unit normal `n` turned to face along `d` (n·d > 0), or `None` for a surface met at a
+/// grazing angle ([`MIN_END_COS`]) or a normal that is not finite and non-zero.
+fn facing(n: DVec3, d: DVec3) -> Option<DVec3> {
+    let n = n.try_normalize()?;
+    let c = n.dot(d);
+    (c.abs() >= MIN_END_COS).then(|| if c > 0.0 { n } else { -n })
 }
 
 /// Whether the segment `o + t·d`, 0 ≤ t ≤ `length` (`inv` = 1/d per axis), meets the box `b`
@@ -206,8 +269,8 @@ pub struct BeamEstimator<'a> {
 impl BeamEstimator<'_> {
     /// The photons whose disc the segment crosses, sorted by their projection (see
     /// [`BeamMap::query`]).
-    pub fn gather(&self, o: DVec3, dir: DVec3, length: f64, hits: &mut Vec<BeamHit>) {
-        self.discs.query(self.map, o, dir, length, hits);
+    pub fn gather(&self, o: DVec3, dir: DVec3, length: f64, ends: SegmentEnds, hits: &mut Vec<BeamHit>) {
+        self.discs.query(self.map, o, dir, length, ends, hits);
     }
 
     /// Calls `add(band, L)` with the radiance (W m⁻² sr⁻¹ nm⁻¹) photon `hit` scatters toward
@@ -297,7 +360,7 @@ mod tests {
                 _ => (DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5).normalize(),
             };
             let len = 1.5 * rng.uniform();
-            beam.query(&map, o, d, len, &mut hits);
+            beam.query(&map, o, d, len, SegmentEnds::default(), &mut hits);
             assert!(hits.windows(2).all(|w| w[0].t <= w[1].t));
             let mut got: Vec<u32> = hits.iter().map(|h| h.index).collect();
             got.sort_unstable();
@@ -317,10 +380,10 @@ mod tests {
         let beam = BeamMap::build(&map, 10, 0.2, 1.0);
         let mut hits = vec![BeamHit { index: 0, t: 0.0, d2: 0.0, r2: 0.0 }];
         for len in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            beam.query(&map, DVec3::splat(0.5), DVec3::X, len, &mut hits);
+            beam.query(&map, DVec3::splat(0.5), DVec3::X, len, SegmentEnds::default(), &mut hits);
             assert!(hits.is_empty(), "length {len}");
         }
-        beam.query(&map, DVec3::NAN, DVec3::X, 1.0, &mut hits);
+        beam.query(&map, DVec3::NAN, DVec3::X, 1.0, SegmentEnds::default(), &mut hits);
         assert!(hits.is_empty());
     }
 
@@ -345,5 +408,87 @@ mod tests {
         assert!((mean / k as f64 - 1.0).abs() < 0.03, "mean k-ball volume × ρ = {mean}");
         let half = BeamMap::build(&map, k, 1.0, 0.5);
         assert!((half.radius(7) - 0.5 * beam.radius(7)).abs() < 1e-6);
+    }
+
+    /// Photons of a uniform field of density 8·10⁵ m⁻³ filling the cube [0, 1]³ (the medium; no
+    /// photon outside it), with discs of radius `R_CUBE`.
+    fn cube_of_photons() -> (PhotonMap, BeamMap) {
+        let inside: Vec<PhotonRecord> = records(1_600_000, 9).into_iter().filter(|p| p.position.z < 1.0).collect();
+        let map = PhotonMap::build(&inside);
+        let beam = BeamMap::from_radii(&map, vec![R_CUBE as f32; map.len()]);
+        (map, beam)
+    }
+
+    const R_CUBE: f64 = 0.08;
+
+    /// The photons a segment's tube holds over π r² s ρ (what a tube of length s wholly inside
+    /// the medium holds on average), averaged over 400 segments of length 0.3 m at 60° to the
+    /// cube's top face z = 1 (ending on it: `at_end`) or to its bottom face z = 0 (starting on
+    /// it), read with or without their end plane.
+    fn tube_fill(at_end: bool, planes: bool) -> f64 {
+        let (map, beam) = cube_of_photons();
+        let rho = map.len() as f64;
+        let theta = 60f64.to_radians();
+        let (s, mut rng, mut hits) = (0.3, Rng::for_task(10, Stream::Test, 2), Vec::new());
+        let mut sum = 0.0;
+        for _ in 0..400 {
+            let foot = DVec3::new(0.45 + 0.3 * rng.uniform(), 0.3 + 0.4 * rng.uniform(), 0.0);
+            let (o, d, ends) = if at_end {
+                let d = DVec3::new(theta.sin(), 0.0, theta.cos());
+                (foot + DVec3::Z - s * d, d, SegmentEnds { start: None, end: Some(DVec3::Z) })
+            } else {
+                let d = DVec3::new(theta.sin(), 0.0, theta.cos());
+                (foot - 0.3 * DVec3::X, d, SegmentEnds { start: Some(DVec3::NEG_Z), end: None })
+            };
+            beam.query(&map, o, d, s, if planes { ends } else { SegmentEnds::default() }, &mut hits);
+            assert!(hits.iter().all(|h| (0.0..=s).contains(&h.t)), "projections clamped onto the segment");
+            sum += hits.len() as f64 / (PI * R_CUBE * R_CUBE * s * rho);
+        }
+        sum / 400.0
+    }
+
+    /// A tube cut by the plane across its end where the segment meets a wall at θ = 60° holds
+    /// 1 − 2 r tan θ/(3π s) = 0.902 of the medium it should (the wedge behind the wall, empty,
+    /// is in; the one in front, beyond the end, is out); cut by the wall's own plane, all of it
+    /// (Cavalieri). Both at the end and at the start of a segment; the average over 400 tubes
+    /// holding ~4 800 photons each is within about 0.5 % (the tubes overlap: they share ~50 000
+    /// photons).
+    #[test]
+    fn a_tube_ending_on_a_wall_holds_the_medium_in_front_of_it() {
+        let plain = 1.0 - 2.0 * R_CUBE * 60f64.to_radians().tan() / (3.0 * PI * 0.3);
+        for at_end in [true, false] {
+            let (with, without) = (tube_fill(at_end, true), tube_fill(at_end, false));
+            eprintln!("at_end {at_end}: with the wall's plane {with:.4}, across the segment {without:.4} ({plain:.4})");
+            assert!((with - 1.0).abs() < 0.02, "with the wall's plane: {with}");
+            assert!((without - plain).abs() < 0.02, "across the segment: {without}, expected {plain}");
+        }
+    }
+
+    /// A boundary inside the medium (the same photons on both sides, say an index-matched
+    /// face): the chords on its two sides, cut by its plane, share out the photons of the whole
+    /// chord: each photon counted by exactly one of them.
+    #[test]
+    fn a_plane_between_two_chords_shares_out_their_photons() {
+        let map = PhotonMap::build(&records(50_000, 11));
+        let beam = BeamMap::from_radii(&map, vec![0.1; map.len()]);
+        let mut rng = Rng::for_task(12, Stream::Test, 3);
+        let (mut a, mut b, mut whole) = (Vec::new(), Vec::new(), Vec::new());
+        let mut shared = 0;
+        for _ in 0..50 {
+            let d = DVec3::new(rng.uniform() - 0.5, rng.uniform() - 0.5, 1.0).normalize();
+            let cross = DVec3::new(0.3 + 0.4 * rng.uniform(), 0.3 + 0.4 * rng.uniform(), 1.0);
+            let normal = DVec3::new(0.2 * rng.uniform(), 0.0, 1.0);
+            let (sa, sb) = (0.4 + 0.3 * rng.uniform(), 0.4 + 0.3 * rng.uniform());
+            beam.query(&map, cross - sa * d, d, sa, SegmentEnds { start: None, end: Some(normal) }, &mut a);
+            beam.query(&map, cross, d, sb, SegmentEnds { start: Some(-normal), end: None }, &mut b);
+            beam.query(&map, cross - sa * d, d, sa + sb, SegmentEnds::default(), &mut whole);
+            let mut both: Vec<u32> = a.iter().chain(&b).map(|h| h.index).collect();
+            both.sort_unstable();
+            let mut all: Vec<u32> = whole.iter().map(|h| h.index).collect();
+            all.sort_unstable();
+            assert_eq!(both, all);
+            shared += a.len().min(b.len());
+        }
+        assert!(shared > 1000, "both sides must hold photons: {shared}");
     }
 }

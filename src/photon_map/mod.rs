@@ -25,7 +25,7 @@ pub mod scatter_rows;
 pub mod stratified;
 
 pub use crate::spectrum::BandValues;
-pub use beam::{BeamEstimator, BeamHit, BeamMap};
+pub use beam::{BeamEstimator, BeamHit, BeamMap, SegmentEnds};
 pub use estimate::{DiscShare, Estimator, Paths};
 pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;

@@ -130,7 +130,8 @@ fn straight_leg(
     let entry = region.entry_distance(w.position, w.dir, end).filter(|t| *t < end);
     let length = entry.unwrap_or(end);
     w.chords += 1;
-    let chord = Chord { origin: w.position, dir: w.dir, length, medium: Some(w.medium), column_m: None };
+    let end_normal = if entry.is_none() { hit.map(|h| h.normal) } else { None };
+    let chord = Chord { origin: w.position, dir: w.dir, length, medium: Some(w.medium), column_m: None, end_normal };
     if let Some(t) = visit(&chord).filter(|t| *t < length) {
         return Leg::Done(Event::Medium {
             position: w.position + t * w.dir,
@@ -246,7 +247,8 @@ fn climb(
     let dir = if length > 0.0 { span / length } else { a.dir };
     if !prop.is_clear(w.medium) {
         w.chords += 1;
-        let chord = Chord { origin: from, dir, length, medium: Some(w.medium), column_m: Some(a.column_m) };
+        let chord =
+            Chord { origin: from, dir, length, medium: Some(w.medium), column_m: Some(a.column_m), end_normal: None };
         if let Some(t) = visit(&chord).filter(|t| *t < length) {
             return Leg::Done(Event::Medium {
                 position: from + t * dir,
@@ -307,7 +309,8 @@ fn chords_of(
         let hit = if surfaces { prop.world.bvh.intersect(&prop.world.shapes, &Ray::new(c.from, u), len) } else { None };
         let seg = hit.map_or(len, |h| h.t);
         w.chords += 1;
-        let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium), column_m: None };
+        let end_normal = hit.map(|h| h.normal);
+        let chord = Chord { origin: c.from, dir: u, length: seg, medium: Some(w.medium), column_m: None, end_normal };
         if let Some(t) = visit(&chord).filter(|t| *t < seg) {
             return Some(Event::Medium {
                 position: c.from + t * u,

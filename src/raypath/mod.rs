@@ -71,6 +71,10 @@ pub struct Chord {
     /// its optical depth is σ_t(λ)·C, not the straight segment's. Only a propagator built with
     /// [`Propagator::with_upward_shell`]`(.., true)` hands such chords to its visitors.
     pub column_m: Option<f64>,
+    /// The normal of the surface the chord ends on (either orientation), `None` where it ends
+    /// inside its medium (a step of a curved path, the edge of a gradient region, the world's
+    /// sphere): where the medium it runs through may end.
+    pub end_normal: Option<DVec3>,
 }
 
 /// What light meets next.
@@ -294,7 +298,14 @@ impl<'a> Propagator<'a> {
         let hit = self.world.bvh.intersect(&self.world.shapes, &ray, f64::INFINITY);
         if let Some(m) = state.medium {
             let length = hit.map_or_else(|| self.world_exit(state.position, state.dir), |h| h.t);
-            let chord = Chord { origin: state.position, dir: state.dir, length, medium: state.medium, column_m: None };
+            let chord = Chord {
+                origin: state.position,
+                dir: state.dir,
+                length,
+                medium: state.medium,
+                column_m: None,
+                end_normal: hit.map(|h| h.normal),
+            };
             if let Some(t) = visit(&chord).filter(|t| *t < length) {
                 return Event::Medium { position: ray.at(t), dir: state.dir, path_length: t, medium: m };
             }

@@ -27,7 +27,7 @@ use crate::geometry::Hit;
 use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Coefficients, Medium, tracking};
-use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows};
+use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::sampling::ScrambledSobol2;
@@ -96,6 +96,8 @@ struct At<'l> {
     /// The point a camera sample's shadow rays sample on the lights at its diffuse hit, when
     /// the pixel stratifies it ([`EyeTracer::camera_radiance`]).
     light_u: Option<[f64; 2]>,
+    /// The normal of the surface the path leaves (its first chord starts there), if it does.
+    from_surface: Option<DVec3>,
 }
 
 impl At<'_> {
@@ -183,14 +185,14 @@ impl<'a> EyeTracer<'a> {
         rng: &mut Rng,
         sc: &mut Scratch,
     ) -> BandValues {
-        self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera, light_u }, rng, sc)
+        self.radiance(state, At { lanes, depth: 0, mode: Mode::Camera, light_u, from_surface: None }, rng, sc)
     }
 
     /// Radiance per lane arriving along `state` as a gather ray reads it (light reflected at
     /// least once, from the global map's irradiance; emitters add nothing): the indirect part
     /// that sensors measure.
     pub fn gather_radiance(&self, state: &RayState, lanes: &Lanes, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
-        self.radiance(state, At { lanes, depth: 1, mode: Mode::Gather, light_u: None }, rng, sc)
+        self.radiance(state, At { lanes, depth: 1, mode: Mode::Gather, light_u: None, from_surface: None }, rng, sc)
     }
 
     fn radiance(&self, state: &RayState, at: At, rng: &mut Rng, sc: &mut Scratch) -> BandValues {
@@ -207,7 +209,9 @@ impl<'a> EyeTracer<'a> {
         }
         let mut along = Along { l: [0.0; MAX_BANDS], tr: [1.0; MAX_BANDS] };
         let event = self.prop.next_event_with(state, &mut |c| {
-            self.march(c, at, &mut along, rng, sc);
+            // Only the path's first chord starts on the surface it leaves.
+            let start = at.from_surface.filter(|_| c.origin == state.position);
+            self.march(c, start, at, &mut along, rng, sc);
             None
         });
         let surface = self.end(event, at, rng, sc);
@@ -322,7 +326,7 @@ impl<'a> EyeTracer<'a> {
             if dir.dot(hit.normal) < 0.0 { rel } else { 1.0 / rel }
         };
         let cos_i = dir.dot(hit.normal).abs();
-        let next = At { depth: at.depth + 1, ..at };
+        let next = At { depth: at.depth + 1, from_surface: Some(hit.normal), ..at };
         let r = self.prop.leave(hit, crate::material::reflect(dir, hit.normal), at.wavelength(), medium);
         let lr = self.radiance(&r, next, rng, sc);
         let mut out = [0.0; MAX_BANDS];
@@ -372,7 +376,8 @@ impl<'a> EyeTracer<'a> {
             return out;
         }
         let (d, across) = self.prop.cross(hit, dir, medium, lanes.nm[0], rng.uniform());
-        let mut l = self.radiance(&self.prop.leave(hit, d, at.wavelength(), across), at, rng, sc);
+        let from = At { from_surface: Some(hit.normal), ..at };
+        let mut l = self.radiance(&self.prop.leave(hit, d, at.wavelength(), across), from, rng, sc);
         for (i, l) in l.iter_mut().enumerate().take(lanes.len) {
             *l *= self.prop.radiance_scale(medium, across, lanes.nm[i], hit.point);
         }
@@ -429,7 +434,7 @@ impl<'a> EyeTracer<'a> {
         let next_medium =
             if s.transmitted { self.scene.world.medium_across(hit.prim, dir, hit.normal) } else { medium };
         let next = self.prop.leave(hit, s.dir, at.wavelength(), next_medium);
-        let l = self.radiance(&next, At { depth: at.depth + 1, ..at }, rng, sc);
+        let l = self.radiance(&next, At { depth: at.depth + 1, from_surface: Some(hit.normal), ..at }, rng, sc);
         for i in 0..lanes.len {
             // The sampled weight carries power; radiance across a refracting boundary also
             // scales by (n_here/n_there)² (L/n² is conserved).
@@ -512,7 +517,7 @@ impl<'a> EyeTracer<'a> {
     ) -> BandValues {
         let count = at.lanes.share_of(self.scene.integrator.gather_rays);
         let mut sum = [0.0; MAX_BANDS];
-        let gather = At { depth: at.depth + 1, mode: Mode::Gather, ..at };
+        let gather = At { depth: at.depth + 1, mode: Mode::Gather, from_surface: Some(hit.normal), ..at };
         let directions = ScrambledSobol2::new(rng);
         for i in 0..count {
             let d = Lambertian::sample(dir, hit.normal, directions.point(i as u32));
@@ -634,7 +639,10 @@ impl<'a> EyeTracer<'a> {
     /// change of the in-scattered light and relaxes back after small ones (see
     /// [`EyeTracer::step_length`]); transmittance carried exactly where the medium allows, by
     /// ratio tracking otherwise; Russian roulette once it is negligible.
-    fn march(&self, c: &Chord, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
+    ///
+    /// `start`: the normal of the surface the chord starts on, if it does (with the chord's
+    /// own end, where the beam estimate's tube of discs ends: [`SegmentEnds`]).
+    fn march(&self, c: &Chord, start: Option<DVec3>, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
         let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
         let m = &self.scene.world.media[id as usize];
         let lanes = at.lanes;
@@ -656,7 +664,12 @@ impl<'a> EyeTracer<'a> {
         // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
         // dozen at each shading point, and a whole chord's tube of discs costs more than that.
         if let (Some(b), Mode::Camera) = (&self.beam, at.mode) {
-            let tr = self.beam_chord(b, c, (id, m), lanes, along, rng, sc);
+            // The tube of discs ends on the surfaces the chord ends on (edge_correction).
+            let ends = match self.scene.integrator.edge_correction {
+                true => SegmentEnds { start, end: c.end_normal },
+                false => SegmentEnds::default(),
+            };
+            let tr = self.beam_chord(b, (c, ends), (id, m), lanes, along, rng, sc);
             if shadow {
                 // Single scattering by shadow rays keeps its own jittered steps along the chord.
                 self.march_steps(c, (id, m), at, None, along, rng, sc);
@@ -680,7 +693,7 @@ impl<'a> EyeTracer<'a> {
     fn beam_chord(
         &self,
         b: &BeamEstimator,
-        c: &Chord,
+        (c, ends): (&Chord, SegmentEnds),
         (id, m): (u32, &Medium),
         lanes: &Lanes,
         along: &mut Along,
@@ -700,7 +713,7 @@ impl<'a> EyeTracer<'a> {
             tr[i]
         };
         let mut hits = std::mem::take(&mut sc.hits);
-        b.gather(c.origin, c.dir, c.length, &mut hits);
+        b.gather(c.origin, c.dir, c.length, ends, &mut hits);
         sc.rays.medium_steps += 1;
         let mut tmp = [0.0; MAX_BANDS];
         let wo = -c.dir;

@@ -128,3 +128,29 @@ pub fn black_quad(origin: [f64; 3], u: [f64; 3], v: [f64; 3]) -> String {
 fn toml_vec([x, y, z]: [f64; 3]) -> String {
     format!("[{x:?}, {y:?}, {z:?}]")
 }
+
+/// The six walls of the box [−1, 1]³ as area lights of radiance `le` on both sides, each with
+/// the material named "wall" (which the scene defines).
+pub fn emitting_box_walls(le: f64) -> String {
+    let faces = [
+        ([-1, -1, -1], [2, 0, 0], [0, 2, 0]),
+        ([-1, -1, 1], [2, 0, 0], [0, 2, 0]),
+        ([-1, -1, -1], [0, 2, 0], [0, 0, 2]),
+        ([1, -1, -1], [0, 2, 0], [0, 0, 2]),
+        ([-1, -1, -1], [2, 0, 0], [0, 0, 2]),
+        ([-1, 1, -1], [2, 0, 0], [0, 0, 2]),
+    ];
+    let v = |a: [i32; 3]| toml_vec(a.map(f64::from));
+    faces
+        .iter()
+        .map(|(o, u, w)| {
+            format!(
+                "\n[[light]]\ntype = \"area\"\nshape = \"quad\"\norigin = {}\nu = {}\nv = {}\nside = \"both\"\n\
+                 material = \"wall\"\nspectrum = 1.0\nscale = {le:?}\n",
+                v(*o),
+                v(*u),
+                v(*w)
+            )
+        })
+        .collect()
+}

@@ -255,7 +255,7 @@ impl EyeTracer<'_> {
             match (depth.as_mut().filter(|_| c.medium == absorbing), c.column_m) {
                 (Some(d), Some(column)) => d.add_column(column),
                 (Some(d), None) => d.add(nm, c.origin, c.dir, c.length, rng),
-                (None, _) => self.march(c, at, &mut along, rng, sc),
+                (None, _) => self.march(c, at.from_surface.filter(|_| c.origin == s.position), at, &mut along, rng, sc),
             }
             length += c.length;
             None
