@@ -30,7 +30,7 @@ use crate::media::{Coefficients, Medium, tracking};
 use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
-use crate::sampling::{ScrambledSobol2, digital_shift};
+use crate::sampling::ScrambledSobol2;
 use crate::scene::{IntegratorSettings, Scene};
 use crate::spectrum::MAX_BANDS;
 use glam::DVec3;
@@ -55,12 +55,6 @@ const GATHER_STEPS: f64 = 4.0;
 const ADAPT_REFINE: f64 = 0.5;
 const ADAPT_RELAX: f64 = 0.1;
 const MAX_REFINE: u32 = 4;
-
-/// Keys of the digital shifts ([`digital_shift`]) that give a march step's shadow rays
-/// (`MARCH_SHIFT_KEY` + the step's index along the chord) and a single-scattering estimate's
-/// phase-sampled ray their own copies of a pixel's stratified light points.
-const MARCH_SHIFT_KEY: u64 = 0x6d61_7263_6800_0000;
-const PHASE_SHIFT_KEY: u64 = 0x7068_6173_6500_0000;
 
 /// Camera paths split at glass into both Fresnel branches for their first this-many specular
 /// events (entering and leaving a glass object), then choose one branch by Fresnel.
@@ -557,13 +551,11 @@ impl<'a> EyeTracer<'a> {
     /// for area lights, one phase-sampled ray, combined by the power heuristic (light sampling
     /// alone has infinite variance near an emitting surface). `unit_sigma_s`: σ_s of each lane
     /// at density 1 where it does not vary along the chord (every medium but an atmosphere of
-    /// constituents), computed once per chord by the caller. `light_u`: the point the shadow
-    /// rays sample on each light, stratified over the pixel's samples by the caller; `None`:
-    /// drawn from `rng`.
+    /// constituents), computed once per chord by the caller.
     #[allow(clippy::too_many_arguments)]
     fn single_scattering(
         &self,
-        (x, light_u): (DVec3, Option<[f64; 2]>),
+        x: DVec3,
         wo: DVec3,
         (id, m): (u32, &Medium),
         unit_sigma_s: Option<&BandValues>,
@@ -584,7 +576,7 @@ impl<'a> EyeTracer<'a> {
         let nm = &lanes.nm[..lanes.len];
         let phase = |l: f64, light_travel: DVec3| here.phase_eval(l, light_travel.dot(wo));
         // The phase function differs per lane, so `add` applies it (and its MIS weight) itself.
-        let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm, light_u };
+        let at = ShadowOrigin { p: x, from: None, medium: Some(id), wavelengths_nm: nm, light_u: None };
         let mut add = |light: &Light, inc: &Incident, _: f64, tr: &BandValues| {
             let s = &light.spectrum().spectrum;
             for i in 0..lanes.len {
@@ -597,8 +589,7 @@ impl<'a> EyeTracer<'a> {
         sample_lights(&self.prop, &self.scene.world.lights, &at, rng, &mut sc.rays.shadow, &|_, _| 1.0, &mut add);
         if self.scene.world.lights.iter().any(|l| !l.is_delta()) {
             // Phase sampling, for the lane-0 wavelength's phase function, toward area lights.
-            let u = light_u.map_or_else(|| rng.uniform2(), |u| digital_shift(u, PHASE_SHIFT_KEY));
-            let (wi, pdf) = here.phase_sample(lanes.nm[0], wo, u);
+            let (wi, pdf) = here.phase_sample(lanes.nm[0], wo, rng.uniform2());
             let to_light = -wi;
             sc.rays.shadow += 1;
             match self.prop.first_opaque_hit(x, None, to_light, Some(id), nm, rng) {
@@ -768,7 +759,6 @@ impl<'a> EyeTracer<'a> {
         let (mut t0, mut t_prev) = (a, a);
         let mut level = 0u32;
         let mut last: Option<f64> = None;
-        let mut steps = 0u64;
         while t0 < b {
             // Steps resolve the lanes that still carry light: a lane the medium has made opaque
             // (σ_t = 10¹² m⁻¹ at the excitation of a dye) must not hold the others to its steps.
@@ -789,10 +779,7 @@ impl<'a> EyeTracer<'a> {
                 add_by_band(&mut src, &v, lanes, &|_| 1.0);
             }
             if shadow {
-                // Step j of every sample of the pixel takes the pixel's points shifted alike.
-                let u = at.light_u.map(|u| digital_shift(u, MARCH_SHIFT_KEY + steps));
-                steps += 1;
-                let ss = self.single_scattering((x, u), wo, (id, m), unit_sigma_s.as_ref(), lanes, rng, sc);
+                let ss = self.single_scattering(x, wo, (id, m), unit_sigma_s.as_ref(), lanes, rng, sc);
                 add_by_lane(&mut src, &ss, lanes, &|_| 1.0);
             }
             for ((l, tr), s) in along.l.iter_mut().zip(&along.tr).zip(&src).take(lanes.len) {
