@@ -1,5 +1,6 @@
 //! The beam radiance estimate of the volume map (issue 17 item 6; Jarosz, Zwicker & Jensen 2008)
-//! against closed forms, the point estimate, and degenerate chords.
+//! against closed forms, the point estimate, and degenerate chords; both estimates where a
+//! chord ends on a wall.
 
 mod common;
 
@@ -179,6 +180,11 @@ fn volumetric_furnace_from_the_beam_estimate() {
 /// 0–70°; the fog's light comes from the beam estimate with large discs (the 400 nearest
 /// photons), the walls' from the global map. Returns the image mean over 4 (one band, 32 × 32).
 fn fog_box_furnace(seed: u64, edge_correction: bool) -> f64 {
+    fog_box_furnace_read_by("beam", seed, edge_correction)
+}
+
+/// [`fog_box_furnace`] with the volume map read by `estimate` ("point" or "beam").
+fn fog_box_furnace_read_by(estimate: &str, seed: u64, edge_correction: bool) -> f64 {
     let toml = format!(
         r#"
 [camera]
@@ -199,7 +205,7 @@ volume_k = 400
 volume_max_radius = 0.6
 direct = "photon_map"
 final_gather = false
-volume_estimate = "beam"
+volume_estimate = "{estimate}"
 edge_correction = {edge_correction}
 spp = 1
 seed = {seed}
@@ -239,6 +245,81 @@ fn chords_ending_on_walls_read_the_fog_in_front_of_them() {
     );
     assert!((with - 1.0).abs() < 3.0 * se, "with the walls' planes: {with} ± {se}");
     assert!(gain > 5.0 * se_gain, "without them darker by {gain} ± {se_gain}");
+}
+
+/// The point estimate's ball about a march step within its radius of the wall the chord ends
+/// on reaches behind it, where no photon is: the same furnace read by the point estimate
+/// (`volume_estimate = "point"`, the 400 nearest photons) reads dark without the walls, and
+/// within 3 standard errors of L_e/(1 − ρ) with them (photons behind a wall left out, the ball's
+/// volume scaled by the share in front of it).
+#[test]
+fn a_point_estimate_beside_a_wall_reads_the_ball_in_front_of_it() {
+    let (with, without): (Vec<f64>, Vec<f64>) = (1..=12)
+        .map(|seed| (fog_box_furnace_read_by("point", seed, true), fog_box_furnace_read_by("point", seed, false)))
+        .unzip();
+    let diff: Vec<f64> = with.iter().zip(&without).map(|(a, b)| a - b).collect();
+    let ((with, se), (without, _), (gain, se_gain)) =
+        (mean_and_sem(&with), mean_and_sem(&without), mean_and_sem(&diff));
+    eprintln!(
+        "point estimate: with the walls {with:.4} ± {se:.4}, without {without:.4}, difference {gain:.4} ± {se_gain:.4}"
+    );
+    assert!((with - 1.0).abs() < 3.0 * se, "with the walls: {with} ± {se}");
+    assert!(gain > 5.0 * se_gain, "without them darker by {gain} ± {se_gain}");
+}
+
+/// The point estimate against the density of a uniform field of photons filling z < 1 (10⁶ in a
+/// unit cube; the slab's isotropic medium): at 400 points within the ball's radius of the face
+/// z = 1, with that face as a [`Wall`] the estimate is the field's within 1 %; without it,
+/// 1 − h²(3r − h)/(4r³) of it on average (h = r − d, the cap behind the face), within 1.5 %.
+#[test]
+fn a_ball_cut_by_a_wall_is_measured_in_front_of_it() {
+    use morgana::photon_map::{Estimator, Neighbours, PhotonRecord, Wall};
+    use morgana::rng::{Rng, Stream};
+    let s = scene(&collimated_slab());
+    let mut rng = Rng::for_task(21, Stream::Test, 0);
+    let n = 1_000_000;
+    let records: Vec<PhotonRecord> = (0..n)
+        .map(|_| PhotonRecord {
+            position: DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()),
+            dir: DVec3::Z,
+            normal: DVec3::ZERO,
+            wavelength_nm: 550.0,
+            power_w: 1.0,
+            path: PhotonPath::Diffuse,
+        })
+        .collect();
+    let map = PhotonMap::build(&records);
+    let est = Estimator {
+        map: &map,
+        k: 400,
+        max_radius: 0.3,
+        filter: s.integrator.filter,
+        bands: s.bands,
+        paths: Paths::All,
+        scatter_rows: None,
+        disc_share: None,
+    };
+    // Σ α f ΔΦ / (V Δλ) for density n m⁻³ of 1 W photons, α = σ_s/σ_t (the slab's medium),
+    // f = 1/(4π).
+    let exact = n as f64 * (SIGMA_S / SIGMA_T) / (4.0 * PI * s.bands.width_nm());
+    let wall = [Wall { point: DVec3::new(0.0, 0.0, 1.0), normal: DVec3::NEG_Z }];
+    let medium = (0u32, &s.world.media[0]);
+    let (mut with, mut without, mut cut) = (0.0, 0.0, 0.0);
+    let mut nb = Neighbours::default();
+    let points = 400;
+    for i in 0..points {
+        let d = 0.04 * (i as f64 + 0.5) / points as f64;
+        let x = DVec3::new(0.3 + 0.4 * rng.uniform(), 0.3 + 0.4 * rng.uniform(), 1.0 - d);
+        let (v, r) = est.volume_scattered_within(x, DVec3::X, medium, &wall, &mut nb);
+        with += v[0] / exact;
+        without += est.volume_scattered(x, DVec3::X, medium, &mut nb).0[0] / exact;
+        cut += 1.0 - wall[0].cap_fraction(x, r);
+    }
+    let (with, without, cut) = (with / points as f64, without / points as f64, cut / points as f64);
+    eprintln!("ball at a wall: with it {with:.4}, without {without:.4} (1 − cap: {cut:.4})");
+    assert!((with - 1.0).abs() < 0.01, "with the wall: {with}");
+    assert!((without / cut - 1.0).abs() < 0.015, "without it: {without}, expected {cut}");
+    assert!(cut < 0.8, "the points must lie where the wall cuts the ball: 1 − cap {cut}");
 }
 
 /// The fog box (examples/fog_box.toml, small) with `volume_estimate`: the point and beam

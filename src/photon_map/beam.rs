@@ -41,7 +41,7 @@
 //!   scenes with participating media using photon maps", SIGGRAPH 98
 //!   (`shared/papers/`).
 
-use super::{KdPoint, Neighbours, Paths, PhotonMap, ScatterRows};
+use super::{KdPoint, Neighbours, Paths, PhotonMap, ScatterRows, Wall};
 use crate::media::Medium;
 use crate::spectrum::{BandValues, Bands, MAX_BANDS};
 use glam::DVec3;
@@ -74,6 +74,20 @@ pub struct SegmentEnds {
     pub start: Option<DVec3>,
     /// Normal (either orientation) of the surface the segment ends on, if it does.
     pub end: Option<DVec3>,
+}
+
+impl SegmentEnds {
+    /// The planes of the surfaces the segment from `o` along unit `dir` of length `length`
+    /// starts and ends on, as [`Wall`]s facing the segment (a surface containing the segment's
+    /// direction bounds nothing along it and is left out).
+    pub fn walls(&self, o: DVec3, dir: DVec3, length: f64) -> Vec<Wall> {
+        let wall = |n: Option<DVec3>, point: DVec3, toward: DVec3| {
+            let n = n?.try_normalize()?;
+            let c = n.dot(toward);
+            (c != 0.0).then(|| Wall { point, normal: if c > 0.0 { n } else { -n } })
+        };
+        [wall(self.start, o, dir), wall(self.end, o + length * dir, -dir)].into_iter().flatten().collect()
+    }
 }
 
 /// An end surface met at a cosine below this (beyond 84°) keeps the plane across the segment:

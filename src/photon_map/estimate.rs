@@ -28,6 +28,15 @@
 //! [`crate::media::inelastic::BandTransfer`]); that term counts every photon, direct ones
 //! included, because shadow rays compute elastic single scattering only.
 //!
+//! Walls (`edge_correction`): where the chord being marched starts or ends on a surface within
+//! r of x, the ball reaches past it, where no photon of this medium lies, and V overstates the
+//! volume the photons found stand for: by a cap of height h = r − d (d the distance from x to
+//! the surface's tangent plane), the fraction h²(3r − h)/(4r³) of the ball — half when x lies on
+//! the wall. [`Estimator::volume_scattered_within`] counts only the photons on x's side of such
+//! [`Wall`]s (none leaks through a thin wall) and divides by V times the share of the ball left,
+//! 1 − Σ caps (caps of two walls can overlap only where a chord is shorter than the ball is wide
+//! and both its ends are oblique; the share is held at ≥ [`MIN_WALL_SHARE`] there).
+//!
 //! Folded photons: where the scene is symmetric about the sun's axis through the Earth's centre
 //! ([`crate::scene::symmetry`]) the volume map's photons are turned about it into one
 //! half-plane ([`crate::geometry::AxialFold`]) and so is each query; the k nearest then lie in
@@ -43,7 +52,8 @@ use super::filter::{Filter, filter_norm, filter_weight};
 use super::scatter_rows::{self, ScatterRows};
 use super::stratified::{Region, region_volume};
 use super::{Neighbours, PhotonMap, PhotonPath, PhotonRecord};
-use crate::media::Medium;
+use crate::media::density::Density;
+use crate::media::{Coefficients, Medium};
 use crate::spectrum::{BandValues, Bands, MAX_BANDS};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -81,6 +91,38 @@ pub trait DiscShare: Sync {
     /// The share, in (0, 1], of the disc of radius `r` about `x` in the plane normal to `n`
     /// that lies on surfaces able to hold photons arriving from `n`'s side.
     fn disc_share(&self, x: DVec3, n: DVec3, r: f64) -> f64;
+}
+
+/// A plane bounding the medium a volume estimate reads (a surface the marched chord starts or
+/// ends on): a point on it and its unit normal toward the estimate's side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wall {
+    /// A point of the plane, m.
+    pub point: DVec3,
+    /// Unit normal pointing into the medium's side.
+    pub normal: DVec3,
+}
+
+/// The least share of the ball a volume estimate divides by when walls cut it (see the module
+/// docs).
+pub const MIN_WALL_SHARE: f64 = 0.25;
+
+impl Wall {
+    /// Whether `p` lies on the medium's side of the wall (or on it).
+    fn holds(&self, p: DVec3) -> bool {
+        (p - self.point).dot(self.normal) >= 0.0
+    }
+
+    /// The fraction of the ball of radius `r` about `x` that lies behind the wall: the cap of
+    /// height h = r − d, h²(3r − h)/(4r³), for x at distance d < r in front of it; 0 beyond r.
+    pub fn cap_fraction(&self, x: DVec3, r: f64) -> f64 {
+        let d = (x - self.point).dot(self.normal).max(0.0);
+        if d >= r || r.is_nan() || r <= 0.0 {
+            return 0.0;
+        }
+        let h = (r - d) / r;
+        h * h * (3.0 - h) / 4.0
+    }
 }
 
 /// Density estimation on one map with fixed parameters.
@@ -171,10 +213,26 @@ impl Estimator<'_> {
         (id, medium): (u32, &Medium),
         nb: &mut Neighbours,
     ) -> (BandValues, f64) {
+        self.volume_scattered_within(x, wo, (id, medium), &[], nb)
+    }
+
+    /// [`Estimator::volume_scattered`] in the part of the medium in front of `walls` (see the
+    /// module docs): photons behind a wall are not counted, and the ball's volume is scaled by
+    /// the share of it in front of them. Walls apply to the plain ball only: folded photons and
+    /// air stratified in height keep their own volumes.
+    pub fn volume_scattered_within(
+        &self,
+        x: DVec3,
+        wo: DVec3,
+        (id, medium): (u32, &Medium),
+        walls: &[Wall],
+        nb: &mut Neighbours,
+    ) -> (BandValues, f64) {
         let mut out = [0.0; MAX_BANDS];
         let fold = self.map.fold();
         let (xq, wq) = fold.map_or((x, wo), |f| (f.point(x), f.direction(x, wo)));
         let Some((r2, skip)) = self.gather(xq, nb) else { return (out, 0.0) };
+        let walls = if fold.is_none() && !stratified(medium) { walls } else { &[] };
         let transfer = medium.inelastic.transfer.as_ref();
         let rows = self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium));
         for &(i, _) in &nb.items {
@@ -185,6 +243,9 @@ impl Estimator<'_> {
                 continue;
             }
             let p = self.map.record(i);
+            if !walls.iter().all(|w| w.holds(p.position)) {
+                continue;
+            }
             let l = p.wavelength_nm;
             if let Some(t) = transfer {
                 t.add_photon(&medium.inelastic, &mut out, l, p.dir.dot(wq), p.power_w);
@@ -199,8 +260,15 @@ impl Estimator<'_> {
         let r = r2.sqrt();
         let mid_nm = 0.5 * (self.bands.min_nm + self.bands.max_nm);
         let region = fold.map_or(Region::Ball, Region::Ring);
-        let scale = 1.0 / (region_volume(medium, x, r, mid_nm, region) * self.bands.width_nm());
+        let share = (1.0 - walls.iter().map(|w| w.cap_fraction(x, r)).sum::<f64>()).max(MIN_WALL_SHARE);
+        let scale = 1.0 / (share * region_volume(medium, x, r, mid_nm, region) * self.bands.width_nm());
         out.iter_mut().take(self.bands.count).for_each(|v| *v *= scale);
         (out, r)
     }
+}
+
+/// Whether `medium`'s density is a profile in height (its estimates weigh their ball by it,
+/// [`region_volume`]).
+fn stratified(medium: &Medium) -> bool {
+    matches!(medium.coefficients, Coefficients::Constituents(_)) || matches!(medium.density, Density::AirProfile(_))
 }

@@ -27,7 +27,9 @@ use crate::geometry::Hit;
 use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Coefficients, Medium, tracking};
-use crate::photon_map::{BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds};
+use crate::photon_map::{
+    BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds, Wall,
+};
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::sampling::ScrambledSobol2;
@@ -663,16 +665,16 @@ impl<'a> EyeTracer<'a> {
         let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
         // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
         // dozen at each shading point, and a whole chord's tube of discs costs more than that.
+        // Estimates end on the surfaces the chord starts and ends on (edge_correction).
+        let ends = match self.scene.integrator.edge_correction {
+            true => SegmentEnds { start, end: c.end_normal },
+            false => SegmentEnds::default(),
+        };
         if let (Some(b), Mode::Camera) = (&self.beam, at.mode) {
-            // The tube of discs ends on the surfaces the chord ends on (edge_correction).
-            let ends = match self.scene.integrator.edge_correction {
-                true => SegmentEnds { start, end: c.end_normal },
-                false => SegmentEnds::default(),
-            };
             let tr = self.beam_chord(b, (c, ends), (id, m), lanes, along, rng, sc);
             if shadow {
                 // Single scattering by shadow rays keeps its own jittered steps along the chord.
-                self.march_steps(c, (id, m), at, None, along, rng, sc);
+                self.march_steps((c, &[]), (id, m), at, None, along, rng, sc);
             } else {
                 along.tr.iter_mut().zip(&tr).take(lanes.len).for_each(|(a, t)| *a *= t);
             }
@@ -682,7 +684,8 @@ impl<'a> EyeTracer<'a> {
             Mode::Camera => self.volume.as_ref(),
             Mode::Gather => self.volume_all.as_ref(),
         };
-        self.march_steps(c, (id, m), at, est, along, rng, sc);
+        let walls = ends.walls(c.origin, c.dir, c.length);
+        self.march_steps((c, &walls), (id, m), at, est, along, rng, sc);
     }
 
     /// The beam estimate along chord `c` (see [`crate::photon_map::beam`]): adds
@@ -732,11 +735,12 @@ impl<'a> EyeTracer<'a> {
     }
 
     /// The ray march of [`EyeTracer::march`] over chord `c` in medium `(id, m)`, reading the
-    /// point estimate `est` (if any) and shadow rays (if the plan has them) at every step.
+    /// point estimate `est` (if any; in front of `walls`, the surfaces the chord starts and ends
+    /// on) and shadow rays (if the plan has them) at every step.
     #[allow(clippy::too_many_arguments)]
     fn march_steps(
         &self,
-        c: &Chord,
+        (c, walls): (&Chord, &[Wall]),
         (id, m): (u32, &Medium),
         at: At,
         est: Option<&Estimator>,
@@ -775,7 +779,7 @@ impl<'a> EyeTracer<'a> {
             let x = c.origin + s * c.dir;
             let mut src = [0.0; MAX_BANDS];
             if let Some(e) = est {
-                let (v, _) = e.volume_scattered(x, wo, (id, m), &mut sc.nb);
+                let (v, _) = e.volume_scattered_within(x, wo, (id, m), walls, &mut sc.nb);
                 add_by_band(&mut src, &v, lanes, &|_| 1.0);
             }
             if shadow {

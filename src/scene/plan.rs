@@ -381,12 +381,10 @@ fn volume_map_decision(facts: &SceneFacts, s: &IntegratorSettings) -> Decision {
                 "; eye rays read it by the beam estimate (every photon whose disc a chord crosses, one query per chord; volume_estimate = \"beam\")"
             }
         });
-        if s.volume_estimate == VolumeEstimate::Beam {
-            d.why.push_str(match s.edge_correction {
-                true => ", its tube of discs ending on the planes of the surfaces a chord ends on (edge_correction = true)",
-                false => ", its tube of discs ending across the chord, so fog before a wall met obliquely reads dark (edge_correction = false)",
-            });
-        }
+        d.why.push_str(match s.edge_correction {
+            true => ", estimates ending on the planes of the surfaces a chord starts and ends on (edge_correction = true)",
+            false => ", estimates reaching past the surfaces a chord ends on, so fog before a wall reads dark (edge_correction = false)",
+        });
         if let Some(words) = &facts.axial_words {
             d.why.push_str(words);
         }
