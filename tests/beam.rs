@@ -267,7 +267,7 @@ fn a_point_estimate_beside_a_wall_reads_the_ball_in_front_of_it() {
 /// 1 − h²(3r − h)/(4r³) of it on average (h = r − d, the cap behind the face), within 1.5 %.
 #[test]
 fn a_ball_cut_by_a_wall_is_measured_in_front_of_it() {
-    use morgana::photon_map::{Estimator, Neighbours, PhotonRecord, Wall};
+    use morgana::photon_map::{Estimator, Neighbours, PhotonRecord, Wall, Walls};
     use morgana::rng::{Rng, Stream};
     let s = scene(&collimated_slab());
     let mut rng = Rng::for_task(21, Stream::Test, 0);
@@ -296,7 +296,7 @@ fn a_ball_cut_by_a_wall_is_measured_in_front_of_it() {
     // Σ α f ΔΦ / (V Δλ) for density n m⁻³ of 1 W photons, α = σ_s/σ_t (the slab's medium),
     // f = 1/(4π).
     let exact = n as f64 * (SIGMA_S / SIGMA_T) / (4.0 * PI * s.bands.width_nm());
-    let wall = [Wall { point: DVec3::new(0.0, 0.0, 1.0), normal: DVec3::NEG_Z }];
+    let wall = Walls { ends: [None, Some(Wall { point: DVec3::new(0.0, 0.0, 1.0), normal: DVec3::NEG_Z })] };
     let medium = (0u32, &s.world.media[0]);
     let (mut with, mut without, mut cut) = (0.0, 0.0, 0.0);
     let mut nb = Neighbours::default();
@@ -307,7 +307,7 @@ fn a_ball_cut_by_a_wall_is_measured_in_front_of_it() {
         let (v, r) = est.volume_scattered_within(x, DVec3::X, medium, &wall, &mut nb);
         with += v[0] / exact;
         without += est.volume_scattered(x, DVec3::X, medium, &mut nb).0[0] / exact;
-        cut += 1.0 - wall[0].cap_fraction(x, r);
+        cut += 1.0 - wall.iter().map(|w| w.cap_fraction(x, r)).sum::<f64>();
     }
     let (with, without, cut) = (with / points as f64, without / points as f64, cut / points as f64);
     eprintln!("ball at a wall: with it {with:.4}, without {without:.4} (1 − cap: {cut:.4})");

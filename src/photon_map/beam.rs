@@ -41,7 +41,7 @@
 //!   scenes with participating media using photon maps", SIGGRAPH 98
 //!   (`shared/papers/`).
 
-use super::{KdPoint, Neighbours, Paths, PhotonMap, ScatterRows, Wall};
+use super::{KdPoint, Neighbours, Paths, PhotonMap, ScatterRows, Wall, Walls};
 use crate::media::Medium;
 use crate::spectrum::{BandValues, Bands, MAX_BANDS};
 use glam::DVec3;
@@ -80,13 +80,13 @@ impl SegmentEnds {
     /// The planes of the surfaces the segment from `o` along unit `dir` of length `length`
     /// starts and ends on, as [`Wall`]s facing the segment (a surface containing the segment's
     /// direction bounds nothing along it and is left out).
-    pub fn walls(&self, o: DVec3, dir: DVec3, length: f64) -> Vec<Wall> {
+    pub fn walls(&self, o: DVec3, dir: DVec3, length: f64) -> Walls {
         let wall = |n: Option<DVec3>, point: DVec3, toward: DVec3| {
             let n = n?.try_normalize()?;
             let c = n.dot(toward);
             (c != 0.0).then(|| Wall { point, normal: if c > 0.0 { n } else { -n } })
         };
-        [wall(self.start, o, dir), wall(self.end, o + length * dir, -dir)].into_iter().flatten().collect()
+        Walls { ends: [wall(self.start, o, dir), wall(self.end, o + length * dir, -dir)] }
     }
 }
 

@@ -103,6 +103,21 @@ pub struct Wall {
     pub normal: DVec3,
 }
 
+/// The walls of one chord (the surfaces it starts and ends on, when it does), held without
+/// allocating.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Walls {
+    /// At the chord's start and at its end.
+    pub ends: [Option<Wall>; 2],
+}
+
+impl Walls {
+    /// The walls there are.
+    pub fn iter(&self) -> impl Iterator<Item = &Wall> {
+        self.ends.iter().flatten()
+    }
+}
+
 /// The least share of the ball a volume estimate divides by when walls cut it (see the module
 /// docs).
 pub const MIN_WALL_SHARE: f64 = 0.25;
@@ -213,7 +228,7 @@ impl Estimator<'_> {
         (id, medium): (u32, &Medium),
         nb: &mut Neighbours,
     ) -> (BandValues, f64) {
-        self.volume_scattered_within(x, wo, (id, medium), &[], nb)
+        self.volume_scattered_within(x, wo, (id, medium), &Walls::default(), nb)
     }
 
     /// [`Estimator::volume_scattered`] in the part of the medium in front of `walls` (see the
@@ -225,14 +240,14 @@ impl Estimator<'_> {
         x: DVec3,
         wo: DVec3,
         (id, medium): (u32, &Medium),
-        walls: &[Wall],
+        walls: &Walls,
         nb: &mut Neighbours,
     ) -> (BandValues, f64) {
         let mut out = [0.0; MAX_BANDS];
         let fold = self.map.fold();
         let (xq, wq) = fold.map_or((x, wo), |f| (f.point(x), f.direction(x, wo)));
         let Some((r2, skip)) = self.gather(xq, nb) else { return (out, 0.0) };
-        let walls = if fold.is_none() && !stratified(medium) { walls } else { &[] };
+        let walls = if fold.is_none() && !stratified(medium) { *walls } else { Walls::default() };
         let transfer = medium.inelastic.transfer.as_ref();
         let rows = self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium));
         for &(i, _) in &nb.items {

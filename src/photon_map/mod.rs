@@ -26,7 +26,7 @@ pub mod stratified;
 
 pub use crate::spectrum::BandValues;
 pub use beam::{BeamEstimator, BeamHit, BeamMap, SegmentEnds};
-pub use estimate::{DiscShare, Estimator, MIN_WALL_SHARE, Paths, Wall};
+pub use estimate::{DiscShare, Estimator, MIN_WALL_SHARE, Paths, Wall, Walls};
 pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};

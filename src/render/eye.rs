@@ -28,7 +28,7 @@ use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Coefficients, Medium, tracking};
 use crate::photon_map::{
-    BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds, Wall,
+    BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds, Walls,
 };
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
@@ -674,7 +674,7 @@ impl<'a> EyeTracer<'a> {
             let tr = self.beam_chord(b, (c, ends), (id, m), lanes, along, rng, sc);
             if shadow {
                 // Single scattering by shadow rays keeps its own jittered steps along the chord.
-                self.march_steps((c, &[]), (id, m), at, None, along, rng, sc);
+                self.march_steps((c, &Walls::default()), (id, m), at, None, along, rng, sc);
             } else {
                 along.tr.iter_mut().zip(&tr).take(lanes.len).for_each(|(a, t)| *a *= t);
             }
@@ -740,7 +740,7 @@ impl<'a> EyeTracer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn march_steps(
         &self,
-        (c, walls): (&Chord, &[Wall]),
+        (c, walls): (&Chord, &Walls),
         (id, m): (u32, &Medium),
         at: At,
         est: Option<&Estimator>,
