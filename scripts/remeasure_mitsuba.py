@@ -40,6 +40,15 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import peer_mitsuba as pm  # noqa: E402
 
 
+def square_se(x: float, se: float, mean: float) -> str:
+    """The standard error of a split-reference squared error x², relative to x² — or, where the
+    estimate of x² came out at or below 0 (clipped to x = 0: the reference's noise exceeds the
+    image's error), as the root of that standard error in % of the image mean."""
+    if x > 0:
+        return f"± {100 * se / x**2:.0f}%"
+    return f"estimated ≤ 0, ± ({100 * math.sqrt(se) / mean:.1f}% of the mean)²"
+
+
 def mitsuba_mse_per_chunk(z) -> tuple[float, float, float, float, int]:
     """(mean over pixels of one chunk's variance, that over the unmasked ..., CPU s per chunk,
     the standard error of the first from the chunks' spread, n). Needs the chunk images."""
@@ -187,7 +196,7 @@ def main(argv=None) -> int:
             _, corr_r = rest.errors(img)
             cross_r, cross_r_se = rest.cross(img)
             print(f"    without rows {y0}..{y1 - 1}, columns {x0}..{x1 - 1}: corrected {pc(corr_r, rest.mean)}, "
-                  f"split reference {pc(cross_r, rest.mean)} (its square ± {100 * cross_r_se / cross_r**2:.0f}%), "
+                  f"split reference {pc(cross_r, rest.mean)} (its square {square_se(cross_r, cross_r_se, rest.mean)}), "
                   f"Mitsuba {pc(mi_r, rest.mean)}: ratio {corr_r / mi_r:.3f} (split {cross_r / mi_r:.3f})")
         own = own_standard_error(Path(path), img)
         if own is not None:
