@@ -643,7 +643,8 @@ impl<'a> EyeTracer<'a> {
     /// ratio tracking otherwise; Russian roulette once it is negligible.
     ///
     /// `start`: the normal of the surface the chord starts on, if it does (with the chord's
-    /// own end, where the beam estimate's tube of discs ends: [`SegmentEnds`]).
+    /// own end, where the volume estimates end: the beam estimate's tube of discs, the point
+    /// estimate's ball; [`SegmentEnds`]).
     fn march(&self, c: &Chord, start: Option<DVec3>, at: At, along: &mut Along, rng: &mut Rng, sc: &mut Scratch) {
         let Some(id) = c.medium.filter(|m| !self.prop.is_clear(*m)) else { return };
         let m = &self.scene.world.media[id as usize];
@@ -663,13 +664,13 @@ impl<'a> EyeTracer<'a> {
             return;
         }
         let shadow = at.mode == Mode::Camera && self.scene.plan.shadow_rays.on;
-        // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
-        // dozen at each shading point, and a whole chord's tube of discs costs more than that.
         // Estimates end on the surfaces the chord starts and ends on (edge_correction).
         let ends = match self.scene.integrator.edge_correction {
             true => SegmentEnds { start, end: c.end_normal },
             false => SegmentEnds::default(),
         };
+        // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
+        // dozen at each shading point, and a whole chord's tube of discs costs more than that.
         if let (Some(b), Mode::Camera) = (&self.beam, at.mode) {
             let tr = self.beam_chord(b, (c, ends), (id, m), lanes, along, rng, sc);
             if shadow {
