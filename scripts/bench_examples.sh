@@ -6,7 +6,8 @@
 #
 # Each example is rendered with BASE_BIN, then with NEW_BIN (`render FILE --out OUT/EXAMPLE.{base,new}
 # --quiet`), and the script prints the user + system CPU seconds of each process and, from its
-# report.json, the CPU seconds of the eye pass and of the beam estimate's disc radii. CPU time
+# report.json, the CPU seconds of the eye pass and of the beam estimate's disc radii (how the two
+# images differ: scripts/compare_images.py OUT EXAMPLE...). CPU time
 # rather than wall time, so that other load on a shared machine distorts it less (it still adds
 # some ±10 %: caches and memory are shared). Optional: SHRINK divides the camera's width and
 # height (default 1: the shipped size), THREADS sets --threads, and BASE_KEYS / NEW_KEYS are TOML
