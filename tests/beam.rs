@@ -132,18 +132,7 @@ volume_estimate = "beam"
 spp = 1
 seed = {seed}
 
-[world]
-medium = "fog"
-
-[[medium]]
-name = "fog"
-sigma_t = 1.0
-albedo = 1.0
-
-[[material]]
-name = "wall"
-type = "lambertian"
-reflectance = 0.5
+{fog}
 
 [[light]]
 type = "area"
@@ -154,7 +143,17 @@ side = "back"
 material = "wall"
 spectrum = 1.0
 scale = 2.0
-"#
+"#,
+        fog = fog_and_walls(1.0)
+    )
+}
+
+/// The furnaces' world: a non-absorbing fog of extinction `sigma_t` (m⁻¹) filling it, and the
+/// walls' material (Lambertian, ρ = 0.5).
+fn fog_and_walls(sigma_t: f64) -> String {
+    format!(
+        "[world]\nmedium = \"fog\"\n\n[[medium]]\nname = \"fog\"\nsigma_t = {sigma_t:?}\nalbedo = 1.0\n\n\
+         [[material]]\nname = \"wall\"\ntype = \"lambertian\"\nreflectance = 0.5\n"
     )
 }
 
@@ -206,19 +205,9 @@ edge_correction = {edge_correction}
 spp = 1
 seed = {seed}
 
-[world]
-medium = "fog"
-
-[[medium]]
-name = "fog"
-sigma_t = 0.5
-albedo = 1.0
-
-[[material]]
-name = "wall"
-type = "lambertian"
-reflectance = 0.5
+{fog}
 {walls}"#,
+        fog = fog_and_walls(0.5),
         walls = emitting_box_walls(2.0)
     );
     image_mean(&render_with(&scene(&toml), 2).image.data) / 4.0
