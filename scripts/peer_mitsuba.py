@@ -490,14 +490,16 @@ class ChunkSums:
 def render_reference(runner_factory, spp: int, chunks: int, log, sums: ChunkSums | None, save) -> ChunkSums:
     """Chunk i has seed 1_000_000 + i, so the first chunks of a larger reference with the same
     spp per chunk are those of a smaller one; `sums` holds the chunks already rendered and
-    `save(sums)` is called after each new one."""
+    `save(sums)` is called after every eighth new one and the last (saving a large reference
+    after each chunk cost seconds per chunk)."""
     per = max(1, spp // chunks)
     if sums is None or sums.per != per:
         sums = ChunkSums(0, per, 0.0, 0.0, 0.0)
     for i in range(sums.n, chunks):
         img, s, cpu = runner_factory().render(per, seed=1_000_000 + i)
         sums.add(img, s, cpu)
-        save(sums)
+        if sums.n % 8 == 0 or sums.n == chunks:
+            save(sums)
         log(f"  reference chunk {i + 1}/{chunks}: {per} spp, {s:.1f} s, CPU {cpu:.1f} s "
             f"(load {os.getloadavg()[0]:.1f})")
     return sums

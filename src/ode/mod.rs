@@ -448,17 +448,22 @@ impl Integrator {
                     let err_sq = self.controller.error_norm_squared(&t.err, y0, &t.y1);
                     match self.controller.decide_squared(h_try, err_sq) {
                         controller::Decision::Accept { h_next } => {
-                            // A step cut to h_limit says nothing against the uncut proposal
-                            // beyond what its error predicts (an untested first guess may be far
-                            // too large); a step cut to less than a tenth of it (just across a
-                            // kink) predicts nothing for it.
-                            let keep = if h_try * FAC_MAX <= h {
-                                h
-                            } else {
-                                h.min(self.controller.predicted_step(h_try, err_sq))
-                            };
                             let h_next = self.controller.follow_trend(h_try, err_sq, h_next, capped);
-                            self.h_next = Some(if capped && h_next >= h_try { h_next.max(keep) } else { h_next });
+                            self.h_next = Some(if capped && h_next >= h_try {
+                                // A step cut to h_limit says nothing against the uncut proposal
+                                // beyond what its error predicts (an untested first guess may be
+                                // far too large); a step cut to less than a tenth of it (just
+                                // across a kink) predicts nothing for it. (Only here: the
+                                // prediction costs a logarithm and an exponential.)
+                                let keep = if h_try * FAC_MAX <= h {
+                                    h
+                                } else {
+                                    h.min(self.controller.predicted_step(h_try, err_sq))
+                                };
+                                h_next.max(keep)
+                            } else {
+                                h_next
+                            });
                             self.counters.accepted += 1;
                             return Ok((t.y1, t.f1, t.n1, h_try, t.c5));
                         }
