@@ -97,6 +97,7 @@ def main(argv=None) -> int:
     per = args.spp // args.chunks
     scene_text = (pm.ROOT / pm.SCENES[args.scene].toml).read_text()
     out = args.out / args.scene
+    out.mkdir(parents=True, exist_ok=True)
     path = out / f"glint_reference_{y0}_{x0}_{y1}_{x1}.npz"
     partial = path.with_suffix(".partial.npz")
     key = f"{args.window} {per}"
@@ -129,6 +130,12 @@ def main(argv=None) -> int:
     os.replace(tmp, path)
     partial.unlink(missing_ok=True)
 
+    means = stack.sum(-1).mean((1, 2))
+    print(f"window rows {y0}..{y1 - 1}, columns {x0}..{x1 - 1}, {per * n} spp: mean of the sums of the linear sRGB "
+          f"channels {means.mean():.6g} ± {means.std(ddof=1) / math.sqrt(n):.3g} (chunks' spread)")
+    if not (out / "reference.npz").exists():
+        print(f"no {out / 'reference.npz'} to compare the window with")
+        return 0
     z = np.load(out / "reference.npz")
     win = (slice(y0, y1), slice(x0, x1))
     ref, ref_var = z["rgb"][win].sum(-1), z["variance"][win].sum(-1)
