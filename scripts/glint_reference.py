@@ -33,21 +33,23 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import peer_mitsuba as pm  # noqa: E402
 
 
-def cropped(scene_text: str, window: tuple[int, int, int, int], mi) -> dict:
-    """The Mitsuba scene with its film cropped to the window."""
+def cropped(scene_text: str, window: tuple[int, int, int, int], mi, max_depth: int = -1) -> dict:
+    """The Mitsuba scene with its film cropped to the window (and volpath's `max_depth` set:
+    2 keeps single scattering and direct light only)."""
     y0, x0, y1, x1 = window
     d = pm.to_mitsuba(tomllib.loads(scene_text), mi)
+    d["integrator"]["max_depth"] = max_depth
     d["sensor"]["film"] |= {"crop_offset_x": x0, "crop_offset_y": y0, "crop_width": x1 - x0, "crop_height": y1 - y0}
     return d
 
 
-def worker(scene_text: str, window, jobs, results):
+def worker(scene_text: str, window, max_depth: int, jobs, results):
     """One Mitsuba process: (spp, seed) requests answered with (linear sRGB, CPU seconds)."""
     import mitsuba as mi
 
     mi.set_variant("scalar_spectral")
     mi.set_log_level(mi.LogLevel.Warn)
-    scene = mi.load_dict(cropped(scene_text, window, mi))
+    scene = mi.load_dict(cropped(scene_text, window, mi, max_depth))
     results.put("ready")
     while (job := jobs.get()) is not None:
         spp, seed = job
@@ -56,14 +58,14 @@ def worker(scene_text: str, window, jobs, results):
         results.put((seed, pm.mitsuba_xyz_to_srgb(img), time.process_time() - c))
 
 
-def render_chunks(scene_text: str, window, per: int, seeds: list[int], threads: int, save):
+def render_chunks(scene_text: str, window, max_depth: int, per: int, seeds: list[int], threads: int, save):
     """Chunks of `per` spp, one per seed, on `threads` processes; `save(seed, img, cpu)` as each
     arrives."""
     import multiprocessing as mp
 
     ctx = mp.get_context("spawn")
     jobs, results = ctx.Queue(), ctx.Queue()
-    procs = [ctx.Process(target=worker, args=(scene_text, window, jobs, results), daemon=True)
+    procs = [ctx.Process(target=worker, args=(scene_text, window, max_depth, jobs, results), daemon=True)
              for _ in range(threads)]
     for proc in procs:
         proc.start()
@@ -87,6 +89,8 @@ def main(argv=None) -> int:
     p.add_argument("--chunks", type=int, default=32)
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out", type=Path, default=pm.ROOT / "out/mitsuba_bench")
+    p.add_argument("--max-depth", type=int, default=-1,
+                   help="volpath's max_depth (-1: unlimited, the reference's; 2: single scattering and direct light)")
     args = p.parse_args(argv)
     window = tuple(int(v) for v in args.window.split(","))
     y0, x0, y1, x1 = window
@@ -98,9 +102,10 @@ def main(argv=None) -> int:
     scene_text = (pm.ROOT / pm.SCENES[args.scene].toml).read_text()
     out = args.out / args.scene
     out.mkdir(parents=True, exist_ok=True)
-    path = out / f"glint_reference_{y0}_{x0}_{y1}_{x1}.npz"
+    depth = "" if args.max_depth == -1 else f"_depth{args.max_depth}"
+    path = out / f"glint_reference_{y0}_{x0}_{y1}_{x1}{depth}.npz"
     partial = path.with_suffix(".partial.npz")
-    key = f"{args.window} {per}"
+    key = f"{args.window} {per} {args.max_depth}"
     images, cpus, done = [], [], []
     if partial.exists():
         z = np.load(partial)
@@ -119,7 +124,7 @@ def main(argv=None) -> int:
 
     seeds = [2_000_000 + i for i in range(args.chunks) if 2_000_000 + i not in done]
     if seeds:
-        render_chunks(scene_text, window, per, seeds, args.threads, save)
+        render_chunks(scene_text, window, args.max_depth, per, seeds, args.threads, save)
     stack = np.stack(images)
     n = len(stack)
     mean = stack.mean(0)

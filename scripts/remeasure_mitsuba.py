@@ -145,7 +145,8 @@ def main(argv=None) -> int:
     mse_mi, var_mi, cpu_mi, mse_mi_se, n = mitsuba_mse_per_chunk(z)
     if args.glint_reference:
         windows = sorted((args.out / args.scene).glob("glint_reference_*.npz"))
-        windows = [w for w in windows if not w.name.endswith(".partial.npz")]
+        # Windows of a depth-limited volpath (`glint_reference.py --max-depth`) are not the reference.
+        windows = [w for w in windows if not w.name.endswith(".partial.npz") and "_depth" not in w.name]
         if not windows:
             p.error(f"--glint-reference: no glint_reference_*.npz in {args.out / args.scene}")
         for w in windows:
