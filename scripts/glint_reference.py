@@ -8,7 +8,7 @@
 Renders the scene's Mitsuba translation (`peer_mitsuba.to_mitsuba`, the same volpath integrator
 as the reference) with the film cropped to the window (rows Y0 to Y1 − 1, columns X0 to X1 − 1, as
 `remeasure_mitsuba.py --exclude` reads them),
-`--spp` samples per pixel in `--chunks` independent chunks (seeds 2 000 000 + i: none shared
+`--spp` samples per pixel in `--chunks` independent chunks (seeds 2 000 000 + i, or `--first-seed` + i: none shared
 with the reference's chunks), on `--threads` worker processes. Saves the chunks' sums, squares
 and images beside the reference (OUT/SCENE/glint_reference_Y0_X0_Y1_X1.npz; resumable from
 its .partial.npz after each chunk) and prints, per pixel of the window, the new
@@ -91,6 +91,8 @@ def main(argv=None) -> int:
     p.add_argument("--out", type=Path, default=pm.ROOT / "out/mitsuba_bench")
     p.add_argument("--max-depth", type=int, default=-1,
                    help="volpath's max_depth (-1: unlimited, the reference's; 2: single scattering and direct light)")
+    p.add_argument("--first-seed", type=int, default=2_000_000,
+                   help="chunk i renders with seed FIRST_SEED + i (the default shares none with the reference's chunks)")
     args = p.parse_args(argv)
     window = tuple(int(v) for v in args.window.split(","))
     y0, x0, y1, x1 = window
@@ -105,7 +107,7 @@ def main(argv=None) -> int:
     depth = "" if args.max_depth == -1 else f"_depth{args.max_depth}"
     path = out / f"glint_reference_{y0}_{x0}_{y1}_{x1}{depth}.npz"
     partial = path.with_suffix(".partial.npz")
-    key = f"{args.window} {per} {args.max_depth}"
+    key = f"{args.window} {per} {args.max_depth} {args.first_seed}"
     images, cpus, done = [], [], []
     if partial.exists():
         z = np.load(partial)
@@ -122,7 +124,7 @@ def main(argv=None) -> int:
         os.replace(tmp, partial)
         print(f"  chunk {len(done)}/{args.chunks}: {per} spp, CPU {cpu:.1f} s", flush=True)
 
-    seeds = [2_000_000 + i for i in range(args.chunks) if 2_000_000 + i not in done]
+    seeds = [args.first_seed + i for i in range(args.chunks) if args.first_seed + i not in done]
     if seeds:
         render_chunks(scene_text, window, args.max_depth, per, seeds, args.threads, save)
     stack = np.stack(images)
