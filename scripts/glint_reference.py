@@ -3,18 +3,23 @@
 "Measured goals"), where the 8 192-spp reference's chunks disagree with the geometric coverage.
 
     .venv/bin/python scripts/glint_reference.py [--scene volume_caustic] [--window 38,38,43,43]
-        [--spp 1048576] [--chunks 32] [--threads 2]
+        [--spp 1048576] [--chunks 32] [--threads 2] [--max-depth D] [--first-seed S]
 
 Renders the scene's Mitsuba translation (`peer_mitsuba.to_mitsuba`, the same volpath integrator
-as the reference) with the film cropped to the window (rows Y0 to Y1 − 1, columns X0 to X1 − 1, as
-`remeasure_mitsuba.py --exclude` reads them),
-`--spp` samples per pixel in `--chunks` independent chunks (seeds 2 000 000 + i, or `--first-seed` + i: none shared
-with the reference's chunks), on `--threads` worker processes. Saves the chunks' sums, squares
-and images beside the reference (OUT/SCENE/glint_reference_Y0_X0_Y1_X1.npz; resumable from
-its .partial.npz after each chunk) and prints, per pixel of the window, the new
-value and its standard error from the chunks' spread beside the reference's, in luminance-like
-sums of the linear sRGB channels, and each pixel's share of the window's 3 × 3 centre.
-`remeasure_mitsuba.py --glint-reference` puts every such window into the reference.
+as the reference) with the film cropped to the window (rows Y0 to Y1 − 1, columns X0 to X1 − 1,
+as `remeasure_mitsuba.py --exclude` reads them), `--spp` samples per pixel in `--chunks`
+independent chunks (seeds S + i, S = 2 000 000 by default: none shared with the reference's
+chunks), on `--threads` worker processes. Saves the chunks' sums, squares and images beside the
+reference (OUT/SCENE/glint_reference_Y0_X0_Y1_X1.npz; resumable from its .partial.npz after each
+chunk) and prints the window's mean with the chunks' standard error and, if OUT/SCENE holds a
+reference, per pixel of the window the new value and its standard error from the chunks' spread
+beside the reference's, in luminance-like sums of the linear sRGB channels, and each pixel's
+share of the window's 3 × 3 centre. `remeasure_mitsuba.py --glint-reference` puts every such
+window into the reference.
+
+`--max-depth D` limits volpath's path length (2: direct light and single scattering, the part a
+renderer computes without photons) and adds `_depthD` to the file's name, which
+`remeasure_mitsuba.py` leaves out of the reference.
 """
 
 from __future__ import annotations
