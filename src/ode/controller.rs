@@ -213,6 +213,17 @@ impl Controller {
         h * SAFETY * (-0.1 * err_sq.ln()).exp()
     }
 
+    /// The next step after an accepted step `h_try` that was cut short of the proposal `h`
+    /// (to reach a limit) and whose controller proposes `h_next`: a cut step says nothing
+    /// against the uncut proposal beyond what its error predicts (an untested first guess may be
+    /// far too large), and a step cut to less than a tenth of it (just across a kink) predicts
+    /// nothing for it. The prediction costs a logarithm and an exponential, so callers ask only
+    /// for cut steps.
+    pub fn after_cut(&self, h: f64, h_try: f64, err_sq: f64, h_next: f64) -> f64 {
+        let keep = if h_try * FAC_MAX <= h { h } else { h.min(self.predicted_step(h_try, err_sq)) };
+        h_next.max(keep)
+    }
+
     /// The starting step size: the larger of Hairer's estimate (Hairer I, §II.4, steps a–f, for
     /// a method of order 5, from y0 and f0 = f(y0)) and the step the ray's own scales allow.
     /// One extra field sample (counted in `evals`).
@@ -317,6 +328,20 @@ mod tests {
         assert_eq!(c.decide(0.45, 1e-3), Decision::Accept { h_next: 0.45 });
         assert!(matches!(c.decide(1.0, f64::NAN), Decision::Reject { h_retry } if h_retry == FAC_MIN));
         assert!(matches!(c.decide(1.0, 1e300), Decision::Reject { h_retry } if h_retry == FAC_MIN));
+    }
+
+    /// A step cut to a limit keeps the uncut proposal unless its error predicts less; one cut
+    /// to under a tenth of the proposal (across a kink) keeps it whatever its error.
+    #[test]
+    fn a_cut_step_keeps_the_proposal_its_error_allows() {
+        let c = Controller::new(1e-6, 1e-9, false, 0.0, f64::INFINITY);
+        assert_eq!(c.after_cut(1.0, 0.05, 1e6, 0.2), 1.0);
+        // err² = 1e−10: 0.5·0.9·(1e−10)^(−1/10) = 4.5 > 1, so the proposal 1 is kept.
+        assert_eq!(c.after_cut(1.0, 0.5, 1e-10, 0.6), 1.0);
+        // err² = 0.5: 0.45·0.5^(−1/10) = 0.4823 < 1 is kept over the controller's 0.3.
+        let predicted = 0.45 * 0.5f64.powf(-0.1);
+        assert!((c.after_cut(1.0, 0.5, 0.5, 0.3) - predicted).abs() < 1e-15);
+        assert_eq!(c.after_cut(1.0, 0.5, 0.5, 0.7), 0.7);
     }
 
     #[test]

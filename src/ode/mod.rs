@@ -37,7 +37,6 @@ mod settings;
 pub mod system;
 
 pub use controller::Controller;
-use controller::FAC_MAX;
 pub use dense::Dense;
 pub use error::OdeError;
 pub use settings::CurvedSettings;
@@ -449,21 +448,9 @@ impl Integrator {
                     match self.controller.decide_squared(h_try, err_sq) {
                         controller::Decision::Accept { h_next } => {
                             let h_next = self.controller.follow_trend(h_try, err_sq, h_next, capped);
-                            self.h_next = Some(if capped && h_next >= h_try {
-                                // A step cut to h_limit says nothing against the uncut proposal
-                                // beyond what its error predicts (an untested first guess may be
-                                // far too large); a step cut to less than a tenth of it (just
-                                // across a kink) predicts nothing for it. (Only here: the
-                                // prediction costs a logarithm and an exponential.)
-                                let keep = if h_try * FAC_MAX <= h {
-                                    h
-                                } else {
-                                    h.min(self.controller.predicted_step(h_try, err_sq))
-                                };
-                                h_next.max(keep)
-                            } else {
-                                h_next
-                            });
+                            let cut = capped && h_next >= h_try;
+                            self.h_next =
+                                Some(if cut { self.controller.after_cut(h, h_try, err_sq, h_next) } else { h_next });
                             self.counters.accepted += 1;
                             return Ok((t.y1, t.f1, t.n1, h_try, t.c5));
                         }
