@@ -82,9 +82,7 @@ impl SegmentEnds {
     /// direction bounds nothing along it and is left out).
     pub fn walls(&self, o: DVec3, dir: DVec3, length: f64) -> Walls {
         let wall = |n: Option<DVec3>, point: DVec3, toward: DVec3| {
-            let n = n?.try_normalize()?;
-            let c = n.dot(toward);
-            (c != 0.0).then(|| Wall { point, normal: if c > 0.0 { n } else { -n } })
+            facing(n?, toward, 0.0).map(|normal| Wall { point, normal })
         };
         Walls { ends: [wall(self.start, o, dir), wall(self.end, o + length * dir, -dir)] }
     }
@@ -199,8 +197,8 @@ impl BeamMap {
             return;
         }
         // Each end plane's normal, pointing into the segment's side of it.
-        let start = ends.start.and_then(|n| facing(n, dir));
-        let end = ends.end.and_then(|n| facing(n, -dir));
+        let start = ends.start.and_then(|n| facing(n, dir, MIN_END_COS));
+        let end = ends.end.and_then(|n| facing(n, -dir, MIN_END_COS));
         let reach = |m: Option<DVec3>| {
             m.map_or(0.0, |m| {
                 let c = m.dot(dir).abs();
@@ -244,11 +242,12 @@ impl BeamMap {
 }
 
 /// The unit normal `n` turned to face along `d` (n·d > 0), or `None` for a surface met at a
-/// grazing angle ([`MIN_END_COS`]) or a normal that is not finite and non-zero.
-fn facing(n: DVec3, d: DVec3) -> Option<DVec3> {
+/// cosine below `min_cos` (the beam's tube: [`MIN_END_COS`]), one containing `d`, or a normal
+/// that is not finite and non-zero.
+fn facing(n: DVec3, d: DVec3, min_cos: f64) -> Option<DVec3> {
     let n = n.try_normalize()?;
     let c = n.dot(d);
-    (c.abs() >= MIN_END_COS).then(|| if c > 0.0 { n } else { -n })
+    (c != 0.0 && c.abs() >= min_cos).then(|| if c > 0.0 { n } else { -n })
 }
 
 /// Whether the segment `o + t·d`, 0 ≤ t ≤ `length` (`inv` = 1/d per axis), meets the box `b`

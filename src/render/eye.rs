@@ -685,7 +685,7 @@ impl<'a> EyeTracer<'a> {
             Mode::Camera => self.volume.as_ref(),
             Mode::Gather => self.volume_all.as_ref(),
         };
-        let walls = ends.walls(c.origin, c.dir, c.length);
+        let walls = est.map_or_else(Walls::default, |_| ends.walls(c.origin, c.dir, c.length));
         self.march_steps((c, &walls), (id, m), at, est, along, rng, sc);
     }
 
