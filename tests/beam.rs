@@ -1,6 +1,6 @@
 //! The beam radiance estimate of the volume map (issue 17 item 6; Jarosz, Zwicker & Jensen 2008)
-//! against closed forms, the point estimate, and degenerate chords; both estimates where a
-//! chord ends on a wall.
+//! and photon beams (Jarosz et al. 2011) against closed forms, the point estimate, and
+//! degenerate chords; the estimates where a chord ends on a wall.
 
 mod common;
 
@@ -8,7 +8,10 @@ use common::{emitting_box_walls, mean_and_sem, render_with, scene, scene_error};
 use glam::DVec3;
 use morgana::photon::{MapKind, PassSettings, shoot};
 use morgana::photon_map::progressive::{DEFAULT_ALPHA, measure_ratio};
-use morgana::photon_map::{BeamEstimator, BeamMap, Paths, PhotonMap, PhotonPath, SegmentEnds};
+use morgana::photon_map::{
+    BeamEstimator, BeamMap, ChordEstimate, Paths, PhotonBeamMap, PhotonMap, PhotonPath, SegmentEnds, TubeEstimator,
+    tube_radii,
+};
 use morgana::scene::VolumeEstimate;
 use std::f64::consts::PI;
 
@@ -18,8 +21,14 @@ const SIGMA_T: f64 = 0.5;
 const E: f64 = 2.0;
 
 /// A 4 m × 4 m × 1 m slab (z from −0.5 to 0.5) of isotropic medium (σ_s = 0.3, σ_t = 0.5 m⁻¹)
-/// under a collimated beam travelling straight down with E = 2 W m⁻² nm⁻¹, limited to the slab.
+/// under a collimated beam travelling straight down with E = 2 W m⁻² nm⁻¹, limited to the slab,
+/// read by the beam estimate.
 fn collimated_slab() -> String {
+    collimated_slab_read_by("beam")
+}
+
+/// [`collimated_slab`] with the volume map read by `estimate`.
+fn collimated_slab_read_by(estimate: &str) -> String {
     format!(
         r#"
 [camera]
@@ -36,7 +45,7 @@ max_nm = 600.0
 
 [integrator]
 direct = "photon_map"
-volume_estimate = "beam"
+volume_estimate = "{estimate}"
 
 [[medium]]
 name = "slab"
@@ -106,10 +115,46 @@ fn beam_estimate_of_a_collimated_beam_converges_to_the_closed_form() {
     assert!((mean - want).abs() < 3.0 * se, "beam {mean} ± {se}, closed form {want}");
 }
 
+/// The photon-beam estimate of pass `pass` (fresh photons from seed `pass + 1`): the flights of
+/// the photons straight from the light (the single-scattering sources), their tubes from the 50
+/// nearest of the photons at first interactions ([`tube_radii`], at most 0.2 m) shrunk by sᵢ.
+fn photon_beam_pass(s: &morgana::scene::Scene, pass: u32) -> f64 {
+    let (sink, _) = shoot(&s.world, &PassSettings::of(s), MapKind::Global, 200_000, u64::from(pass) + 1, &|_| {});
+    let first: Vec<_> = sink.volume.into_iter().filter(|p| p.path == PhotonPath::Direct).collect();
+    let beams: Vec<_> = sink.beams.into_iter().filter(|b| b.path == PhotonPath::Direct).collect();
+    let radii = tube_radii(&PhotonMap::build(&first), &beams, 50, 0.2, measure_ratio(pass, DEFAULT_ALPHA));
+    let map = PhotonBeamMap::new(beams, radii);
+    let est = TubeEstimator { beams: &map, bands: s.bands, paths: Paths::All };
+    let medium = &s.world.media[0];
+    let (mut hits, mut tmp) = (Vec::new(), [0.0; morgana::spectrum::MAX_BANDS]);
+    let (o, d) = (DVec3::new(-1.0, 0.0, 0.0), DVec3::X);
+    est.gather(o, d, 2.0, SegmentEnds::default(), &mut hits);
+    let mut l = 0.0;
+    for h in &hits {
+        est.radiance(h, o + h.t * d, -d, (0, medium), &mut tmp, &mut |_, v| l += (-SIGMA_T * h.t).exp() * v);
+    }
+    l
+}
+
+/// Progressive passes of photon beams converge to the closed form of single scattering in a
+/// collimated beam: the mean of 16 passes lies within 3 standard errors of it, and that error
+/// is below 3 %.
+#[test]
+fn photon_beams_of_a_collimated_beam_converge_to_the_closed_form() {
+    let s = scene(&collimated_slab_read_by("photon_beams"));
+    let passes: Vec<f64> = (0..16).map(|i| photon_beam_pass(&s, i)).collect();
+    let (mean, se) = mean_and_sem(&passes);
+    let want = single_scattering_closed_form();
+    eprintln!("photon beams: {mean} ± {se}, closed form {want}");
+    assert!(se < 0.03 * want, "standard error {se} of {want}");
+    assert!((mean - want).abs() < 3.0 * se, "photon beams {mean} ± {se}, closed form {want}");
+}
+
 /// A sphere of radius 1 whose wall emits L_e = 2 inward and reflects with ρ = 0.5, filled with
 /// a non-absorbing medium (σ_t = 1 m⁻¹): radiance is L_e/(1 − ρ) = 4 everywhere (as in
-/// tests/media.rs), here with every order of scattering from the beam estimate.
-fn beam_furnace(seed: u64) -> String {
+/// tests/media.rs), here with every order of scattering from `estimate` ("beam" or
+/// "photon_beams").
+fn beam_furnace(seed: u64, estimate: &str) -> String {
     format!(
         r#"
 [camera]
@@ -128,7 +173,7 @@ max_nm = 600.0
 photons = 20000
 volume_k = 50
 direct = "photon_map"
-volume_estimate = "beam"
+volume_estimate = "{estimate}"
 spp = 1
 seed = {seed}
 
@@ -165,12 +210,24 @@ fn image_mean(values: &[f32]) -> f64 {
 /// off): the image means of 12 independent renders lie within 3 standard errors of 4.
 #[test]
 fn volumetric_furnace_from_the_beam_estimate() {
+    volumetric_furnace("beam");
+}
+
+/// The same furnace read by photon beams.
+#[test]
+fn volumetric_furnace_from_photon_beams() {
+    volumetric_furnace("photon_beams");
+}
+
+/// The sphere furnace read by `estimate`: the image means of 12 independent renders lie within
+/// 3 standard errors of 4, which are below 1 %.
+fn volumetric_furnace(estimate: &str) {
     let means: Vec<f64> =
-        (1..=12).map(|seed| image_mean(&render_with(&scene(&beam_furnace(seed)), 2).image.data)).collect();
+        (1..=12).map(|seed| image_mean(&render_with(&scene(&beam_furnace(seed, estimate)), 2).image.data)).collect();
     let (mean, se) = mean_and_sem(&means);
-    eprintln!("beam furnace: {mean} ± {se}");
+    eprintln!("{estimate} furnace: {mean} ± {se}");
     assert!(se < 0.01 * 4.0, "standard error {se}");
-    assert!((mean - 4.0).abs() < 3.0 * se, "beam furnace {mean} ± {se}, exact 4");
+    assert!((mean - 4.0).abs() < 3.0 * se, "{estimate} furnace {mean} ± {se}, exact 4");
 }
 
 /// The box [−1, 1]³ of tests/furnace.rs (walls emitting L_e = 2, reflecting ρ = 0.5 on both
@@ -238,6 +295,18 @@ fn walls_lighten_the_fog_box_furnace(estimate: &str, seeds: u64) {
     );
     assert!((with - 1.0).abs() < 3.0 * se, "{estimate}: with the walls {with} ± {se}");
     assert!(gain > 5.0 * se_gain, "{estimate}: without them darker by {gain} ± {se_gain}");
+}
+
+/// Photon beams end where their photons' flights end, on the walls, so the fog box furnace read
+/// by them needs no planes at the chords' ends: the image means of 12 seeds lie within 3
+/// standard errors of L_e/(1 − ρ).
+#[test]
+fn photon_beams_read_the_fog_box_furnace() {
+    let means: Vec<f64> = (1..=12).map(|seed| fog_box_furnace("photon_beams", seed, true)).collect();
+    let (mean, se) = mean_and_sem(&means);
+    eprintln!("photon beams, fog box furnace over L_e/(1 − ρ): {mean:.4} ± {se:.4}");
+    assert!(se < 0.01, "standard error {se}");
+    assert!((mean - 1.0).abs() < 3.0 * se, "photon beams {mean} ± {se}");
 }
 
 /// The point estimate's ball about a march step within its radius of the wall the chord ends
@@ -329,7 +398,7 @@ fn beam_and_point_estimates_agree_on_the_fog_box() {
 
 /// Chords the estimate must survive: one grazing the slab's top face (inside it, 1 µm below),
 /// one of zero length, one of NaN length: finite, non-negative radiance, nothing for the
-/// degenerate ones.
+/// degenerate ones; the face seen edge-on, read by the beam estimate and by photon beams.
 #[test]
 fn grazing_and_empty_chords_give_finite_non_negative_light() {
     let s = scene(&collimated_slab());
@@ -358,6 +427,11 @@ fn grazing_and_empty_chords_give_finite_non_negative_light() {
         .replace("width = 1\nheight = 1", "width = 8\nheight = 8");
     let r = render_with(&scene(&edge), 2);
     assert!(r.image.data.iter().all(|v| v.is_finite() && *v >= 0.0));
+    // And read by photon beams: chords along the face run along the beams' tubes' ends.
+    let tubes = edge.replace("volume_estimate = \"beam\"", "volume_estimate = \"photon_beams\"");
+    let r = render_with(&scene(&tubes), 2);
+    assert!(r.image.data.iter().all(|v| v.is_finite() && *v >= 0.0));
+    assert!(r.image.data.iter().any(|v| *v > 0.0), "the slab seen edge-on is lit");
 }
 
 /// The effect plan says which estimate reads the volume map; an unknown one is refused naming
@@ -368,8 +442,10 @@ fn the_plan_names_the_volume_estimate_and_bad_names_are_refused() {
     assert!(beam.plan.volume_map.why.contains("beam estimate"), "{}", beam.plan.volume_map.why);
     let point = scene(&collimated_slab().replace("volume_estimate = \"beam\"", "volume_estimate = \"point\""));
     assert!(point.plan.volume_map.why.contains("point estimate"), "{}", point.plan.volume_map.why);
+    let tubes = scene(&collimated_slab_read_by("photon_beams"));
+    assert!(tubes.plan.volume_map.why.contains("photon beams"), "{}", tubes.plan.volume_map.why);
     let e = scene_error(&collimated_slab().replace("volume_estimate = \"beam\"", "volume_estimate = \"beams\""));
-    assert!(e.contains("volume_estimate") && e.contains("beam") && e.contains("test.toml"), "{e}");
+    assert!(e.contains("volume_estimate") && e.contains("photon_beams") && e.contains("test.toml"), "{e}");
 }
 
 /// Unset, `volume_estimate` is the beam estimate where the volume map holds sharp-edged light —

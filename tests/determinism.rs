@@ -40,17 +40,36 @@ fn default_scene_is_identical_on_one_and_two_threads() {
 /// gives the same bytes on one and two threads, its discs' pilot radii included.
 #[test]
 fn the_volume_caustic_with_the_beam_estimate_is_identical_on_one_and_two_threads() {
+    let s = common::scene(&small_volume_caustic(""));
+    assert_eq!(s.integrator.volume_estimate, morgana::scene::VolumeEstimate::Beam);
+    identical_on_one_and_two_threads(&s);
+}
+
+/// Photon beams likewise: the flights kept in batch order, their tubes' radii and hierarchy.
+#[test]
+fn the_volume_caustic_with_photon_beams_is_identical_on_one_and_two_threads() {
+    let s = common::scene(&small_volume_caustic("volume_estimate = \"photon_beams\"\n"));
+    assert_eq!(s.integrator.volume_estimate, morgana::scene::VolumeEstimate::PhotonBeams);
+    identical_on_one_and_two_threads(&s);
+}
+
+/// The volume caustic example at 24 × 24 with 30 000 photons and two passes, `keys` added to
+/// its `[integrator]`.
+fn small_volume_caustic(keys: &str) -> String {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/volume_caustic.toml"))
         .expect("the example");
-    let small = text
-        .replace("width = 128", "width = 24")
+    text.replace("width = 128", "width = 24")
         .replace("height = 128", "height = 24")
         .replace("photons = 1000000", "photons = 30000")
         .replace("gather_rays = 16", "gather_rays = 2")
-        .replace("spp = 8", "spp = 1\npasses = 2");
-    let s = common::scene(&small);
-    assert_eq!(s.integrator.volume_estimate, morgana::scene::VolumeEstimate::Beam);
-    let (one, two) = (render_with(&s, 1), render_with(&s, 2));
+        .replace("spp = 8", "spp = 1\npasses = 2")
+        .replace("[integrator]\n", &format!("[integrator]\n{keys}"))
+}
+
+/// Renders `s` on one and on two threads: a lit image, and the same bits in its spectral data
+/// and its standard errors.
+fn identical_on_one_and_two_threads(s: &morgana::scene::Scene) {
+    let (one, two) = (render_with(s, 1), render_with(s, 2));
     let bits = |d: &[f32]| d.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     assert!(one.image.data.iter().any(|v| *v > 0.0), "image is black");
     assert!(bits(&one.image.data) == bits(&two.image.data), "spectral data differ between 1 and 2 threads");

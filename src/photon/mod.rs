@@ -31,6 +31,9 @@ pub struct PassSettings<'a> {
     pub volume_map: bool,
     /// Whether sensors read photons from the volume map (then absorbing-only media keep them).
     pub photon_sensors: bool,
+    /// Whether each photon's flights through media are kept as photon beams as well
+    /// (`volume_estimate = "photon_beams"`, with the volume map).
+    pub photon_beams: bool,
     /// The wavelengths simulated, nm; light re-emitted outside them is absorbed.
     pub range_nm: (f64, f64),
     /// Whether photons cross a layered upper air in one move ([`crate::raypath::shell`]) where
@@ -48,6 +51,8 @@ impl<'a> PassSettings<'a> {
             curved: scene.curved(),
             volume_map: scene.plan.volume_map.on,
             photon_sensors: !scene.sensors.is_empty(),
+            photon_beams: scene.plan.volume_map.on
+                && scene.integrator.volume_estimate == crate::scene::VolumeEstimate::PhotonBeams,
             range_nm: (scene.bands.min_nm, scene.bands.max_nm),
             layered_shell: true,
             deadline: crate::timing::Stop::default(),
@@ -75,16 +80,18 @@ pub fn shoot(
     shoot_batches(world, pass, kind, emitted, seed, 0..batch_count(emitted), on_batch)
 }
 
-/// Photons stored per photon emitted in a pass of `kind`, on surfaces and in media: measured by
-/// tracing the pass's first batch (its first [`BATCH`] photons, the same ones the pass itself
-/// traces), for estimating a run's memory before it allocates its maps.
-pub fn pilot(world: &World, pass: &PassSettings, kind: MapKind, emitted: u64, seed: u64) -> (f64, f64) {
+/// Photons stored per photon emitted in a pass of `kind`, on surfaces and in media, and photon
+/// beams kept per photon (where the pass keeps them): measured by tracing the pass's first batch
+/// (its first [`BATCH`] photons, the same ones the pass itself traces), for estimating a run's
+/// memory before it allocates its maps.
+pub fn pilot(world: &World, pass: &PassSettings, kind: MapKind, emitted: u64, seed: u64) -> (f64, f64, f64) {
     let n = batch_photons(emitted, 0);
     if n == 0 {
-        return (0.0, 0.0);
+        return (0.0, 0.0, 0.0);
     }
     let (sink, _) = shoot_batches(world, pass, kind, emitted, seed, 0..1, &|_| {});
-    (sink.surface.len() as f64 / n as f64, sink.volume.len() as f64 / n as f64)
+    let per = |len: usize| len as f64 / n as f64;
+    (per(sink.surface.len()), per(sink.volume.len()), per(sink.beams.len()))
 }
 
 /// How many batches a pass of `emitted` photons has (the last one may be short).
@@ -141,6 +148,7 @@ pub fn shoot_batches(
         let n = batch_photons(emitted, b);
         out.surface.clear();
         out.volume.clear();
+        out.beams.clear();
         let mut st = PhotonStats::default();
         for _ in 0..n {
             let (l, _) = chooser.choose(rng.uniform());
@@ -156,7 +164,7 @@ pub fn shoot_batches(
             }
         }
         on_batch(n);
-        (PhotonSink { surface: out.surface.clone(), volume: out.volume.clone() }, st)
+        (PhotonSink { surface: out.surface.clone(), volume: out.volume.clone(), beams: out.beams.clone() }, st)
     };
     // Batches are traced a group at a time and their photons appended in batch order, so the
     // pass holds its records once plus one group's and the workers' scratch (not every batch's
@@ -170,6 +178,7 @@ pub fn shoot_batches(
             (start..end).into_par_iter().map_init(PhotonSink::default, trace_batch).collect();
         let (surface, volume) =
             (results.iter().map(|r| r.0.surface.len()).sum(), results.iter().map(|r| r.0.volume.len()).sum());
+        let beams: usize = results.iter().map(|r| r.0.beams.len()).sum();
         if start == batches.start {
             // Room for the whole pass as its first group predicts it (5 % over), in one
             // allocation: growing by each group reallocated the records as often as there were
@@ -178,13 +187,16 @@ pub fn shoot_batches(
             let scale = (batches.end - batches.start) as f64 / (end - start) as f64 * 1.05;
             sink.surface.reserve_exact((surface as f64 * scale).ceil() as usize);
             sink.volume.reserve_exact((volume as f64 * scale).ceil() as usize);
+            sink.beams.reserve_exact((beams as f64 * scale).ceil() as usize);
         } else {
             sink.surface.reserve(surface);
             sink.volume.reserve(volume);
+            sink.beams.reserve(beams);
         }
         for (p, s) in results {
             sink.surface.extend(p.surface);
             sink.volume.extend(p.volume);
+            sink.beams.extend(p.beams);
             stats.add(&s);
         }
         start = end;

@@ -16,7 +16,7 @@ use crate::geometry::spawn_origin;
 use crate::light::Emission;
 use crate::material::Lambertian;
 use crate::media::tracking;
-use crate::photon_map::{PhotonPath, PhotonRecord};
+use crate::photon_map::{PhotonBeam, PhotonPath, PhotonRecord};
 use crate::raypath::{Event, Propagator, RayState};
 use crate::rng::Rng;
 use crate::world::World;
@@ -114,6 +114,9 @@ pub struct PhotonSink {
     pub surface: Vec<PhotonRecord>,
     /// Photons stored in media (volume map).
     pub volume: Vec<PhotonRecord>,
+    /// The photons' flights through media, chord by chord, where the pass keeps photon beams
+    /// ([`PassSettings::photon_beams`]).
+    pub beams: Vec<PhotonBeam>,
 }
 
 /// One photon in flight.
@@ -129,6 +132,23 @@ struct Flight<'a> {
 impl Flight<'_> {
     fn record(&self, position: DVec3, dir: DVec3, normal: DVec3) -> PhotonRecord {
         PhotonRecord { position, dir, normal, wavelength_nm: self.lambda, power_w: self.power_w, path: self.path }
+    }
+
+    /// Keeps the part of chord `c` the photon flies along before its interaction at `t` (if
+    /// any) as a photon beam.
+    fn keep_beam(&self, c: &crate::raypath::Chord, t: Option<f64>, beams: &mut Vec<PhotonBeam>) {
+        let length = t.map_or(c.length, |t| t.min(c.length));
+        if let Some(medium) = c.medium.filter(|_| length > 0.0 && length.is_finite()) {
+            beams.push(PhotonBeam {
+                origin: c.origin,
+                dir: c.dir,
+                length,
+                wavelength_nm: self.lambda,
+                power_w: self.power_w,
+                path: self.path,
+                medium,
+            });
+        }
     }
 
     fn after(&mut self, path: PhotonPath) {
@@ -157,6 +177,7 @@ pub fn trace(
     let origin = if em.normal == DVec3::ZERO { em.origin } else { spawn_origin(em.origin, em.normal, em.dir) };
     let mut state = RayState { position: origin, dir: em.dir, wavelength_nm: Some(f.lambda), medium };
     let store_volume = pass.volume_map;
+    let keep_beams = store_volume && pass.photon_beams && kind == MapKind::Global;
     // The layered upper air, crossed in one move (the pass asks for it only when no sensor
     // counts photons: the shell's medium then keeps none).
     let shell = prop.layered_shell();
@@ -171,7 +192,11 @@ pub fn trace(
         }
         let event = prop.next_event_with(&state, &mut |c| {
             let m = world.medium(c.medium)?;
-            tracking::sample_interaction(m, f.lambda, c.origin, c.dir, c.length, rng)
+            let t = tracking::sample_interaction(m, f.lambda, c.origin, c.dir, c.length, rng);
+            if keep_beams && c.column_m.is_none() && m.keeps_photons(pass.photon_sensors) {
+                f.keep_beam(c, t, &mut out.beams);
+            }
+            t
         });
         let next = match event {
             Event::Escape { .. } => {

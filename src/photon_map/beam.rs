@@ -264,6 +264,58 @@ fn crosses(b: &[f32; 6], o: DVec3, inv: DVec3, length: f64) -> bool {
     t0 <= t1 && b[0] <= b[3]
 }
 
+/// An estimate of the light a medium scatters toward the eye along a whole chord from one query:
+/// the beam estimate's discs ([`BeamEstimator`]) or photon beams' tubes
+/// ([`super::TubeEstimator`]).
+pub trait ChordEstimate {
+    /// What a query finds: one photon or beam and where along the chord it scatters.
+    type Hit;
+
+    /// Everything the chord from `o` along unit `dir` of length `length` (starting and ending
+    /// on the surfaces `ends`) gathers, into `hits` (cleared first), sorted by [`Self::t`].
+    fn gather(&self, o: DVec3, dir: DVec3, length: f64, ends: SegmentEnds, hits: &mut Vec<Self::Hit>);
+
+    /// Where along the chord `hit` scatters its light (where its transmittance is read), m.
+    fn t(hit: &Self::Hit) -> f64;
+
+    /// Calls `add(band, L)` with the radiance (W m⁻² sr⁻¹ nm⁻¹) `hit` scatters toward travel
+    /// direction `wo` into each band, before the transmittance from the chord's start; `x` is
+    /// the chord's point at [`Self::t`], in medium `(id, medium)`. `tmp` is scratch.
+    fn radiance(
+        &self,
+        hit: &Self::Hit,
+        x: DVec3,
+        wo: DVec3,
+        medium: (u32, &Medium),
+        tmp: &mut BandValues,
+        add: &mut impl FnMut(usize, f64),
+    );
+}
+
+impl ChordEstimate for BeamEstimator<'_> {
+    type Hit = BeamHit;
+
+    fn gather(&self, o: DVec3, dir: DVec3, length: f64, ends: SegmentEnds, hits: &mut Vec<BeamHit>) {
+        BeamEstimator::gather(self, o, dir, length, ends, hits);
+    }
+
+    fn t(hit: &BeamHit) -> f64 {
+        hit.t
+    }
+
+    fn radiance(
+        &self,
+        hit: &BeamHit,
+        _x: DVec3,
+        wo: DVec3,
+        medium: (u32, &Medium),
+        tmp: &mut BandValues,
+        add: &mut impl FnMut(usize, f64),
+    ) {
+        self.photon(hit, wo, medium, tmp, add);
+    }
+}
+
 /// The beam estimate on one volume map with fixed discs.
 pub struct BeamEstimator<'a> {
     /// The photon map read.

@@ -20,18 +20,24 @@ mod filter;
 mod irradiance;
 mod kdtree;
 mod photon;
+pub mod photon_beams;
 pub mod progressive;
 pub mod scatter_rows;
 pub mod stratified;
+mod tube_estimate;
+mod tube_radii;
 
 pub use crate::spectrum::BandValues;
-pub use beam::{BeamEstimator, BeamHit, BeamMap, SegmentEnds};
+pub use beam::{BeamEstimator, BeamHit, BeamMap, ChordEstimate, SegmentEnds};
 pub use estimate::{DiscShare, Estimator, MIN_WALL_SHARE, Paths, Wall, Walls};
 pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
 pub use photon::{Photon, PhotonPath, PhotonRecord, oct_decode, oct_encode};
+pub use photon_beams::{PhotonBeam, PhotonBeamMap, TubeHit};
 pub use scatter_rows::ScatterRows;
+pub use tube_estimate::TubeEstimator;
+pub use tube_radii::{MAX_PIECES_PER_BEAM, PIECE_RADII, piece_count, pieces, tube_radii};
 
 use crate::geometry::AxialFold;
 use glam::DVec3;

@@ -28,7 +28,8 @@ use crate::light::{Incident, Light};
 use crate::material::{Lambertian, Material};
 use crate::media::{Coefficients, Medium, tracking};
 use crate::photon_map::{
-    BandValues, BeamEstimator, BeamHit, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds, Walls,
+    BandValues, BeamEstimator, BeamHit, ChordEstimate, Estimator, Neighbours, Paths, ScatterRows, SegmentEnds,
+    TubeEstimator, TubeHit, Walls,
 };
 use crate::raypath::{Chord, Event, Propagator, RayState};
 use crate::rng::Rng;
@@ -79,6 +80,7 @@ const ROULETTE_TRANSMITTANCE: f64 = 1e-3;
 pub struct Scratch {
     nb: Neighbours,
     hits: Vec<BeamHit>,
+    tubes: Vec<TubeHit>,
     /// Rays this thread traced, by kind.
     pub rays: RayCounts,
 }
@@ -124,6 +126,8 @@ pub struct EyeTracer<'a> {
     volume_all: Option<Estimator<'a>>,
     /// The beam estimate on the volume map as camera paths read it (`volume_estimate = "beam"`).
     beam: Option<BeamEstimator<'a>>,
+    /// The photon beams as camera paths read them (`volume_estimate = "photon_beams"`).
+    tubes: Option<TubeEstimator<'a>>,
 }
 
 impl<'a> EyeTracer<'a> {
@@ -167,6 +171,11 @@ impl<'a> EyeTracer<'a> {
             volume: volume(s.volume_k, s.volume_max_radius_m, volume_paths),
             volume_all: volume(s.volume_k, s.volume_max_radius_m, Paths::All),
             beam: beam(volume_paths),
+            tubes: maps.photon_beams.as_ref().map(|beams| TubeEstimator {
+                beams,
+                bands: scene.bands,
+                paths: volume_paths,
+            }),
         }
     }
 
@@ -671,8 +680,22 @@ impl<'a> EyeTracer<'a> {
         };
         // Gather rays keep the point estimate at a few coarse steps: they are averaged by the
         // dozen at each shading point, and a whole chord's tube of discs costs more than that.
-        if let (Some(b), Mode::Camera) = (&self.beam, at.mode) {
-            let tr = self.beam_chord(b, (c, ends), (id, m), lanes, along, rng, sc);
+        let chord_estimate = match (&self.beam, &self.tubes, at.mode) {
+            (Some(b), _, Mode::Camera) => {
+                let mut hits = std::mem::take(&mut sc.hits);
+                let tr = self.beam_chord(b, &mut hits, (c, ends), (id, m), lanes, along, rng, sc);
+                sc.hits = hits;
+                Some(tr)
+            }
+            (None, Some(b), Mode::Camera) => {
+                let mut hits = std::mem::take(&mut sc.tubes);
+                let tr = self.beam_chord(b, &mut hits, (c, ends), (id, m), lanes, along, rng, sc);
+                sc.tubes = hits;
+                Some(tr)
+            }
+            _ => None,
+        };
+        if let Some(tr) = chord_estimate {
             if shadow {
                 // Single scattering by shadow rays keeps its own jittered steps along the chord.
                 self.march_steps((c, &Walls::default()), (id, m), at, None, along, rng, sc);
@@ -689,14 +712,17 @@ impl<'a> EyeTracer<'a> {
         self.march_steps((c, &walls), (id, m), at, est, along, rng, sc);
     }
 
-    /// The beam estimate along chord `c` (see [`crate::photon_map::beam`]): adds
-    /// Σ_p T(0→t_p) L_p to `along.l` (weighted by the transmittance carried so far) and returns
-    /// the chord's transmittance per lane. Each lane's transmittance is carried from photon to
-    /// photon in order of their projections, so a heterogeneous medium is tracked once per lane.
+    /// A whole-chord estimate `b` along chord `c` — the beam estimate's discs
+    /// ([`crate::photon_map::beam`]) or photon beams' tubes ([`TubeEstimator`]), gathered into
+    /// the scratch `hits`: adds Σ_p T(0→t_p) L_p to `along.l` (weighted by the transmittance
+    /// carried so far) and returns the chord's transmittance per lane. Each lane's transmittance
+    /// is carried from hit to hit in order along the chord, so a heterogeneous medium is tracked
+    /// once per lane.
     #[allow(clippy::too_many_arguments)]
-    fn beam_chord(
+    fn beam_chord<E: ChordEstimate>(
         &self,
-        b: &BeamEstimator,
+        b: &E,
+        hits: &mut Vec<E::Hit>,
         (c, ends): (&Chord, SegmentEnds),
         (id, m): (u32, &Medium),
         lanes: &Lanes,
@@ -716,19 +742,18 @@ impl<'a> EyeTracer<'a> {
             }
             tr[i]
         };
-        let mut hits = std::mem::take(&mut sc.hits);
-        b.gather(c.origin, c.dir, c.length, ends, &mut hits);
+        b.gather(c.origin, c.dir, c.length, ends, hits);
         sc.rays.medium_steps += 1;
         let mut tmp = [0.0; MAX_BANDS];
         let wo = -c.dir;
-        for h in &hits {
-            b.photon(h, wo, (id, m), &mut tmp, &mut |band, l| {
+        for h in hits.iter() {
+            let t = E::t(h);
+            b.radiance(h, c.origin + t * c.dir, wo, (id, m), &mut tmp, &mut |band, l| {
                 for i in (0..n).filter(|i| lanes.band[*i] as usize == band) {
-                    along.l[i] += along.tr[i] * advance(i, h.t, rng) * l;
+                    along.l[i] += along.tr[i] * advance(i, t, rng) * l;
                 }
             });
         }
-        sc.hits = hits;
         for i in 0..n {
             advance(i, c.length, rng);
         }

@@ -15,7 +15,10 @@
 //!                doubling)
 //!   map build    96·N (records still held) + the maps built so far, each 32·n + 8·(2^depth − 1)
 //!                (photons, kd-tree nodes with leaves of ≤ 32 photons); under MPI also 2 · 32·N
-//!                (this rank's encoded photons and their wire bytes)
+//!                (this rank's encoded photons and their wire bytes); with photon beams
+//!                (`volume_estimate = "photon_beams"`) 88 bytes per traced beam, and 136 per
+//!                piece of the built map (the piece, its radius, its share of the hierarchy;
+//!                at most 16 pieces per beam: `photon_map::MAX_PIECES_PER_BEAM`)
 //!   irradiance   the maps + max(2 · 4·B·n_irr (the values, and their bytes for the gather),
 //!                4·B·n_irr + 76·n_irr + nodes (the values, the points' sites and the kd-tree)),
 //!                n_irr = n_global/4; the cache then holds (28 + 4·B)·n_irr + nodes
@@ -53,6 +56,11 @@ use serde::Serialize;
 const RECORD_BYTES: f64 = 96.0;
 /// Bytes of one stored photon (`photon_map::Photon`).
 const PHOTON_BYTES: f64 = 32.0;
+/// Bytes of one traced photon beam (`photon_map::PhotonBeam`).
+const BEAM_BYTES: f64 = 88.0;
+/// Bytes of one beam in a built `photon_map::PhotonBeamMap`: the beam, its radius, and its
+/// share of the hierarchy (see [`crate::photon_map::PhotonBeamMap::memory_bytes`]).
+const BEAM_MAP_BYTES: f64 = 88.0 + 8.0 + 40.0;
 
 /// How much memory a run may use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -109,11 +117,12 @@ pub fn estimate(scene: &Scene, pass: &PassSettings, ranks: usize) -> MemoryEstim
     let plan = &scene.plan;
     let share = 1.0 / ranks.max(1) as f64;
     let seed = s.seed;
-    let (mut g_surface, mut g_volume, mut c_surface) = (0.0, 0.0, 0.0);
+    let (mut g_surface, mut g_volume, mut c_surface, mut g_beams) = (0.0, 0.0, 0.0, 0.0);
     if plan.global_map.on || plan.volume_map.on {
-        let (a, b) = pilot(&scene.world, pass, MapKind::Global, s.photons, seed);
+        let (a, b, c) = pilot(&scene.world, pass, MapKind::Global, s.photons, seed);
         g_surface = if plan.global_map.on { a * s.photons as f64 } else { 0.0 };
         g_volume = if plan.volume_map.on { b * s.photons as f64 } else { 0.0 };
+        g_beams = c * s.photons as f64;
     }
     if plan.caustic_map.on {
         c_surface = pilot(&scene.world, pass, MapKind::Caustic, s.caustic_photons, seed).0 * s.caustic_photons as f64;
@@ -131,8 +140,10 @@ pub fn estimate(scene: &Scene, pass: &PassSettings, ranks: usize) -> MemoryEstim
         let later = (mine - first).min(first).max(per_batch);
         RECORD_BYTES * (later + 2.0 * threads * per_batch)
     };
-    let global_records = records(g_surface + g_volume);
-    let global_maps = map_bytes(g_surface) + map_bytes(g_volume);
+    // Photon beams: traced as records, then held with their radii and hierarchy.
+    let global_records = records(g_surface + g_volume) + BEAM_BYTES * g_beams * share;
+    let global_maps =
+        map_bytes(g_surface) + map_bytes(g_volume) + BEAM_MAP_BYTES * crate::photon_map::MAX_PIECES_PER_BEAM * g_beams;
     let wire = |n: f64| if ranks > 1 { 2.0 * PHOTON_BYTES * n * share } else { 0.0 };
     let n_irr = if plan.final_gather.on { g_surface / 4.0 } else { 0.0 };
     let bands = scene.bands.count as f64;

@@ -6,7 +6,9 @@ use super::stats::{MapReport, Phases};
 use crate::distributed::{self, Rank, assemble, photons::Shot};
 use crate::error::Result;
 use crate::photon::MapKind;
-use crate::photon_map::{BeamMap, Estimator, IrradianceCache, Paths, PhotonMap, PhotonRecord, fold_record};
+use crate::photon_map::{
+    BeamMap, Estimator, IrradianceCache, Paths, PhotonBeamMap, PhotonMap, PhotonRecord, fold_record, tube_radii,
+};
 use crate::scene::VolumeEstimate;
 use crate::scene::{IntegratorSettings, Scene};
 use crate::timing::Span;
@@ -26,6 +28,8 @@ pub struct Maps {
     pub volume: Option<PhotonMap>,
     /// The volume photons' gather discs, for the beam estimate (`volume_estimate = "beam"`).
     pub beam: Option<BeamMap>,
+    /// The photons' flights through media as tubes (`volume_estimate = "photon_beams"`).
+    pub photon_beams: Option<PhotonBeamMap>,
     /// Irradiance precomputed at global-map photons, for final gathering.
     pub irradiance: Option<IrradianceCache>,
 }
@@ -71,6 +75,14 @@ pub fn build(
                 let t = Span::start();
                 maps.beam = Some(BeamMap::build(&map, s.beam.k, s.beam.max_radius_m, s.beam.scale));
                 phases.add("volume beam radii", t);
+            }
+            if s.volume_estimate == VolumeEstimate::PhotonBeams {
+                // The camera's paths: under shadow rays without the light straight from the lights.
+                let paths = if plan.shadow_rays.on { Paths::NotDirect } else { Paths::All };
+                let beams = std::mem::take(&mut shot.sink.beams);
+                let (beams, report) = photon_beams(rank, scene, paths, &map, beams, s, &shot, phases)?;
+                reports.push(report);
+                maps.photon_beams = Some(beams);
             }
             maps.volume = Some(map);
         }
@@ -130,6 +142,55 @@ fn shoot(
     phases.add(&format!("{name} photon tracing"), t);
     rank.report.photons.push(shot.mine.clone());
     shot
+}
+
+/// The photon beams of this pass (`beams`, one rank's flights) with their tubes' radii from the
+/// volume map `points` ([`tube_radii`]), timed as "photon beam radii" and "photon beam build".
+/// One rank only: the beams are not yet gathered across ranks.
+#[allow(clippy::too_many_arguments)]
+fn photon_beams(
+    rank: &mut Rank,
+    scene: &Scene,
+    paths: Paths,
+    points: &PhotonMap,
+    beams: Vec<crate::photon_map::PhotonBeam>,
+    s: &IntegratorSettings,
+    shot: &Shot,
+    phases: &mut Phases,
+) -> Result<(PhotonBeamMap, MapReport)> {
+    if rank.comm.size() > 1 {
+        return Err(crate::error::Error::input(
+            None,
+            "volume_estimate = \"photon_beams\" runs on one rank only (its beams are not gathered across ranks yet): run without mpirun, or use volume_estimate = \"beam\"",
+        ));
+    }
+    let t = Span::start();
+    let radii = tube_radii(points, &beams, s.beam.k, s.beam.max_radius_m, s.beam.tube_scale);
+    // Beams the camera's estimate never reads are not kept: straight from the light under
+    // shadow rays, in a medium that re-emits nothing (its radii were set with them).
+    let (beams, radii): (Vec<_>, Vec<_>) = beams
+        .into_iter()
+        .zip(radii)
+        .filter(|(b, _)| paths.accepts(b.path) || scene.world.media[b.medium as usize].inelastic.transfer.is_some())
+        .unzip();
+    let n = crate::photon_map::piece_count(&beams, &radii);
+    let bytes = (n * (size_of::<crate::photon_map::PhotonBeam>() + size_of::<f64>() + 48)) as u64;
+    rank.budget.reserve(rank.comm, &format!("the photon beams ({n} pieces of {} flights)", beams.len()), bytes)?;
+    let (beams, radii) = crate::photon_map::pieces(beams, radii);
+    phases.add("photon beam radii", t);
+    let t = Span::start();
+    let map = PhotonBeamMap::new(beams, radii);
+    let build_s = phases.add("photon beam build", t);
+    let report = MapReport {
+        map: "photon beams".to_string(),
+        emitted: s.photons,
+        stored: map.len() as u64,
+        memory_bytes: map.memory_bytes() as u64,
+        trace_seconds: shot.mine.trace_seconds,
+        build_seconds: build_s,
+        stats: shot.stats.clone(),
+    };
+    Ok((map, report))
 }
 
 /// The map of every rank's `records`, timed as "NAME map gather" (bounds, encoding, budget check

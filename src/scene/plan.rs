@@ -380,6 +380,9 @@ fn volume_map_decision(facts: &SceneFacts, s: &IntegratorSettings) -> Decision {
             VolumeEstimate::Beam => {
                 "; eye rays read it by the beam estimate (every photon whose disc a chord crosses, one query per chord; volume_estimate = \"beam\")"
             }
+            VolumeEstimate::PhotonBeams => {
+                "; eye rays read it by photon beams (every photon's flight through a medium kept as a thin tube, every tube a chord passes through; volume_estimate = \"photon_beams\")"
+            }
         });
         d.why.push_str(match s.edge_correction {
             true => ", estimates ending on the planes of the surfaces a chord starts and ends on (edge_correction = true)",

@@ -219,8 +219,8 @@ pub struct RawIntegrator {
     pub volume_max_radius: S<f64>,
     /// `[integrator] march_step`: largest ray-marching step in media, m.
     pub march_step: S<f64>,
-    /// `[integrator] volume_estimate`: `"point"` or `"beam"`: how the volume map is read along
-    /// eye rays.
+    /// `[integrator] volume_estimate`: `"point"`, `"beam"` or `"photon_beams"`: how the volume
+    /// map is read along eye rays.
     pub volume_estimate: S<String>,
     /// `[integrator] direct`: `"shadow_rays"` or `"photon_map"`: how direct light on diffuse
     /// surfaces is found.

@@ -47,6 +47,10 @@ pub enum VolumeEstimate {
     /// One query per chord for every photon whose disc the chord crosses (Jarosz, Zwicker &
     /// Jensen 2008): no march steps.
     Beam,
+    /// Photon beams: every photon's flight through a medium is kept as a segment blurred into a
+    /// thin tube, and a chord gathers the tubes it passes through (Jarosz et al. 2011). Only
+    /// when a scene asks for it.
+    PhotonBeams,
 }
 
 impl VolumeEstimate {
@@ -84,6 +88,10 @@ pub struct BeamRadii {
     pub max_radius_m: f64,
     /// Factor on every radius in this pass: 1 in the first, √sᵢ later (2-D kernel shrinkage).
     pub scale: f64,
+    /// Factor on every photon beam's tube radius in this pass: 1 in the first, sᵢ later (the
+    /// rule r_{i+1} = r_i (i + α)/(i + 1) of progressive photon beams, whose one-pass variance
+    /// grows as 1/r).
+    pub tube_scale: f64,
 }
 
 /// The light-transport algorithm.
@@ -198,7 +206,11 @@ impl IntegratorSettings {
             caustic_max_radius_m: surface_radius(self.caustic_max_radius_m, pass, a),
             volume_k: k(self.volume_k, pass, a),
             volume_max_radius_m: volume_radius(self.volume_max_radius_m, pass, a),
-            beam: BeamRadii { scale: self.beam.scale * measure_ratio(pass, a).sqrt(), ..self.beam },
+            beam: BeamRadii {
+                scale: self.beam.scale * measure_ratio(pass, a).sqrt(),
+                tube_scale: self.beam.tube_scale * measure_ratio(pass, a),
+                ..self.beam
+            },
             ..self.clone()
         }
     }
@@ -358,7 +370,7 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         volume_max_radius_m: 0.05 * diag,
         march_step_m: 0.01 * diag,
         volume_estimate: VolumeEstimate::Point,
-        beam: BeamRadii { k: 100, max_radius_m: 0.05 * diag, scale: 1.0 },
+        beam: BeamRadii { k: 100, max_radius_m: 0.05 * diag, scale: 1.0, tube_scale: 1.0 },
         direct: DirectLighting::ShadowRays,
         final_gather: true,
         dispersion_bundles: true,
@@ -396,12 +408,13 @@ pub fn integrator(ctx: &Ctx, i: Option<&Spanned<RawIntegrator>>, bounds: &Aabb) 
         s.march_step_m = ctx.number(v, "march_step", MIN_MARCH_STEP_M, f64::INFINITY, false)?;
     }
     if let Some(v) = &r.volume_estimate {
-        s.volume_estimate = match ctx.choice(v, "volume_estimate", &["point", "beam"])? {
+        s.volume_estimate = match ctx.choice(v, "volume_estimate", &["point", "beam", "photon_beams"])? {
             "beam" => VolumeEstimate::Beam,
+            "photon_beams" => VolumeEstimate::PhotonBeams,
             _ => VolumeEstimate::Point,
         };
     }
-    s.beam = BeamRadii { k: s.volume_k, max_radius_m: s.volume_max_radius_m, scale: 1.0 };
+    s.beam = BeamRadii { k: s.volume_k, max_radius_m: s.volume_max_radius_m, scale: 1.0, tube_scale: 1.0 };
     s.gather_rays = int(&r.gather_rays, "gather_rays", 1, 1 << 20, s.gather_rays as i64)? as usize;
     s.spp = int(&r.spp, "spp", 1, 1 << 20, s.spp as i64)? as usize;
     s.max_depth = int(&r.max_depth, "max_depth", 1, 1000, s.max_depth as i64)? as usize;

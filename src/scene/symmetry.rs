@@ -39,8 +39,12 @@ pub fn sun_axis(world: &World, s: &IntegratorSettings, viewpoints: &[DVec3]) -> 
     if s.axial_symmetry == Some(false) {
         return Err("axial_symmetry = false".into());
     }
-    if s.volume_estimate == VolumeEstimate::Beam {
-        return Err("volume_estimate = \"beam\" reads photons along straight chords".into());
+    match s.volume_estimate {
+        VolumeEstimate::Beam => return Err("volume_estimate = \"beam\" reads photons along straight chords".into()),
+        VolumeEstimate::PhotonBeams => {
+            return Err("volume_estimate = \"photon_beams\" keeps each photon's flight as it was".into());
+        }
+        VolumeEstimate::Point => {}
     }
     let global = world.global_medium.ok_or("no [world] medium")?;
     let air = &world.media[global as usize];

@@ -45,6 +45,7 @@ impl Fingerprint {
         let estimate = match s.volume_estimate {
             crate::scene::VolumeEstimate::Point => "point",
             crate::scene::VolumeEstimate::Beam => "beam",
+            crate::scene::VolumeEstimate::PhotonBeams => "photon_beams",
         };
         parts.push(("volume estimate".into(), estimate.into()));
         parts.push(("target".into(), crate::scene::progressive::label(&s.progressive.target)));
