@@ -251,9 +251,10 @@ fn facing(n: DVec3, d: DVec3, min_cos: f64) -> Option<DVec3> {
 }
 
 /// Whether the segment `o + t·d`, 0 ≤ t ≤ `length` (`inv` = 1/d per axis), meets the box `b`
-/// (slab test; NaN from 0·∞ on a face is ignored by `max`/`min`).
+/// (slab test; NaN from 0·∞ on a face is ignored by `max`/`min`; an empty box, min > max, meets
+/// nothing). The hierarchies of discs and of photon beams' tubes both descend by it.
 #[inline]
-fn crosses(b: &[f32; 6], o: DVec3, inv: DVec3, length: f64) -> bool {
+pub(super) fn crosses(b: &[f32; 6], o: DVec3, inv: DVec3, length: f64) -> bool {
     let (mut t0, mut t1) = (0.0f64, length);
     for a in 0..3 {
         let ta = (f64::from(b[a]) - o[a]) * inv[a];

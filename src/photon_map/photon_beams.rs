@@ -32,6 +32,7 @@
 //!   30(1), 5.
 
 use super::PhotonPath;
+use super::beam::crosses;
 use crate::geometry::rounding::{gamma, max_abs};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -489,20 +490,6 @@ fn union(items: &[Item]) -> [f32; 6] {
 fn longest_axis(b: &[f32; 6]) -> usize {
     let extent = |a: usize| f64::from(b[a + 3]) - f64::from(b[a]);
     (1..3).fold(0, |best, a| if extent(a) > extent(best) { a } else { best })
-}
-
-/// Whether the segment `o + t·d`, 0 ≤ t ≤ `length` (`inv` = 1/d per axis), meets the box `b`
-/// (slab test; NaN from 0·∞ on a face is ignored by `max`/`min`).
-#[inline]
-fn crosses(b: &[f32; 6], o: DVec3, inv: DVec3, length: f64) -> bool {
-    let (mut t0, mut t1) = (0.0f64, length);
-    for a in 0..3 {
-        let ta = (f64::from(b[a]) - o[a]) * inv[a];
-        let tb = (f64::from(b[a + 3]) - o[a]) * inv[a];
-        t0 = t0.max(ta.min(tb));
-        t1 = t1.min(ta.max(tb));
-    }
-    t0 <= t1
 }
 
 #[cfg(test)]

@@ -181,15 +181,7 @@ fn photon_beams(
     let t = Span::start();
     let map = PhotonBeamMap::new(beams, radii);
     let build_s = phases.add("photon beam build", t);
-    let report = MapReport {
-        map: "photon beams".to_string(),
-        emitted: s.photons,
-        stored: map.len() as u64,
-        memory_bytes: map.memory_bytes() as u64,
-        trace_seconds: shot.mine.trace_seconds,
-        build_seconds: build_s,
-        stats: shot.stats.clone(),
-    };
+    let report = map_report("photon beams", s.photons, (map.len(), map.memory_bytes()), shot, build_s);
     Ok((map, report))
 }
 
@@ -207,14 +199,26 @@ fn build_map(
     phases.push(&format!("{name} map gather"), gathered.gather);
     let build_s = phases.push(&format!("{name} map build"), gathered.build);
     rank.report.map_received_bytes += gathered.received_bytes;
-    let report = MapReport {
+    let report = map_report(name, emitted, (map.len(), map.memory_bytes()), shot, build_s);
+    Ok((map, report))
+}
+
+/// The report of map `name` of `emitted` photons holding `(stored, memory_bytes)`, traced by
+/// `shot` and built in `build_s` seconds.
+fn map_report(
+    name: &str,
+    emitted: u64,
+    (stored, memory_bytes): (usize, usize),
+    shot: &Shot,
+    build_s: f64,
+) -> MapReport {
+    MapReport {
         map: name.to_string(),
         emitted,
-        stored: map.len() as u64,
-        memory_bytes: map.memory_bytes() as u64,
+        stored: stored as u64,
+        memory_bytes: memory_bytes as u64,
         trace_seconds: shot.mine.trace_seconds,
         build_seconds: build_s,
         stats: shot.stats.clone(),
-    };
-    Ok((map, report))
+    }
 }
