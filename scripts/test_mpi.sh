@@ -3,7 +3,8 @@
 # and without the `mpi` feature and checks, on this machine (`mpirun --oversubscribe`), that
 #   1. 1, 2 and 3 ranks (and the MPI build run without mpirun, and the static schedule) give the
 #      same EXR bytes as the non-MPI build, for a scene with global + caustic maps and final
-#      gathering, one with a volume map, one with curved paths (the hot-road mirage: index
+#      gathering, one with a volume map (read by the point estimate, and by photon beams), one
+#      with curved paths (the hot-road mirage: index
 #      field, sun projection map, curved eye paths) and the zenith in twilight (a volume map folded
 #      about the sun's axis); report.json lists the ranks and their photons;
 #   2. errors are collective: a missing scene, a too-small --max-map-memory and ranks that do
@@ -49,6 +50,8 @@ shrink() { # scene width height spp gather_rays
 }
 shrink src/scene/default.toml 48 40 2 4 > "$work/box.toml"
 shrink examples/fog_box.toml 40 32 2 4 > "$work/fog.toml"
+# The fog box read by photon beams: each rank's flights gathered in batch order.
+sed -e 's/^\[integrator\]/[integrator]\nvolume_estimate = "photon_beams"/' "$work/fog.toml" > "$work/beams.toml"
 # The mirage's atmosphere file by its absolute path (the copy lives in $work).
 shrink examples/mirage_hot_road.toml 40 20 1 4 | sed "s#\.\./atmospheres/#$PWD/atmospheres/#" > "$work/mirage.toml"
 shrink src/scene/default.toml 192 160 8 16 > "$work/slow.toml"
@@ -65,7 +68,7 @@ assert d["ranks"] == ranks and len(d["per_rank"]) == ranks, d["ranks"]
 for p in d["per_rank"]:
     assert p["phases"] and p["eye"]["rows"] >= 0, p
 for m in r["maps"]:
-    if m["map"] == "volume":
+    if m["map"] in ("volume", "photon beams"):
         continue
     shares = [ph for p in d["per_rank"] for ph in p["photons"] if ph["pass"] == m["map"]]
     assert len(shares) == ranks, (m["map"], shares)
@@ -75,7 +78,7 @@ EOF
 }
 
 step "same image bytes for 1, 2 and 3 ranks as without MPI"
-for scene in box fog mirage twilight; do
+for scene in box fog beams mirage twilight; do
   out="$work/out-$scene"
   "$work/morgana-local" render "$work/$scene.toml" --out "$out/local" --photons 20000 --seed 7 --threads 2 --quiet >/dev/null
   ref="$(ls "$out/local"/*.exr)"
@@ -100,7 +103,7 @@ step "progressive passes: same bytes on 1, 2 and 3 ranks, and a resume on anothe
 # Three passes (fresh maps, shrinking radii, the error layer) of the box (global and caustic maps,
 # final gathering) and of the fog box (volume map); then a run stopped after two passes on 2
 # ranks and resumed to three on 3 ranks must give the uninterrupted run's bytes.
-for scene in box fog; do
+for scene in box fog beams; do
 for mode in uniform adaptive; do
   out="$work/prog-$scene-$mode"
   common=(render "$work/$scene.toml" --photons 10000 --seed 5 --quiet)

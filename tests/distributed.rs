@@ -65,6 +65,37 @@ fn rank_shares_of_the_batches_give_the_single_process_photons_in_order() {
     }
 }
 
+/// Photon beams (`volume_estimate = "photon_beams"`): the ranks' shares of the batches, put
+/// one after the other in rank order (what `assemble::photon_beams` does with the all-gather),
+/// are the single process's beams bit for bit, and so is each beam sent over the wire.
+#[test]
+fn rank_shares_of_the_batches_give_the_single_process_photon_beams_in_order() {
+    let toml = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/volume_caustic.toml"))
+        .expect("the example")
+        .replace("[integrator]\n", "[integrator]\nvolume_estimate = \"photon_beams\"\n");
+    let scene = common::scene(&toml);
+    let pass = PassSettings::of(&scene);
+    assert!(pass.photon_beams, "the pass keeps photon beams");
+    let emitted = 5 * photon::BATCH + 77;
+    let (whole, _) = photon::shoot(&scene.world, &pass, MapKind::Global, emitted, 11, &|_| {});
+    assert!(whole.beams.len() > 1000, "{} beams", whole.beams.len());
+    let bits = |b: &morgana::photon_map::PhotonBeam| b.to_le_bytes();
+    for ranks in [2, 3, 7] {
+        let mut beams = Vec::new();
+        for r in 0..ranks {
+            let range = share(photon::batch_count(emitted), r, ranks);
+            let (sink, _) = photon::shoot_batches(&scene.world, &pass, MapKind::Global, emitted, 11, range, &|_| {});
+            let wire: Vec<u8> = sink.beams.iter().flat_map(|b| b.to_le_bytes()).collect();
+            beams.extend(
+                wire.chunks_exact(morgana::photon_map::PhotonBeam::BYTES)
+                    .map(morgana::photon_map::PhotonBeam::from_le_bytes),
+            );
+        }
+        assert_eq!(beams.len(), whole.beams.len(), "{ranks} ranks");
+        assert!(beams.iter().zip(&whole.beams).all(|(a, b)| bits(a) == bits(b)), "{ranks} ranks");
+    }
+}
+
 #[test]
 fn maps_assembled_from_parts_equal_the_map_built_at_once() {
     let scene = small_scene(6 * photon::BATCH);

@@ -25,7 +25,7 @@ use super::Comm;
 use super::budget::Budget;
 use super::split::{dealt, dealt_index};
 use crate::error::Result;
-use crate::photon_map::{Estimator, IrradianceCache, KdTree, Photon, PhotonMap, PhotonRecord};
+use crate::photon_map::{Estimator, IrradianceCache, KdTree, Photon, PhotonBeam, PhotonMap, PhotonRecord};
 use crate::timing::{Span, Took};
 use glam::DVec3;
 
@@ -83,6 +83,37 @@ pub fn photon_map(
     let map = PhotonMap::from_photons(origin, photons);
     let build = t.took();
     Ok((map, Gathered { items, received_bytes: received, compute: Took::default(), gather, build }))
+}
+
+/// Every rank's photon beams in rank order — the batches' order, so the single process's order
+/// on any rank count — this rank's `beams` kept in place, the others' decoded from the
+/// all-gather ([`PhotonBeam::to_le_bytes`]), with the time taken and the bytes received. The
+/// gathered beams are checked against `budget` first. Collective.
+pub fn photon_beams(comm: &Comm, budget: &mut Budget, beams: Vec<PhotonBeam>) -> Result<(Vec<PhotonBeam>, Took, u64)> {
+    let t = Span::start();
+    let counts = comm.all_gather_u64(&[beams.len() as u64]);
+    let total: u64 = counts.iter().map(|c| c[0]).sum();
+    let bytes = total * size_of::<PhotonBeam>() as u64;
+    budget.reserve(comm, &format!("the photon beams ({total} flights)"), bytes)?;
+    if comm.size() == 1 {
+        return Ok((beams, t.took(), 0));
+    }
+    let wire: Vec<u8> = beams.iter().flat_map(|b| b.to_le_bytes()).collect();
+    let parts = comm.all_gather(&wire);
+    drop(wire);
+    let me = comm.rank();
+    let mut all = Vec::with_capacity(total as usize);
+    let mut received = 0u64;
+    let mut mine = Some(beams);
+    for (rank, part) in parts.iter().enumerate() {
+        if rank == me {
+            all.extend(mine.take().unwrap_or_default());
+        } else {
+            received += part.len() as u64;
+            all.extend(part.chunks_exact(PhotonBeam::BYTES).map(PhotonBeam::from_le_bytes));
+        }
+    }
+    Ok((all, t.took(), received))
 }
 
 /// Every rank's photons in rank order: this rank's copied in place, the others' decoded from

@@ -80,6 +80,62 @@ impl PhotonBeam {
     pub fn end(&self) -> DVec3 {
         self.origin + self.length * self.dir
     }
+
+    /// Bytes of a beam on the wire ([`PhotonBeam::to_le_bytes`]): nine f64, the path, the medium.
+    pub const BYTES: usize = 9 * 8 + 1 + 4;
+
+    /// The beam as little-endian bytes: origin, direction, length, wavelength and power as f64,
+    /// the path as one byte (0 direct, 1 specular, 2 diffuse), the medium as u32. Every bit is
+    /// kept: a beam sent between ranks is the beam.
+    pub fn to_le_bytes(&self) -> [u8; Self::BYTES] {
+        let mut out = [0u8; Self::BYTES];
+        let values = [
+            self.origin.x,
+            self.origin.y,
+            self.origin.z,
+            self.dir.x,
+            self.dir.y,
+            self.dir.z,
+            self.length,
+            self.wavelength_nm,
+            self.power_w,
+        ];
+        for (chunk, v) in out.chunks_exact_mut(8).zip(values) {
+            chunk.copy_from_slice(&v.to_le_bytes());
+        }
+        out[72] = match self.path {
+            PhotonPath::Direct => 0,
+            PhotonPath::Specular => 1,
+            PhotonPath::Diffuse => 2,
+        };
+        out[73..].copy_from_slice(&self.medium.to_le_bytes());
+        out
+    }
+
+    /// The beam [`PhotonBeam::to_le_bytes`] wrote (`bytes` at least [`PhotonBeam::BYTES`] long);
+    /// a path byte above 2 reads as diffuse.
+    pub fn from_le_bytes(bytes: &[u8]) -> PhotonBeam {
+        let f = |i: usize| {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(&bytes[8 * i..8 * i + 8]);
+            f64::from_le_bytes(b)
+        };
+        let mut m = [0u8; 4];
+        m.copy_from_slice(&bytes[73..77]);
+        PhotonBeam {
+            origin: DVec3::new(f(0), f(1), f(2)),
+            dir: DVec3::new(f(3), f(4), f(5)),
+            length: f(6),
+            wavelength_nm: f(7),
+            power_w: f(8),
+            path: match bytes[72] {
+                0 => PhotonPath::Direct,
+                1 => PhotonPath::Specular,
+                _ => PhotonPath::Diffuse,
+            },
+            medium: u32::from_le_bytes(m),
+        }
+    }
 }
 
 /// A beam whose tube an eye segment passes through.
@@ -655,6 +711,30 @@ mod tests {
         }
         eprintln!("300 queries found {total} tubes; map holds {} bytes", map.memory_bytes());
         assert!(total > 1000);
+    }
+
+    /// A beam sent between ranks comes back bit for bit, every path and the largest medium index.
+    #[test]
+    fn beams_cross_the_wire_bit_for_bit() {
+        let mut rng = Rng::for_task(31, Stream::Test, 0);
+        for (i, path) in [PhotonPath::Direct, PhotonPath::Specular, PhotonPath::Diffuse].into_iter().enumerate() {
+            let b = PhotonBeam {
+                origin: DVec3::new(rng.uniform(), -6.4e6 * rng.uniform(), 1e-300),
+                dir: DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()).normalize(),
+                length: rng.uniform(),
+                wavelength_nm: 400.0 + 300.0 * rng.uniform(),
+                power_w: 1e-9 * rng.uniform(),
+                path,
+                medium: [0, 7, u32::MAX][i],
+            };
+            let back = PhotonBeam::from_le_bytes(&b.to_le_bytes());
+            let bits = |b: &PhotonBeam| {
+                [b.origin.x, b.origin.y, b.origin.z, b.dir.x, b.dir.y, b.dir.z, b.length, b.wavelength_nm, b.power_w]
+                    .map(f64::to_bits)
+            };
+            assert_eq!(bits(&back), bits(&b));
+            assert_eq!((back.path, back.medium), (b.path, b.medium));
+        }
     }
 
     #[test]

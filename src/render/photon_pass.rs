@@ -144,9 +144,10 @@ fn shoot(
     shot
 }
 
-/// The photon beams of this pass (`beams`, one rank's flights) with their tubes' radii from the
-/// volume map `points` ([`tube_radii`]), timed as "photon beam radii" and "photon beam build".
-/// One rank only: the beams are not yet gathered across ranks.
+/// The photon beams of this pass (`beams`, this rank's flights; every rank's gathered in batch
+/// order, timed as "photon beam gather") with their tubes' radii from the volume map `points`
+/// ([`tube_radii`]), timed as "photon beam radii" and "photon beam build". `paths`: which beams
+/// camera paths read.
 #[allow(clippy::too_many_arguments)]
 fn photon_beams(
     rank: &mut Rank,
@@ -158,12 +159,9 @@ fn photon_beams(
     shot: &Shot,
     phases: &mut Phases,
 ) -> Result<(PhotonBeamMap, MapReport)> {
-    if rank.comm.size() > 1 {
-        return Err(crate::error::Error::input(
-            None,
-            "volume_estimate = \"photon_beams\" runs on one rank only (its beams are not gathered across ranks yet): run without mpirun, or use volume_estimate = \"beam\"",
-        ));
-    }
+    let (beams, gather, received) = assemble::photon_beams(rank.comm, &mut rank.budget, beams)?;
+    phases.push("photon beam gather", gather);
+    rank.report.map_received_bytes += received;
     let t = Span::start();
     let radii = tube_radii(points, &beams, s.beam.k, s.beam.max_radius_m, s.beam.tube_scale);
     // Beams the camera's estimate never reads are not kept: straight from the light under
