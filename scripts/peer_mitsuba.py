@@ -838,7 +838,8 @@ def photon_stats(report: dict) -> tuple[float, float, float]:
 
 
 def settings_label(integ: dict) -> str:
-    keys = ("photons", "caustic_photons", "volume_k", "k", "march_step", "final_gather", "gather_rays", "spp")
+    keys = ("photons", "caustic_photons", "volume_k", "k", "march_step", "final_gather", "gather_rays", "spp",
+            "volume_estimate")
     return " ".join(f"{k}={integ[k]}" for k in keys if k in integ)
 
 
@@ -1051,8 +1052,11 @@ def bench_scene_progressive(name: str, spec: SceneSpec, args, log) -> tuple[list
         work = out / method.replace(" ", "_")
         work.mkdir(parents=True, exist_ok=True)
         scene = work / f"{name}.toml"
-        scene.write_text(variant_toml(base, {"method": "photon_map", **PM_COMMON, **spec.progressive, "seed": 7}, name))
-        log(f"  {method}: {settings_label(spec.progressive)} a pass, up to {args.max_cpu:g} CPU s")
+        integ = {"method": "photon_map", **PM_COMMON, **spec.progressive, "seed": 7}
+        if args.volume_estimate:
+            integ["volume_estimate"] = args.volume_estimate
+        scene.write_text(variant_toml(base, integ, name))
+        log(f"  {method}: {settings_label(integ)} a pass, up to {args.max_cpu:g} CPU s")
         for step in progressive_chain.run(args.bin, scene, work, args.threads, args.max_cpu, extra, log):
             add(method, f"passes={step.passes}", read_exr_rgb(work / f"{name}.exr"), step.phase_s, step.cpu_s)
     set_ratios(runs)
@@ -1228,6 +1232,9 @@ def parse_args(argv):
     p.add_argument("--no-adaptive", action="store_true", help="--progressive: the uniform passes only")
     p.add_argument("--no-uniform", action="store_true",
                    help="--progressive: the adaptive passes only (where a scene has them)")
+    p.add_argument("--volume-estimate", choices=["point", "beam", "photon_beams"],
+                   help="--progressive: [integrator] volume_estimate of morgana's passes (unset: the scene's "
+                        "default); give another --out, or the runs replace the default's")
     p.add_argument("--mitsuba-spp", type=int, nargs="+", default=PROGRESSIVE_MITSUBA_SPP,
                    help="--progressive: Mitsuba's budgets (its RMSE beyond the largest by the 1/sqrt(t) law)")
     return p.parse_args(argv)

@@ -34,7 +34,7 @@ pub use filter::{Filter, filter_norm, filter_weight};
 pub use irradiance::IrradianceCache;
 pub use kdtree::{KdPoint, KdTree, LEAF_SIZE, Neighbours, PARALLEL_MIN};
 pub use photon::{Photon, PhotonPath, PhotonRecord, oct_decode, oct_encode};
-pub use photon_beams::{PhotonBeam, PhotonBeamMap, TubeHit};
+pub use photon_beams::{BYTES_PER_BEAM, PhotonBeam, PhotonBeamMap, TubeHit};
 pub use scatter_rows::ScatterRows;
 pub use tube_estimate::TubeEstimator;
 pub use tube_radii::{MAX_PIECES_PER_BEAM, PIECE_RADII, piece_count, pieces, tube_radii};

@@ -40,6 +40,11 @@ use rayon::prelude::*;
 /// Most beams in a leaf of the hierarchy.
 pub const LEAF_BEAMS: usize = 4;
 
+/// Bytes a [`PhotonBeamMap`] holds per beam at most: the beam, its radius, its two indices and
+/// a node of the hierarchy (a binary tree over leaves of at least one beam has fewer nodes than
+/// twice its beams; the leaves hold about half of them).
+pub const BYTES_PER_BEAM: usize = size_of::<PhotonBeam>() + size_of::<f64>() + 2 * size_of::<u32>() + 2 * 32;
+
 /// Deepest traversal stack a query needs: the hierarchy splits by the surface area heuristic for
 /// at most [`SAH_LEVELS`] levels, then at the median, so fewer than 2³² beams in leaves of at
 /// most 4 reach a leaf after at most 64 + 31 splits, and the stack holds one node per split.
@@ -711,6 +716,30 @@ mod tests {
         }
         eprintln!("300 queries found {total} tubes; map holds {} bytes", map.memory_bytes());
         assert!(total > 1000);
+    }
+
+    /// The sizes the memory model (`render::memory`) states: a beam 80 bytes, a node 32, at most
+    /// 160 per beam of a built map; a built map holds no more than that per beam.
+    #[test]
+    fn a_map_holds_at_most_its_stated_bytes_per_beam() {
+        assert_eq!((size_of::<PhotonBeam>(), size_of::<Node>(), BYTES_PER_BEAM), (80, 32, 160));
+        let mut rng = Rng::for_task(33, Stream::Test, 0);
+        for n in [1usize, 5, 1000, 20_000] {
+            let beams: Vec<PhotonBeam> = (0..n)
+                .map(|_| PhotonBeam {
+                    origin: DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()),
+                    dir: DVec3::new(rng.uniform() - 0.5, rng.uniform() - 0.5, 1.0).normalize(),
+                    length: 0.1,
+                    wavelength_nm: 550.0,
+                    power_w: 1.0,
+                    path: PhotonPath::Diffuse,
+                    medium: 0,
+                })
+                .collect();
+            let map = PhotonBeamMap::new(beams, vec![0.01; n]);
+            let held = map.memory_bytes() - size_of::<PhotonBeamMap>();
+            assert!(held <= n * BYTES_PER_BEAM, "{n} beams hold {held} bytes");
+        }
     }
 
     /// A beam sent between ranks comes back bit for bit, every path and the largest medium index.

@@ -16,9 +16,10 @@
 //!   map build    96·N (records still held) + the maps built so far, each 32·n + 8·(2^depth − 1)
 //!                (photons, kd-tree nodes with leaves of ≤ 32 photons); under MPI also 2 · 32·N
 //!                (this rank's encoded photons and their wire bytes); with photon beams
-//!                (`volume_estimate = "photon_beams"`) 88 bytes per traced beam, and 136 per
-//!                piece of the built map (the piece, its radius, its share of the hierarchy;
-//!                at most 16 pieces per beam: `photon_map::MAX_PIECES_PER_BEAM`)
+//!                (`volume_estimate = "photon_beams"`) 80 bytes per traced beam, and at most
+//!                160 per piece of the built map (the piece, its radius and indices, two nodes
+//!                of the hierarchy: `photon_map::BYTES_PER_BEAM`; at most 16 pieces per beam,
+//!                `photon_map::MAX_PIECES_PER_BEAM`)
 //!   irradiance   the maps + max(2 · 4·B·n_irr (the values, and their bytes for the gather),
 //!                4·B·n_irr + 76·n_irr + nodes (the values, the points' sites and the kd-tree)),
 //!                n_irr = n_global/4; the cache then holds (28 + 4·B)·n_irr + nodes
@@ -57,10 +58,9 @@ const RECORD_BYTES: f64 = 96.0;
 /// Bytes of one stored photon (`photon_map::Photon`).
 const PHOTON_BYTES: f64 = 32.0;
 /// Bytes of one traced photon beam (`photon_map::PhotonBeam`).
-const BEAM_BYTES: f64 = 88.0;
-/// Bytes of one beam in a built `photon_map::PhotonBeamMap`: the beam, its radius, and its
-/// share of the hierarchy (see [`crate::photon_map::PhotonBeamMap::memory_bytes`]).
-const BEAM_MAP_BYTES: f64 = 88.0 + 8.0 + 40.0;
+const BEAM_BYTES: f64 = size_of::<crate::photon_map::PhotonBeam>() as f64;
+/// Bytes of one piece of a beam in a built `photon_map::PhotonBeamMap` at most.
+const BEAM_MAP_BYTES: f64 = crate::photon_map::BYTES_PER_BEAM as f64;
 
 /// How much memory a run may use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

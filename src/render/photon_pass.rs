@@ -172,7 +172,7 @@ fn photon_beams(
         .filter(|(b, _)| paths.accepts(b.path) || scene.world.media[b.medium as usize].inelastic.transfer.is_some())
         .unzip();
     let n = crate::photon_map::piece_count(&beams, &radii);
-    let bytes = (n * (size_of::<crate::photon_map::PhotonBeam>() + size_of::<f64>() + 48)) as u64;
+    let bytes = (n * crate::photon_map::BYTES_PER_BEAM) as u64;
     rank.budget.reserve(rank.comm, &format!("the photon beams ({n} pieces of {} flights)", beams.len()), bytes)?;
     let (beams, radii) = crate::photon_map::pieces(beams, radii);
     phases.add("photon beam radii", t);
