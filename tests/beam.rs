@@ -122,7 +122,8 @@ fn photon_beam_pass(s: &morgana::scene::Scene, pass: u32) -> f64 {
     let (sink, _) = shoot(&s.world, &PassSettings::of(s), MapKind::Global, 200_000, u64::from(pass) + 1, &|_| {});
     let first: Vec<_> = sink.volume.into_iter().filter(|p| p.path == PhotonPath::Direct).collect();
     let beams: Vec<_> = sink.beams.into_iter().filter(|b| b.path == PhotonPath::Direct).collect();
-    let radii = tube_radii(&PhotonMap::build(&first), &beams, 50, 0.2, measure_ratio(pass, DEFAULT_ALPHA));
+    let total: f64 = beams.iter().map(|b| b.length).sum();
+    let radii = tube_radii(&PhotonMap::build(&first), &beams, total, 50, 0.2, measure_ratio(pass, DEFAULT_ALPHA));
     let map = PhotonBeamMap::new(beams, radii);
     let est = TubeEstimator { beams: &map, bands: s.bands, paths: Paths::All };
     let medium = &s.world.media[0];

@@ -27,15 +27,22 @@ use rayon::prelude::*;
 
 /// The tube radius of each of `beams`, m: 2 r_p²/ℓ̄ with r_p the radius of the sphere about the
 /// beam's middle holding the `k` nearest photons of `points` (at most `max_radius`, which it is
-/// also where fewer lie within it), ℓ̄ the beams' total length over the photons in `points`, times
-/// `scale`; at most `max_radius`. Empty when there are no photons or no beam length. Computed in
+/// also where fewer lie within it), ℓ̄ = `total_length_m` over the photons in `points` (the
+/// pass's beams' total length, those not kept included), times `scale`; at most `max_radius`.
+/// Each is `max_radius` × `scale` when there are no photons or no beam length. Computed in
 /// parallel; the result does not depend on the thread count.
-pub fn tube_radii(points: &PhotonMap, beams: &[PhotonBeam], k: usize, max_radius: f64, scale: f64) -> Vec<f64> {
-    let total: f64 = beams.iter().map(|b| b.length).sum();
-    if points.is_empty() || total.is_nan() || total <= 0.0 {
+pub fn tube_radii(
+    points: &PhotonMap,
+    beams: &[PhotonBeam],
+    total_length_m: f64,
+    k: usize,
+    max_radius: f64,
+    scale: f64,
+) -> Vec<f64> {
+    if points.is_empty() || total_length_m.is_nan() || total_length_m <= 0.0 {
         return vec![max_radius * scale; beams.len()];
     }
-    let per_photon = total / points.len() as f64;
+    let per_photon = total_length_m / points.len() as f64;
     beams
         .par_iter()
         .map_init(Neighbours::default, |nb, b| {

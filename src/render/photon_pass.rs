@@ -163,14 +163,14 @@ fn photon_beams(
     phases.push("photon beam gather", gather);
     rank.report.map_received_bytes += received;
     let t = Span::start();
-    let radii = tube_radii(points, &beams, s.beam.k, s.beam.max_radius_m, s.beam.tube_scale);
     // Beams the camera's estimate never reads are not kept: straight from the light under
-    // shadow rays, in a medium that re-emits nothing (its radii were set with them).
-    let (beams, radii): (Vec<_>, Vec<_>) = beams
+    // shadow rays, in a medium that re-emits nothing. The radii count them in the pass's length.
+    let total_length_m: f64 = beams.iter().map(|b| b.length).sum();
+    let beams: Vec<_> = beams
         .into_iter()
-        .zip(radii)
-        .filter(|(b, _)| paths.accepts(b.path) || scene.world.media[b.medium as usize].inelastic.transfer.is_some())
-        .unzip();
+        .filter(|b| paths.accepts(b.path) || scene.world.media[b.medium as usize].inelastic.transfer.is_some())
+        .collect();
+    let radii = tube_radii(points, &beams, total_length_m, s.beam.k, s.beam.max_radius_m, s.beam.tube_scale);
     let n = crate::photon_map::piece_count(&beams, &radii);
     let bytes = (n * crate::photon_map::BYTES_PER_BEAM) as u64;
     rank.budget.reserve(rank.comm, &format!("the photon beams ({n} pieces of {} flights)", beams.len()), bytes)?;
