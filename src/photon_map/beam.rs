@@ -358,21 +358,35 @@ impl BeamEstimator<'_> {
         let kernel = 1.0 / (PI * hit.r2 * self.bands.width_nm());
         let l = p.wavelength_nm;
         let cos = p.dir.dot(wo);
-        if let Some(t) = &medium.inelastic.transfer {
-            tmp[..self.bands.count].iter_mut().for_each(|v| *v = 0.0);
-            t.add_photon(&medium.inelastic, tmp, l, cos, p.power_w);
-            for (b, v) in tmp.iter().enumerate().take(self.bands.count.min(MAX_BANDS)) {
-                if *v != 0.0 {
-                    add(b, v * kernel);
-                }
-            }
-        }
+        add_reemitted(medium, self.bands, (l, cos, p.power_w), kernel, tmp, add);
         if !self.paths.accepts(p.path) {
             return;
         }
         if let Some(b) = self.bands.index_of(l) {
             let rows = self.scatter_rows.as_ref().and_then(|r| r.rows(self.map, id, medium));
             add(b, super::scatter_rows::scattered(rows, medium, hit.index, &p, cos) * p.power_w * kernel);
+        }
+    }
+}
+
+/// Calls `add(band, L)` with what `medium`'s inelastic components re-emit into each of `bands`
+/// from a photon (or a beam's collisions) of wavelength, cosine to the eye and power
+/// `(λ, cos, power_w)`: Σ_i p_i T_i(λ, b) ΔΦ times `kernel`. Nothing where the medium has none.
+/// `tmp` is scratch.
+pub(super) fn add_reemitted(
+    medium: &Medium,
+    bands: Bands,
+    (l, cos, power_w): (f64, f64, f64),
+    kernel: f64,
+    tmp: &mut BandValues,
+    add: &mut impl FnMut(usize, f64),
+) {
+    let Some(t) = &medium.inelastic.transfer else { return };
+    tmp[..bands.count].iter_mut().for_each(|v| *v = 0.0);
+    t.add_photon(&medium.inelastic, tmp, l, cos, power_w);
+    for (b, v) in tmp.iter().enumerate().take(bands.count.min(MAX_BANDS)) {
+        if *v != 0.0 {
+            add(b, v * kernel);
         }
     }
 }

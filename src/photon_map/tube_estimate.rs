@@ -30,7 +30,7 @@
 
 use super::{ChordEstimate, Paths, PhotonBeamMap, SegmentEnds, TubeHit};
 use crate::media::Medium;
-use crate::spectrum::{BandValues, Bands, MAX_BANDS};
+use crate::spectrum::{BandValues, Bands};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -75,15 +75,7 @@ impl ChordEstimate for TubeEstimator<'_> {
         let collisions_w = b.power_w * at.density() * at.sigma_t(l) * hit.inside_m;
         let kernel = 1.0 / (PI * hit.r2 * self.bands.width_nm());
         let cos = b.dir.dot(wo);
-        if let Some(t) = &medium.inelastic.transfer {
-            tmp[..self.bands.count].iter_mut().for_each(|v| *v = 0.0);
-            t.add_photon(&medium.inelastic, tmp, l, cos, collisions_w);
-            for (band, v) in tmp.iter().enumerate().take(self.bands.count.min(MAX_BANDS)) {
-                if *v != 0.0 {
-                    add(band, v * kernel);
-                }
-            }
-        }
+        super::beam::add_reemitted(medium, self.bands, (l, cos, collisions_w), kernel, tmp, add);
         if !self.paths.accepts(b.path) {
             return;
         }
