@@ -20,9 +20,11 @@
 //! inside_b is the overlap of their axial ranges, at most l_b.
 //!
 //! The tubes sit in a binary bounding volume hierarchy (split along the longest axis where the
-//! surface area heuristic puts it, leaves of at most [`LEAF_BEAMS`] beams, boxes as f32 relative to the map's centre rounded
-//! outward, 32 bytes a node); a query descends through the boxes its segment crosses and cuts the
-//! segment with each tube of a leaf ([`tube_interval`]).
+//! surface area heuristic puts it, leaves of at most [`LEAF_BEAMS`] beams, boxes as f32 relative
+//! to the map's centre rounded outward, 32 bytes a node); a query descends through the boxes its
+//! segment crosses and cuts the segment with each tube of a leaf ([`tube_interval`]). The
+//! renderer hands it pieces of the flights a few tube radii long ([`super::pieces`]), whose
+//! flat-ended tubes tile their flight's.
 //!
 //! # References
 //! - W. Jarosz, D. Nowrouzezahrai, R. Thomas, P.-P. Sloan and M. Zwicker (2011), "Progressive

@@ -8,9 +8,10 @@
 //!
 //! ∫₀ˢ T(0→t) σ_s(x) ∫ f(ω'·ω) L(x, ω') dω' dt ≈ Σ_b T(0→t_b) σ_s(x_b) f(λ_b; ω_b·ω) Φ_b ℓ_b / (π r_b² Δλ)
 //!
-//! summed over the beams whose tube the chord passes through for a length ℓ_b about t_b (JNSJ11
-//! Table 1, the "beam × beam (3-D blur)" estimate with a cylinder kernel; Jarosz et al.'s 1-D
-//! kernel would divide by sin θ instead, which is unbounded for a chord along a beam). The
+//! summed over the beams whose tube the chord passes through for a length ℓ_b about t_b: a
+//! "beam × beam" estimate in the terms of Jarosz, Nowrouzezahrai, Sadeghi & Jensen (2011), with
+//! a kernel blurring each beam across itself in two dimensions; their 1-D kernel would divide
+//! by sin θ instead, which is unbounded for a chord along a beam. The
 //! bias is that of the blur across the beam, O(r²) where the fluence is smooth; a tube crossed
 //! at random holds a chord 2 r long on average, so its noise falls as 1/r and not 1/r² as a
 //! disc's: progressive passes shrink r as rᵢ₊₁ = rᵢ (i + α)/(i + 1) ([`crate::scene`]'s

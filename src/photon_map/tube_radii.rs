@@ -13,14 +13,15 @@
 //! r_b = 2 r_p² ρ / λ_L = 2 r_p² / ℓ̄,
 //!
 //! with ℓ̄ = λ_L/ρ the length of beam per stored photon over the whole pass. For r_p = 5 cm and
-//! ℓ̄ = 1 m a tube is 5 mm wide where the disc was 5 cm: about as many photons read, blurred over
-//! a tenth of the width (Jarosz et al. 2011 show the same trade in their Fig. 8).
+//! ℓ̄ = 1 m a tube's radius is 5 mm where the disc's was 5 cm: about as many hits a chord, the
+//! light blurred over a tenth of the width.
 //!
 //! # References
 //! - W. Jarosz, D. Nowrouzezahrai, I. Sadeghi and H. W. Jensen (2011), "A comprehensive theory
 //!   of volumetric radiance estimation using photon points and beams", ACM Transactions on
 //!   Graphics 30(1), 5.
-//! - L. A. Santaló (1976), Integral Geometry and Geometric Probability, §2.4 (mean chord 4V/S).
+//! - L. A. Santaló (1976), Integral Geometry and Geometric Probability, Addison-Wesley (the mean
+//!   chord 4V/S of a convex body met by isotropic uniform lines, Cauchy's formula).
 
 use super::{Neighbours, PhotonBeam, PhotonMap};
 use rayon::prelude::*;
