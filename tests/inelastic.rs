@@ -267,26 +267,33 @@ fn emission_band_sum(v: &[f64]) -> f64 {
     v[16..24].iter().sum()
 }
 
+/// The sphere seen from inside rendered with `integrator` (the estimator named `what`): its
+/// emission band within `tolerance` (relative) of the closed form.
+fn emission_matches_the_closed_form(what: &str, integrator: &str, tolerance: f64) {
+    let (got, want) = sphere_seen_from_inside(integrator);
+    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
+    eprintln!("{what}: {g} vs closed form {w} (ratio {})", g / w);
+    assert!((g / w - 1.0).abs() < tolerance, "{what} {g}, closed form {w}");
+}
+
 #[test]
 fn volume_map_sees_fluorescence_as_the_closed_form() {
-    let (got, want) = sphere_seen_from_inside(
+    emission_matches_the_closed_form(
+        "volume map",
         "photons = 400000\nvolume_k = 100\nvolume_max_radius = 0.2\nmarch_step = 0.01\nspp = 16\nseed = 2",
+        0.05,
     );
-    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
-    eprintln!("volume map: {g} vs closed form {w} (ratio {})", g / w);
-    assert!((g / w - 1.0).abs() < 0.05, "volume map {g}, closed form {w}");
 }
 
 /// The same closed form read by the beam estimate (one query per chord; issue 17 item 6): the
 /// re-emitted light counts every photon, as the point estimate's does, within the same 5 %.
 #[test]
 fn beam_estimate_sees_fluorescence_as_the_closed_form() {
-    let (got, want) = sphere_seen_from_inside(
+    emission_matches_the_closed_form(
+        "beam estimate",
         "photons = 400000\nvolume_k = 100\nvolume_max_radius = 0.2\nvolume_estimate = \"beam\"\nspp = 16\nseed = 2",
+        0.05,
     );
-    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
-    eprintln!("beam estimate: {g} vs closed form {w} (ratio {})", g / w);
-    assert!((g / w - 1.0).abs() < 0.05, "beam estimate {g}, closed form {w}");
 }
 
 /// And by photon beams: each tube's stretch read as the collisions it makes, Φ σ_t ℓ, re-emitted
@@ -296,20 +303,16 @@ fn beam_estimate_sees_fluorescence_as_the_closed_form() {
 /// under 1 %).
 #[test]
 fn photon_beams_see_fluorescence_as_the_closed_form() {
-    let (got, want) = sphere_seen_from_inside(
+    emission_matches_the_closed_form(
+        "photon beams",
         "photons = 400000\nvolume_k = 400\nvolume_max_radius = 0.2\nvolume_estimate = \"photon_beams\"\nspp = 16\nseed = 2",
+        0.05,
     );
-    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
-    eprintln!("photon beams: {g} vs closed form {w} (ratio {})", g / w);
-    assert!((g / w - 1.0).abs() < 0.05, "photon beams {g}, closed form {w}");
 }
 
 #[test]
 fn path_tracer_sees_fluorescence_as_the_closed_form() {
-    let (got, want) = sphere_seen_from_inside("method = \"path\"\nspp = 200000\nseed = 3");
-    let (g, w) = (emission_band_sum(&got), emission_band_sum(&want));
-    eprintln!("path tracer: {g} vs closed form {w} (ratio {})", g / w);
-    assert!((g / w - 1.0).abs() < 0.03, "path tracer {g}, closed form {w}");
+    emission_matches_the_closed_form("path tracer", "method = \"path\"\nspp = 200000\nseed = 3", 0.03);
 }
 
 /// Raman scattering seen from inside a sphere (σ_a = 0.05 m⁻¹, Raman b = 0.5 m⁻¹, energy
