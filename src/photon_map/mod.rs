@@ -24,6 +24,7 @@ pub mod photon_beams;
 pub mod progressive;
 pub mod scatter_rows;
 pub mod stratified;
+mod tube;
 mod tube_estimate;
 mod tube_radii;
 
