@@ -26,6 +26,9 @@ pub enum Stream {
     VolumePhotons = 5,
     /// Sensor evaluation.
     Sensor = 7,
+    /// Sensor evaluation, a direction's chunks of samples after its first
+    /// (`render::sensors::sky_radiance`).
+    SensorChunk = 8,
     /// Tests, and seeded procedural content (the fBm permutation).
     Test = 99,
 }

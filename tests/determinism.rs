@@ -76,3 +76,29 @@ fn identical_on_one_and_two_threads(s: &morgana::scene::Scene) {
     let se = |r: &morgana::render::Rendered| bits(r.std_error.as_deref().expect("two passes"));
     assert!(se(&one) == se(&two), "standard errors differ between 1 and 2 threads");
 }
+
+/// A sky radiance sensor whose directions take more samples than one chunk
+/// (`render::sensors::sky_radiance::CHUNK`) reads them in parallel chunks: the same bits on one
+/// and on two threads (the twilight example, path-traced, two directions of 2 chunks + 5
+/// samples).
+#[test]
+fn a_sky_sensor_read_in_chunks_is_identical_on_one_and_two_threads() {
+    use morgana::render::sensors::sky_radiance::CHUNK;
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/sky_twilight.toml"))
+        .expect("the example");
+    let samples = 2 * CHUNK + 5;
+    let text = text
+        .replace("photons = 0\n", "method = \"path\"\n")
+        .replace("directions_deg = [[0.0, 0.0]]", "directions_deg = [[0.0, 0.0], [60.0, 90.0]]")
+        .replace("samples = 4\n", &format!("samples = {samples}\n"));
+    let s = common::scene(&text);
+    let (one, two) = (render_with(&s, 1), render_with(&s, 2));
+    let column = |r: &morgana::render::Rendered| {
+        let sky = r.sensors.iter().find(|x| x.name == "sky").expect("the sky sensor");
+        sky.columns[0].1.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+    };
+    let (a, b) = (column(&one), column(&two));
+    assert_eq!(a.len(), 2);
+    assert!(a.iter().all(|v| f64::from_bits(*v) > 0.0), "a dark sky: {a:?}");
+    assert!(a == b, "sky radiance differs between 1 and 2 threads");
+}

@@ -3,7 +3,7 @@
 
 mod illuminance_plane;
 mod ocean_profile;
-mod sky_radiance;
+pub mod sky_radiance;
 
 use super::eye::EyeTracer;
 use super::photon_pass::Maps;

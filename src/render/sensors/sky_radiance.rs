@@ -1,15 +1,24 @@
 //! Evaluating a [`SkyRadiance`] sensor: each direction's radiance by the eye pass the scene
 //! uses (photon map or path tracer), as a camera ray from the sensor's position would read it
 //! (see [`crate::sensor::sky_radiance`]).
+//!
+//! A direction's samples are split into chunks of [`CHUNK`], each drawing from its own stream,
+//! and the chunks run in parallel: one direction read with 10⁷ path-traced samples (the zenith
+//! through twilight) uses every thread. The chunks are fixed by the sample count, not by the
+//! threads, and summed in order, so a seed gives the same reading on any number of threads; a
+//! direction of at most [`CHUNK`] samples draws exactly what it drew before the split.
 
 use super::super::Lanes;
 use super::super::eye::{EyeTracer, Scratch};
 use super::super::path::PathTracer;
 use crate::raypath::RayState;
-use crate::rng::{Rng, Stream};
+use crate::rng::{Rng, Stream, splitmix64};
 use crate::scene::{Method, Scene};
 use crate::sensor::{Reading, SkyRadiance};
 use rayon::prelude::*;
+
+/// Samples per chunk of one direction.
+pub const CHUNK: usize = 65_536;
 
 /// Measures every direction; sensor `index` and the pass's `seed` seed its random streams.
 pub fn evaluate(
@@ -22,12 +31,20 @@ pub fn evaluate(
     let path = (scene.integrator.method == Method::Path).then(|| PathTracer::new(scene));
     let n = sensor.directions_deg.len();
     let bands = scene.bands.count;
-    let per_direction: Vec<Vec<f64>> = (0..n)
+    let chunks = sensor.samples.div_ceil(CHUNK).max(1);
+    let weight = Lanes::film_weight(&scene.bands, scene.sampling) / sensor.samples as f64;
+    let per_chunk: Vec<Vec<f64>> = (0..n * chunks)
         .into_par_iter()
-        .map_init(Scratch::default, |sc, k| {
-            let mut rng = Rng::for_task(seed, Stream::Sensor, (index << 40) | k as u64);
-            band_means(sensor, scene, (tracer, path.as_ref()), k, &mut rng, sc)
+        .map_init(Scratch::default, |sc, task| {
+            let (k, chunk) = (task / chunks, task % chunks);
+            let mut rng = chunk_rng(seed, index, k, chunk);
+            let samples = chunk * CHUNK..sensor.samples.min((chunk + 1) * CHUNK);
+            band_sums(sensor, scene, (tracer, path.as_ref()), (k, samples, weight), &mut rng, sc)
         })
+        .collect();
+    let per_direction: Vec<Vec<f64>> = per_chunk
+        .chunks(chunks)
+        .map(|sums| (0..bands).map(|b| sums.iter().map(|s| s[b]).sum::<f64>()).collect())
         .collect();
     let mut columns = vec![
         ("L_mean".to_string(), per_direction.iter().map(|l| l.iter().sum::<f64>() / bands as f64).collect()),
@@ -55,12 +72,25 @@ pub fn evaluate(
     }
 }
 
-/// The mean radiance per band over the sensor's samples, looking along direction `k`.
-fn band_means(
+/// The random stream of chunk `chunk` of direction `k` of sensor `index`: the first chunk's is
+/// the stream the whole direction drew from before directions were split, the others' are
+/// seeded by a hash of (seed, chunk).
+fn chunk_rng(seed: u64, index: u64, k: usize, chunk: usize) -> Rng {
+    let task = (index << 40) | k as u64;
+    match chunk {
+        0 => Rng::for_task(seed, Stream::Sensor, task),
+        c => Rng::for_task(splitmix64(seed ^ splitmix64(c as u64)), Stream::SensorChunk, task),
+    }
+}
+
+/// The sums per band of `weight` × the sensor's samples `samples` (indices among all the
+/// direction's samples, over which the wavelength jitter is stratified), looking along
+/// direction `k`.
+fn band_sums(
     sensor: &SkyRadiance,
     scene: &Scene,
     (tracer, path): (&EyeTracer, Option<&PathTracer>),
-    k: usize,
+    (k, samples, weight): (usize, std::ops::Range<usize>, f64),
     rng: &mut Rng,
     sc: &mut Scratch,
 ) -> Vec<f64> {
@@ -68,8 +98,7 @@ fn band_means(
     let medium = scene.world.medium_at(position);
     let state = RayState { position, dir: sensor.direction(k), wavelength_nm: None, medium };
     let mut acc = vec![0.0; scene.bands.count];
-    let weight = Lanes::film_weight(&scene.bands, scene.sampling) / sensor.samples as f64;
-    for s in 0..sensor.samples {
+    for s in samples {
         // The wavelength jitter stratified over the samples.
         let u = (s as f64 + rng.uniform()) / sensor.samples as f64;
         let lanes = Lanes::new(&scene.bands, scene.sampling, u);
