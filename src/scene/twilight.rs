@@ -11,7 +11,7 @@
 //! deeper in the shadow photons stay scarce and the light across the gather disc varies
 //! steeply: at 96° in 445–455 nm air (vertical optical depth 0.2) 10⁶ photons read twice the
 //! path tracer, 10⁷ within 5 %; at 351 nm in the air of Zawada et al. (optical depth 0.62) 10⁷
-//! photons read 1.4–1.7× the path tracer (two seeds) and 3 × 10⁷ still 1.5× (the book's The sky,
+//! photons read 1.4–1.7× the path tracer (two seeds) and 3 × 10⁷ still 1.1–1.5× (the book's The sky,
 //! "Multiple scattering through twilight against SASKTRAN2"). So a folded map is warned about
 //! whenever the sun is more than [`FOLDED_DEPTH_DEG`] below the horizon, whatever its photons.
 
@@ -39,7 +39,7 @@ pub fn warning(scene: &Scene) -> Option<String> {
             let Light::Directional(d) = &scene.world.lights[below] else { return None };
             let depth_deg = d.dir.dot(up).asin().to_degrees();
             (depth_deg > FOLDED_DEPTH_DEG).then(|| format!(
-                "light \"{name}\" is {depth_deg:.1}° below the horizon at the camera: deep in the Earth's shadow even the folded volume photon map finds few photons and can read high (at solar zenith 96°: twice the path tracer's zenith radiance with 10⁶ photons and within 5 % with 10⁷ at 450 nm, but 1.5× with 3 × 10⁷ at 351 nm, see the book's The sky, twilight); check it with method = \"path\" (seconds for a sky sensor's zenith)"
+                "light \"{name}\" is {depth_deg:.1}° below the horizon at the camera: deep in the Earth's shadow even the folded volume photon map finds few photons and can read high (at solar zenith 96°: twice the path tracer's zenith radiance with 10⁶ photons and within 5 % with 10⁷ at 450 nm, but 1.1–1.5× with 3 × 10⁷ at 351 nm, see the book's The sky, twilight); check it with method = \"path\" (seconds for a sky sensor's zenith)"
             ))
         }
     }
