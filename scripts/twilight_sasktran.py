@@ -12,7 +12,7 @@ with each run's CPU seconds. Standard library only.
 
     scripts/twilight_sasktran.py [--bin target/release/morgana] [--out /tmp/twilight_sasktran]
         [--nm 351] [--zeniths 90,92,94,96] [--photons 1000000,10000000] [--seeds 1,2]
-        [--path-samples 1000000] [--map-lines 'volume_k = 20'] [--runs single,path,map]
+        [--path-samples 1000000] [--map-lines 'volume_k = 20'] [--runs single,path,map] [--eye-m 1]
 """
 
 import argparse
@@ -43,7 +43,7 @@ def write_air(out):
     )
 
 
-def scene(nm, integrator, samples):
+def scene(nm, integrator, samples, eye_m=1.0):
     xs = CROSS_SECTION_CM2[nm]
     return f"""
 [camera]
@@ -94,7 +94,7 @@ scale = 1.0
 [[sensor]]
 name = "sky"
 type = "sky_radiance"
-origin = [0.0, 1.0, 0.0]
+origin = [0.0, {eye_m!r}, 0.0]
 directions_deg = [[0.0, 0.0]]
 samples = {samples}
 """
@@ -134,6 +134,8 @@ def main():
     ap.add_argument("--path-samples", type=int, default=1_000_000)
     ap.add_argument("--map-lines", default="", help="[integrator] lines added to the photon-map runs (\\n between)")
     ap.add_argument("--runs", default="single,path,map", help="which of single, path, map to run")
+    ap.add_argument("--eye-m", type=float, default=1.0,
+                    help="the sensor's height, m (SASKTRAN2's ratios hold only for the default 1 m)")
     args = ap.parse_args()
     zeniths = [float(z) for z in args.zeniths.split(",")]
     seeds = [int(s) for s in args.seeds.split(",")]
@@ -150,7 +152,8 @@ def main():
     print("run".ljust(18) + "".join(f"{z:g} deg".rjust(34) for z in zeniths) + "   CPU s")
     for name, integrator, samples, run_seeds in runs:
         for seed in run_seeds:
-            values, cpu = sweep(args.bin, args.out, name, scene(args.nm, integrator, samples), seed, zeniths)
+            text = scene(args.nm, integrator, samples, args.eye_m)
+            values, cpu = sweep(args.bin, args.out, name, text, seed, zeniths)
             cells = "".join(
                 f"{values[z]:.4e} ({values[z] / reference[z][0]:.3f}/{values[z] / reference[z][1]:.3f})".rjust(34)
                 for z in zeniths
