@@ -25,7 +25,7 @@
 //!   for the mirages).
 
 use super::base::BaseProfile;
-use super::edit::Edit;
+use super::edit::{Edit, ThinLayer};
 use super::{AirDispersion, Earth, gas};
 use crate::field::GradientRegion;
 use glam::DVec3;
@@ -227,6 +227,15 @@ impl Atmosphere {
         k.retain(|h| *h < self.top_m);
         k.sort_by(f64::total_cmp);
         k
+    }
+
+    /// The thin layers of the edits below the top (an inversion's), ascending, which curved
+    /// paths' steps approach ([`Edit::thin_layer`]).
+    pub fn thin_layers(&self) -> Vec<ThinLayer> {
+        let mut layers: Vec<ThinLayer> =
+            self.edits.iter().filter_map(Edit::thin_layer).filter(|l| l.height_m < self.top_m).collect();
+        layers.sort_by(|a, b| a.height_m.total_cmp(&b.height_m));
+        layers
     }
 
     /// Heights below the top between which n is analytic, ascending, m: [`Self::kink_heights_m`]

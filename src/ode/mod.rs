@@ -350,6 +350,20 @@ impl Integrator {
         Ok(step)
     }
 
+    /// The step (m) the next [`Integrator::step`] will try first, unless cut to its limit;
+    /// `None` before the first step of a path (its starting step is then estimated).
+    pub fn proposal(&self) -> Option<f64> {
+        self.h_next
+    }
+
+    /// Shortens the proposal for the next step to at most `h` (m): for a caller that knows the
+    /// field ahead changes faster than the steps so far (leaving a thin layer's peak).
+    pub fn limit_proposal(&mut self, h: f64) {
+        if let Some(p) = self.h_next.as_mut().filter(|_| h > 0.0) {
+            *p = p.min(h).max(self.controller.h_min);
+        }
+    }
+
     /// Proposes `h` (m) as the next step when the integrator has none yet (a new path), in place
     /// of the starting-step guess; a step size already reached is kept.
     pub fn propose_first_step(&mut self, h: f64) {

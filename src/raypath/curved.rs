@@ -180,9 +180,14 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
     // ∇n where the next step starts (the first step's slope, sampled once): the path's curvature.
     let Ok(f0) = ode.prime(sample, &state.y) else { return Leg::Done(Event::Lost { position: w.position }) };
     let mut grad = f0.v;
+    // The length of the last step, the size to leave a thin layer's peak with.
+    let mut last_h = f64::INFINITY;
     loop {
         let tol = settings.kink_tolerance(state.y.v.length());
-        let cut = kinks.and_then(|k| k.next_cut(w.position, w.dir, state.y.curvature(grad), KINK_MIN_M, tol));
+        let h_want = ode.proposal().unwrap_or(f64::INFINITY);
+        let next =
+            kinks.and_then(|k| k.next_cut_within(w.position, w.dir, state.y.curvature(grad), KINK_MIN_M, tol, h_want));
+        let cut = next.map(|c| c.length_m);
         let h_limit = cut.map_or(h_cap, |t| t.min(h_cap));
         if cut.is_some() && grad.length() * h_limit <= tol.map_or(0.0, |t| t.v()) {
             // Entering where ∇n is 0 or nearly (the top of an atmosphere, where n − 1 tapers to
@@ -195,6 +200,10 @@ fn curved_leg<F: Fn(DVec3) -> (f64, DVec3)>(
         let Ok(step) = ode.step(sample, &mut state, h_limit) else {
             return Leg::Done(Event::Lost { position: w.position });
         };
+        if step.reached_limit && next.is_some_and(|c| c.into_layer && c.length_m <= h_cap) {
+            ode.limit_proposal(last_h.max(step.h()));
+        }
+        last_h = step.h();
         grad = step.dense.f1.v;
         // Where the step climbs through the layered upper air's bottom, the path is handed out
         // up to there and leaves the air in one move from there.

@@ -117,14 +117,15 @@ pub enum Event {
     },
 }
 
-/// The kink spheres of a radial field, if it has any, each probed at the reference wavelength.
+/// The kink spheres of a radial field (its kinks and the peaks of its thin layers), if it has
+/// any, each probed at the reference wavelength.
 fn kink_spheres(f: &IndexField) -> Option<kink::KinkSpheres> {
-    let radii = f.kink_radii_m();
-    if radii.is_empty() {
+    let (radii, layers) = (f.kink_radii_m(), f.thin_layer_radii_m());
+    if radii.is_empty() && layers.is_empty() {
         return None;
     }
     let sample = |p: DVec3| f.n_grad(curved::REFERENCE_WAVELENGTH_NM, p);
-    Some(kink::KinkSpheres::new(&sample, f.radial_centre()?, &radii))
+    Some(kink::KinkSpheres::new(&sample, f.radial_centre()?, &radii).with_layers(&sample, &layers))
 }
 
 /// What a medium's curved paths are followed with besides its field.

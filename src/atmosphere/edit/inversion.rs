@@ -6,6 +6,7 @@
 //!
 //! σ and σ(1 − σ) = e^{−|u|}/(1 + e^{−|u|})² are evaluated with e^{−|u|}, which cannot overflow.
 
+use super::ThinLayer;
 use glam::DVec3;
 
 /// The thinnest inversion accepted, m. The gradient peaks at ΔT/(4w): a subnormal w (5e-324)
@@ -36,6 +37,13 @@ impl Inversion {
             ));
         }
         Ok(Inversion { dt_k, height_m, thickness_m })
+    }
+
+    /// The inversion as a thin layer: its gradient (ΔT/w)·σ(1 − σ) peaks at the midpoint h,
+    /// and σ(1 − σ) = e^{−|u|}/(1 + e^{−|u|})² ≤ e^{−|u|}, so it is at most 4 times its peak
+    /// times e^{−|z − h|/w}: an envelope that falls e-fold every w.
+    pub fn thin_layer(&self) -> ThinLayer {
+        ThinLayer { height_m: self.height_m, scale_m: self.thickness_m }
     }
 
     /// ΔT (K) and ∇ΔT (K m⁻¹) at height `h` (m) whose gradient is `gh`.

@@ -63,6 +63,17 @@ impl Edit {
         }
     }
 
+    /// The edit's thin layer, if it has one, which curved paths' steps approach as they
+    /// approach a hot road's ground (`crate::ode::kink`, "Approaching a layer"): an inversion's
+    /// ([`Inversion::thin_layer`]). None for the others (a hot surface's layer ends on its
+    /// ground kink; an offset has none; a bubble or grid does not depend on height alone).
+    pub fn thin_layer(&self) -> Option<ThinLayer> {
+        match self {
+            Edit::Inversion(e) => Some(e.thin_layer()),
+            Edit::Offset(_) | Edit::HotSurface(_) | Edit::Bubble(_) | Edit::Grid(_) => None,
+        }
+    }
+
     /// The smallest and largest ΔT the edit can add, K.
     pub fn range_k(&self) -> (f64, f64) {
         match self {
@@ -73,6 +84,16 @@ impl Edit {
             Edit::Grid(e) => e.range_k(),
         }
     }
+}
+
+/// A thin layer of air: the height where its temperature gradient peaks and the depth over
+/// which the gradient's envelope falls e-fold on either side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinLayer {
+    /// Height of the peak, m.
+    pub height_m: f64,
+    /// e-folding depth of the envelope, m.
+    pub scale_m: f64,
 }
 
 /// [min(0, x), max(0, x)].

@@ -135,6 +135,22 @@ impl IndexField {
         }
     }
 
+    /// For a field with a [`IndexField::radial_centre`]: its thin layers (an inversion's) as
+    /// (distance from the centre of the layer's peak, e-folding depth of its envelope), m,
+    /// ascending — which curved paths' steps approach rather than dive into. Empty for other
+    /// fields.
+    pub fn thin_layer_radii_m(&self) -> Vec<(f64, f64)> {
+        match self {
+            IndexField::Atmosphere(a) => match (&a.earth, a.radial_centre()) {
+                (Earth::Spherical(s), Some(_)) => {
+                    a.thin_layers().iter().map(|l| (s.radius_m + l.height_m, l.scale_m)).collect()
+                }
+                _ => Vec::new(),
+            },
+            _ => Vec::new(),
+        }
+    }
+
     /// A lower bound of n over `domain` and the wavelength range `[min_nm, max_nm]` (NaN when the
     /// field produces NaN there).
     pub fn min_n_bound(&self, domain: &Aabb, wavelength_range_nm: (f64, f64)) -> f64 {
