@@ -20,12 +20,15 @@
 //!
 //!   cargo test --release --test hot_layer_steps
 
+mod ode_common;
+
 use glam::DVec3;
 use morgana::atmosphere::edit::{Edit, HotSurface};
 use morgana::atmosphere::{Atmosphere, EARTH_RADIUS_M, RadialTable};
 use morgana::media::refractive_index::IndexField;
 use morgana::ode::{CurvedSettings, Integrator, Method, OdeState};
 use morgana::raypath::kink::{Kink, KinkSpheres, Side};
+use ode_common::{arc_length_to_height, height_above};
 
 /// The scenes' default tolerances (relative and absolute).
 const TOL: f64 = 1e-9;
@@ -96,25 +99,7 @@ fn follow(
 
 /// Height above the Earth of the atmosphere, m.
 fn height(r: DVec3) -> f64 {
-    (r - DVec3::new(0.0, -EARTH_RADIUS_M, 0.0)).length() - EARTH_RADIUS_M
-}
-
-/// The arc length at which the ray, followed at tolerance 10⁻¹³, comes down to `height_m`
-/// above the Earth (located on the dense output of the step that passes it, by bisection).
-fn arc_length_to_height(sample: &dyn Fn(DVec3) -> (f64, DVec3), (p, dir): (DVec3, DVec3), height_m: f64) -> f64 {
-    let mut ode = Integrator::new(Method::dormand_prince(1e-13, 1e-13)).expect("valid method");
-    let mut state = OdeState::launch(&sample, p, dir).expect("the field is finite here");
-    loop {
-        let step = ode.step(&sample, &mut state, 100.0).expect("the step succeeds");
-        if height(state.y.r) < height_m {
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if height(step.position_at(mid)) < height_m { hi = mid } else { lo = mid }
-            }
-            return step.s0 + 0.5 * (lo + hi) * step.h();
-        }
-    }
+    height_above(r, EARTH_RADIUS_M)
 }
 
 #[test]
@@ -141,7 +126,7 @@ fn descending_into_a_hot_layer_rejects_few_steps_and_ends_alike() {
             let ray = (DVec3::new(0.0, start_m, 0.0), DVec3::new(0.0, -e.sin(), -e.cos()));
             // Down to half a metre above the road (steps of at most 100 m, so the field's kinks
             // cost the reference nothing it does not see).
-            let s_end = arc_length_to_height(&sample, ray, 0.5);
+            let s_end = arc_length_to_height(&sample, ray, (0.5, EARTH_RADIUS_M), 100.0);
             let runs = [
                 follow(&sample, &kinks, ray, s_end, TOL, true),
                 follow(&sample, &blind, ray, s_end, TOL, true),

@@ -19,12 +19,15 @@
 //!
 //!   cargo test --release --test inversion_steps -- --nocapture
 
+mod ode_common;
+
 use glam::DVec3;
 use morgana::atmosphere::edit::{Edit, Inversion, Offset};
 use morgana::atmosphere::{Atmosphere, EARTH_RADIUS_M, RadialTable};
 use morgana::media::refractive_index::IndexField;
 use morgana::ode::{CurvedSettings, Integrator, Method, OdeState};
 use morgana::raypath::kink::KinkSpheres;
+use ode_common::arc_length_to_height;
 
 /// The scenes' default tolerances (relative and absolute).
 const TOL: f64 = 1e-9;
@@ -86,11 +89,6 @@ fn follow(
     Run { end: state, accepted: c.accepted, rejected: c.rejected }
 }
 
-/// Height above the Earth of the atmosphere, m.
-fn height(r: DVec3) -> f64 {
-    (r - DVec3::new(0.0, -EARTH_RADIUS_M, 0.0)).length() - EARTH_RADIUS_M
-}
-
 /// The rays: from 1 km down at 1–60° and from 20 km at 5–60° (at 1° it would pass the sea), and from 10 m up at 0.25–5° (from 0.2° up they leave the duct), each with the
 /// height it is followed to (half a metre above the sea going down, 200 m going up).
 fn rays() -> Vec<((DVec3, DVec3), f64)> {
@@ -105,26 +103,6 @@ fn rays() -> Vec<((DVec3, DVec3), f64)> {
         rays.push(((DVec3::new(0.0, 10.0, 0.0), dir(deg)), 200.0));
     }
     rays
-}
-
-/// The arc length at which the ray, followed at tolerance 10⁻¹³, first passes `height_m`
-/// (located on the dense output of the step that passes it, by bisection).
-fn arc_length_to_height(sample: &dyn Fn(DVec3) -> (f64, DVec3), (p, dir): (DVec3, DVec3), height_m: f64) -> f64 {
-    let mut ode = Integrator::new(Method::dormand_prince(1e-13, 1e-13)).expect("valid method");
-    let mut state = OdeState::launch(&sample, p, dir).expect("the field is finite here");
-    let side = |q: DVec3| height(q) < height_m;
-    let start = side(p);
-    loop {
-        let step = ode.step(&sample, &mut state, 10.0).expect("the step succeeds");
-        if side(state.y.r) != start {
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if side(step.position_at(mid)) == start { lo = mid } else { hi = mid }
-            }
-            return step.s0 + 0.5 * (lo + hi) * step.h();
-        }
-    }
 }
 
 #[test]
@@ -144,7 +122,7 @@ fn paths_through_an_inversion_reject_few_steps_and_end_alike() {
     // Attempts (accepted, rejected): with the layer, without.
     let mut all = [(0u64, 0u64); 2];
     for (ray, to_m) in rays() {
-        let s_end = arc_length_to_height(&sample, ray, to_m);
+        let s_end = arc_length_to_height(&sample, ray, (to_m, EARTH_RADIUS_M), 10.0);
         let runs = [follow(&sample, &kinks, ray, s_end, TOL), follow(&sample, &blind, ray, s_end, TOL)];
         let reference = follow(&sample, &kinks, ray, s_end, 1e-13);
         for (i, run) in runs.iter().enumerate() {

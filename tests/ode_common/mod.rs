@@ -111,3 +111,34 @@ pub fn fish_eye_radius(a: f64, p0: DVec3, d0: DVec3) -> f64 {
     let w_perp = w - w.dot(d0) * d0;
     w.length_squared() / (2.0 * w_perp.length())
 }
+
+/// Height above an Earth of radius `radius_m` centred at (0, −radius_m, 0), m.
+pub fn height_above(r: DVec3, radius_m: f64) -> f64 {
+    (r - DVec3::new(0.0, -radius_m, 0.0)).length() - radius_m
+}
+
+/// The arc length at which the ray (p, dir) through `sample`, followed at tolerance 10⁻¹³ in
+/// steps of at most `max_step_m`, first passes `height_m` above an Earth of radius `radius_m`
+/// (up or down), located on the dense output of the step that passes it by bisection.
+pub fn arc_length_to_height(
+    sample: &dyn Fn(DVec3) -> (f64, DVec3),
+    (p, dir): (DVec3, DVec3),
+    (height_m, radius_m): (f64, f64),
+    max_step_m: f64,
+) -> f64 {
+    let mut ode = Integrator::new(Method::dormand_prince(1e-13, 1e-13)).expect("valid method");
+    let mut state = OdeState::launch(&sample, p, dir).expect("the field is finite here");
+    let below = |q: DVec3| height_above(q, radius_m) < height_m;
+    let start = below(p);
+    loop {
+        let step = ode.step(&sample, &mut state, max_step_m).expect("the step succeeds");
+        if below(state.y.r) != start {
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if below(step.position_at(mid)) == start { lo = mid } else { hi = mid }
+            }
+            return step.s0 + 0.5 * (lo + hi) * step.h();
+        }
+    }
+}
