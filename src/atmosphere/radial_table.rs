@@ -47,6 +47,8 @@ const FLOOR: f64 = 1e-6;
 const FLOOR_DQ: f64 = 1e-3;
 /// Cells of the interval index per interval (`RadialTable::interval`).
 const CELLS_PER_INTERVAL: usize = 4;
+/// A cell of the index that spans more intervals than this is cut into sub-cells.
+const CROWDED: usize = 4;
 /// Check points of the refinement: where the Hermite errors of q′ and q peak.
 const CHECKS: [f64; 3] = [0.211_324_865_405_187_1, 0.5, 0.788_675_134_594_812_9];
 
@@ -74,6 +76,12 @@ pub struct RadialTable {
     first: Vec<u32>,
     /// Cells per metre of height.
     inv_cell: f64,
+    /// Per cell: where its sub-cells' boundaries start in `sub_first` and how many sub-cells
+    /// it has (0: none; a cell is cut into sub-cells where it spans more than [`CROWDED`]
+    /// intervals, as at an inversion or over a hot road).
+    sub: Vec<(u32, u32)>,
+    /// The sub-cells' boundaries, each with the interval it lies in (a crowded cell's n + 1).
+    sub_first: Vec<u32>,
     /// Relative bound ε.
     epsilon: f64,
     /// The floors of the bound: 10⁻⁶·q₀ and 10⁻³·q₀/H₀.
@@ -98,6 +106,8 @@ impl RadialTable {
             pieces: Vec::new(),
             first: Vec::new(),
             inv_cell: 0.0,
+            sub: Vec::new(),
+            sub_first: Vec::new(),
             epsilon,
             floor_q: FLOOR * q0,
             floor_dq: FLOOR_DQ * q0 / H0_M,
@@ -158,25 +168,51 @@ impl RadialTable {
     #[inline]
     fn interval(&self, h: f64) -> usize {
         let cells = self.first.len() - 1;
-        let j = (((h - self.lo[0]) * self.inv_cell) as usize).min(cells - 1);
-        let (a, b) = (self.first[j] as usize, self.first[j + 1] as usize);
+        let x = (h - self.lo[0]) * self.inv_cell;
+        let j = (x as usize).min(cells - 1);
+        let (a, b) = match self.sub[j] {
+            (_, 0) => (self.first[j] as usize, self.first[j + 1] as usize),
+            (start, n) => {
+                let k = start as usize + (((x - j as f64) * f64::from(n)) as usize).min(n as usize - 1);
+                (self.sub_first[k] as usize, self.sub_first[k + 1] as usize)
+            }
+        };
         let i = a + self.lo[a + 1..=b].partition_point(|x| *x <= h);
         if self.lo[i] <= h && h < self.lo[i + 1] { i } else { self.lo.partition_point(|x| *x <= h) - 1 }
     }
 
     /// Builds the index of the intervals: `CELLS_PER_INTERVAL` equal cells of height per
-    /// interval over the table, each boundary with the interval it lies in.
+    /// interval over the table, each boundary with the interval it lies in; a cell that spans
+    /// more than [`CROWDED`] intervals is cut the same way into `CELLS_PER_INTERVAL` equal
+    /// sub-cells per interval it spans (an inversion's or a hot road's fine intervals crowd
+    /// dozens into one cell, where the search among them took half a field sample's time in
+    /// `mirage_superior`).
     fn index(&mut self) {
         let (bottom, top) = (self.lo[0], self.lo[self.lo.len() - 1]);
         let cells = CELLS_PER_INTERVAL * self.pieces.len();
         self.inv_cell = cells as f64 / (top - bottom);
-        let last = self.pieces.len() - 1;
-        self.first = (0..=cells)
-            .map(|j| {
-                let h = bottom + j as f64 * (top - bottom) / cells as f64;
-                (self.lo.partition_point(|x| *x <= h).saturating_sub(1)).min(last) as u32
-            })
-            .collect();
+        let width = (top - bottom) / cells as f64;
+        self.first = (0..=cells).map(|j| self.interval_at(bottom + j as f64 * width)).collect();
+        self.sub = vec![(0, 0); cells];
+        self.sub_first.clear();
+        for j in 0..cells {
+            let spanned = (self.first[j + 1] - self.first[j]) as usize;
+            if spanned <= CROWDED {
+                continue;
+            }
+            let n = CELLS_PER_INTERVAL * spanned;
+            self.sub[j] = (self.sub_first.len() as u32, n as u32);
+            let cell_bottom = bottom + j as f64 * width;
+            for k in 0..=n {
+                let at = self.interval_at(cell_bottom + k as f64 * width / n as f64);
+                self.sub_first.push(at);
+            }
+        }
+    }
+
+    /// The interval that height `h` lies in, by a binary search over all (for the index).
+    fn interval_at(&self, h: f64) -> u32 {
+        (self.lo.partition_point(|x| *x <= h).saturating_sub(1)).min(self.pieces.len() - 1) as u32
     }
 
     /// The Earth the heights are measured above.
@@ -286,11 +322,12 @@ impl Piece {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atmosphere::edit::{Edit, HotSurface};
+    use crate::atmosphere::edit::{Edit, HotSurface, Inversion};
 
     /// The index finds the interval a binary search over all of them finds — at every knot, just
-    /// below and above it, at every cell boundary and at 10⁵ random heights — for USA76 and for
-    /// a hot road, whose millimetre intervals crowd many into one cell at the ground.
+    /// below and above it, at every cell and sub-cell boundary and at 10⁵ random heights — for
+    /// USA76, for a hot road, whose millimetre intervals crowd many into one cell at the ground,
+    /// and for an inversion, whose fine intervals crowd the cells about it.
     #[test]
     fn the_index_finds_the_interval_a_full_search_finds() {
         let usa76 = Atmosphere::usa76();
@@ -304,7 +341,17 @@ mod tests {
             usa76.top_m(),
         )
         .expect("valid");
-        for atm in [usa76, road] {
+        let inversion = Inversion::new(10.0, 30.0, 3.0).expect("valid edit");
+        let inverted = Atmosphere::new(
+            "inversion",
+            usa76.earth,
+            usa76.base.clone(),
+            vec![Edit::Inversion(inversion)],
+            usa76.dispersion,
+            usa76.top_m(),
+        )
+        .expect("valid");
+        for atm in [usa76, road, inverted] {
             let t = RadialTable::new(&atm, 1e-9).expect("tabulated");
             let (bottom, top) = (t.lo[0], t.lo[t.lo.len() - 1]);
             let full = |h: f64| t.lo.partition_point(|x| *x <= h) - 1;
@@ -313,15 +360,29 @@ mod tests {
             for &k in &t.lo[..t.lo.len() - 1] {
                 heights.extend([k, k.next_up(), k.next_down()]);
             }
-            heights.extend((0..cells).map(|j| bottom + j as f64 * (top - bottom) / cells as f64));
+            let width = (top - bottom) / cells as f64;
+            heights.extend((0..cells).map(|j| bottom + j as f64 * width));
+            // Every sub-cell boundary of the crowded cells, and just either side of it.
+            let mut crowded = 0;
+            for (j, &(_, n)) in t.sub.iter().enumerate().filter(|(_, s)| s.1 > 0) {
+                crowded += 1;
+                for k in 0..=n {
+                    let h = bottom + j as f64 * width + f64::from(k) * width / f64::from(n);
+                    heights.extend([h, h.next_up(), h.next_down()]);
+                }
+            }
+            if atm.name != "usa76" {
+                assert!(crowded > 0, "{}: the fine intervals crowd some cells", atm.name);
+            }
             let mut x = 0x9e37_79b9_7f4a_7c15u64;
             for _ in 0..100_000 {
                 x ^= x << 13;
                 x ^= x >> 7;
                 x ^= x << 17;
                 let u = (x >> 11) as f64 / (1u64 << 53) as f64;
-                // Half uniform over the table, half within 10 m of the ground.
-                heights.push(if x & 1 == 0 { bottom + u * (top - bottom) } else { 10.0 * u });
+                // Half uniform over the table, half within 10 m of the ground or of the inversion.
+                let near = if x & 2 == 0 { 0.0 } else { 25.0 };
+                heights.push(if x & 1 == 0 { bottom + u * (top - bottom) } else { near + 10.0 * u });
             }
             for h in heights.into_iter().filter(|h| (bottom..top).contains(h)) {
                 assert_eq!(t.interval(h), full(h), "{}: h = {h}", atm.name);
