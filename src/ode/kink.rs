@@ -538,8 +538,8 @@ mod tests {
         assert!(h > 1_000.0 / e.sin() - 2.0, "{h}");
     }
 
-    /// A Fermi bump of ∇n 3 m thick at 30 m over a flat Earth's worth of radius: n − 1 =
-    /// 10⁻⁵·σ((z − 30)/3), plus a constant background gradient.
+    /// A Fermi bump of ∇n (w = 3 m) 30 m above a sphere of the Earth's radius about `centre`:
+    /// n − 1 = 10⁻⁵·σ((z − 30)/3) − 3·10⁻⁸·z, z the height above the sphere.
     fn fermi(centre: DVec3) -> impl Fn(DVec3) -> (f64, DVec3) {
         move |p: DVec3| {
             let q = p - centre;

@@ -41,7 +41,8 @@ impl Inversion {
 
     /// The inversion as a thin layer: its gradient (ΔT/w)·σ(1 − σ) peaks at the midpoint h,
     /// and σ(1 − σ) = e^{−|u|}/(1 + e^{−|u|})² ≤ e^{−|u|}, so it is at most 4 times its peak
-    /// times e^{−|z − h|/w}: an envelope that falls e-fold every w.
+    /// times e^{−|z − h|/w}: an envelope that falls e-fold every w (curved paths' steps model it
+    /// with 2 times the peak, `crate::ode::kink`, "Thin layers").
     pub fn thin_layer(&self) -> ThinLayer {
         ThinLayer { height_m: self.height_m, scale_m: self.thickness_m }
     }
